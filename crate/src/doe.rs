@@ -1,0 +1,1 @@
+//! Placeholder: Audze-Eglais and factorial sampling plans (being written).

@@ -1,0 +1,37 @@
+//! The one error type of the RideLab core. Every message names the field or
+//! quantity at fault so the CLI and the page can show it next to that field.
+
+use thiserror::Error;
+
+/// Errors raised by the RideLab core.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum RideError {
+    /// A named input field is missing, misspelt, of the wrong type or out of range.
+    #[error("{field}: {reason}")]
+    Field {
+        /// Dotted path of the field, e.g. `front.spring`.
+        field: String,
+        /// Why it was rejected.
+        reason: String,
+    },
+    /// A JSON document could not be parsed at all.
+    #[error("invalid JSON: {0}")]
+    Json(String),
+    /// A computation cannot give a finite answer (for example an unstable model).
+    #[error("{0}")]
+    Numerical(String),
+}
+
+impl RideError {
+    /// Shorthand for [`RideError::Field`].
+    pub fn field(field: impl Into<String>, reason: impl Into<String>) -> Self {
+        RideError::Field {
+            field: field.into(),
+            reason: reason.into(),
+        }
+    }
+}
+
+/// Result alias used across the crate.
+pub type Result<T> = std::result::Result<T, RideError>;

@@ -1,0 +1,14 @@
+//! RideLab: surrogate-based passenger-car suspension design.
+//!
+//! Data flows one way: car + road -> model -> criteria -> maps / surrogate -> optimize.
+//! The core is plain Rust; `web` (wasm only) and the `ridelab` binary are thin shells.
+
+pub mod design;
+pub mod doe;
+pub mod error;
+pub mod evaluate;
+pub mod optimize;
+
+pub use design::DesignBox;
+pub use error::{Result, RideError};
+pub use evaluate::{Criteria, Evaluator};

@@ -1,0 +1,1 @@
+//! Placeholder: Pareto-front optimisers (being written).
