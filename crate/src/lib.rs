@@ -5,6 +5,7 @@
 
 pub mod design;
 pub mod doe;
+pub mod dos;
 pub mod error;
 pub mod evaluate;
 pub mod optimize;

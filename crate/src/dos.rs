@@ -1,0 +1,188 @@
+//! Design objective space (DOS): the design objectives that make a point of the
+//! design criteria space feasible, and which objective each infeasible point breaks.
+
+use crate::error::{Result, RideError};
+use crate::evaluate::Criteria;
+use serde::{Deserialize, Serialize};
+
+/// Editable design objectives (METHOD.md section 3). `None` switches an objective off.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct DesignObjectives {
+    /// Upper limit on RMS suspension working space, m (default 0.007 m, on).
+    pub sws_limit: Option<f64>,
+    /// Allowed body-bounce frequency band `(lo, hi)`, Hz (literature: 0.8..1.5 Hz; off by default).
+    pub bounce_band: Option<(f64, f64)>,
+    /// Allowed body damping-ratio band `(lo, hi)`, - (literature: 0.2..0.5; off by default).
+    pub damping_band: Option<(f64, f64)>,
+    /// "No worse than the datum car" for `[bacc, dtl, sws]`.
+    pub no_worse_than_datum: [bool; 3],
+}
+
+impl Default for DesignObjectives {
+    fn default() -> Self {
+        DesignObjectives {
+            sws_limit: Some(0.007),
+            bounce_band: None,
+            damping_band: None,
+            no_worse_than_datum: [false; 3],
+        }
+    }
+}
+
+/// What the objectives need to know about the car besides the criteria.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct DosContext {
+    /// Quarter-car sprung mass `ms = M b / (2 L)`, kg.
+    pub sprung_mass: f64,
+    /// Front tyre vertical stiffness, N/m.
+    pub tire_stiffness: f64,
+    /// The datum car's criteria (for "no worse than datum").
+    pub datum: Criteria,
+}
+
+/// One design objective, as named in messages and on the overlay.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Objective {
+    /// RMS SWS above its limit.
+    SwsLimit,
+    /// Body-bounce frequency outside its band.
+    BounceBand,
+    /// Body damping ratio outside its band.
+    DampingBand,
+    /// BAcc worse than the datum car.
+    BaccDatum,
+    /// DTL worse than the datum car.
+    DtlDatum,
+    /// SWS worse than the datum car.
+    SwsDatum,
+}
+
+impl Objective {
+    /// A short human-readable label.
+    pub fn label(self) -> &'static str {
+        match self {
+            Objective::SwsLimit => "SWS limit",
+            Objective::BounceBand => "body-bounce frequency band",
+            Objective::DampingBand => "damping-ratio band",
+            Objective::BaccDatum => "BAcc no worse than datum",
+            Objective::DtlDatum => "DTL no worse than datum",
+            Objective::SwsDatum => "SWS no worse than datum",
+        }
+    }
+}
+
+/// Body-bounce frequency of the quarter car on its ride rate, Hz:
+/// `f = sqrt(Kw / ms) / (2 pi)`, `Kw = ks kt / (ks + kt)`.
+pub fn bounce_frequency(ks: f64, kt: f64, ms: f64) -> f64 {
+    let kw = ks * kt / (ks + kt);
+    (kw / ms).sqrt() / (2.0 * std::f64::consts::PI)
+}
+
+/// Body damping ratio `zeta = cs / (2 sqrt(ks ms))` (Gillespie's ride definition), -.
+pub fn damping_ratio(ks: f64, cs: f64, ms: f64) -> f64 {
+    cs / (2.0 * (ks * ms).sqrt())
+}
+
+impl DesignObjectives {
+    /// Checks that limits and bands are finite, positive and ordered.
+    pub fn validate(&self) -> Result<()> {
+        if let Some(l) = self.sws_limit {
+            if !(l.is_finite() && l > 0.0) {
+                return Err(RideError::field("sws_limit", "must be a finite number > 0 (m)"));
+            }
+        }
+        for (name, band) in [("bounce_band", self.bounce_band), ("damping_band", self.damping_band)] {
+            if let Some((lo, hi)) = band {
+                if !(lo.is_finite() && hi.is_finite() && lo >= 0.0 && lo < hi) {
+                    return Err(RideError::field(name, "needs finite 0 <= lo < hi"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Signed constraint values `g <= 0` when met, one per active objective, in a
+    /// fixed order; normalised so that 0.01 means "1 % beyond the bound".
+    pub fn constraints(&self, ctx: &DosContext, ks: f64, cs: f64, c: &Criteria) -> Vec<(Objective, f64)> {
+        let mut g = Vec::with_capacity(6);
+        if let Some(l) = self.sws_limit {
+            g.push((Objective::SwsLimit, c.sws / l - 1.0));
+        }
+        if let Some((lo, hi)) = self.bounce_band {
+            let f = bounce_frequency(ks, ctx.tire_stiffness, ctx.sprung_mass);
+            g.push((Objective::BounceBand, band_violation(f, lo, hi)));
+        }
+        if let Some((lo, hi)) = self.damping_band {
+            let z = damping_ratio(ks, cs, ctx.sprung_mass);
+            g.push((Objective::DampingBand, band_violation(z, lo, hi)));
+        }
+        let objs = [Objective::BaccDatum, Objective::DtlDatum, Objective::SwsDatum];
+        let (v, d) = (c.to_array(), ctx.datum.to_array());
+        for i in 0..3 {
+            if self.no_worse_than_datum[i] {
+                g.push((objs[i], v[i] / d[i] - 1.0));
+            }
+        }
+        g
+    }
+
+    /// The objectives a design breaks (empty when feasible).
+    pub fn broken(&self, ctx: &DosContext, ks: f64, cs: f64, c: &Criteria) -> Vec<Objective> {
+        self.constraints(ctx, ks, cs, c)
+            .into_iter()
+            .filter(|(_, g)| *g > 0.0)
+            .map(|(o, _)| o)
+            .collect()
+    }
+
+    /// Total constraint violation `sum max(0, g)` (Deb's constraint domination uses it).
+    pub fn violation(&self, ctx: &DosContext, ks: f64, cs: f64, c: &Criteria) -> f64 {
+        self.constraints(ctx, ks, cs, c).iter().map(|(_, g)| g.max(0.0)).sum()
+    }
+}
+
+/// Relative distance outside `[lo, hi]`: negative inside, positive outside.
+fn band_violation(x: f64, lo: f64, hi: f64) -> f64 {
+    ((lo - x) / lo.max(f64::MIN_POSITIVE)).max((x - hi) / hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ctx() -> DosContext {
+        DosContext {
+            sprung_mass: 467.7,
+            tire_stiffness: 175_500.0,
+            datum: Criteria { bacc: 1.0, dtl: 500.0, sws: 0.006 },
+        }
+    }
+
+    #[test]
+    fn bounce_frequency_matches_hand_value() {
+        // Kw = 20000*175500/195500 = 17953.96 N/m; sqrt(Kw/467.7)/(2 pi) = 0.98610 Hz
+        let f = bounce_frequency(20_000.0, 175_500.0, 467.7);
+        assert!((f - 0.986_10).abs() < 1e-4, "{f}");
+    }
+
+    #[test]
+    fn broken_names_each_objective() {
+        let mut o = DesignObjectives::default();
+        o.bounce_band = Some((0.8, 1.5));
+        o.no_worse_than_datum = [true, false, false];
+        let c = Criteria { bacc: 1.1, dtl: 400.0, sws: 0.008 };
+        let b = o.broken(&ctx(), 20_000.0, 1500.0, &c);
+        assert_eq!(b, vec![Objective::SwsLimit, Objective::BaccDatum]);
+        let ok = Criteria { bacc: 0.9, dtl: 400.0, sws: 0.005 };
+        assert!(o.broken(&ctx(), 20_000.0, 1500.0, &ok).is_empty());
+        assert_eq!(o.violation(&ctx(), 20_000.0, 1500.0, &ok), 0.0);
+    }
+
+    #[test]
+    fn bad_limits_name_the_field() {
+        let o = DesignObjectives { sws_limit: Some(-1.0), ..Default::default() };
+        assert!(o.validate().unwrap_err().to_string().starts_with("sws_limit"));
+    }
+}
