@@ -36,10 +36,16 @@ impl DesignBox {
             ("cs", self.cs_min, self.cs_max),
         ] {
             if !lo.is_finite() || !hi.is_finite() {
-                return Err(RideError::field(format!("{name}-range"), "must be finite numbers"));
+                return Err(RideError::field(
+                    format!("{name}-range"),
+                    "must be finite numbers",
+                ));
             }
             if lo <= 0.0 {
-                return Err(RideError::field(format!("{name}-range"), "minimum must be > 0"));
+                return Err(RideError::field(
+                    format!("{name}-range"),
+                    "minimum must be > 0",
+                ));
             }
             if lo >= hi {
                 return Err(RideError::field(

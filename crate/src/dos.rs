@@ -90,10 +90,16 @@ impl DesignObjectives {
     pub fn validate(&self) -> Result<()> {
         if let Some(l) = self.sws_limit {
             if !(l.is_finite() && l > 0.0) {
-                return Err(RideError::field("sws_limit", "must be a finite number > 0 (m)"));
+                return Err(RideError::field(
+                    "sws_limit",
+                    "must be a finite number > 0 (m)",
+                ));
             }
         }
-        for (name, band) in [("bounce_band", self.bounce_band), ("damping_band", self.damping_band)] {
+        for (name, band) in [
+            ("bounce_band", self.bounce_band),
+            ("damping_band", self.damping_band),
+        ] {
             if let Some((lo, hi)) = band {
                 if !(lo.is_finite() && hi.is_finite() && lo >= 0.0 && lo < hi) {
                     return Err(RideError::field(name, "needs finite 0 <= lo < hi"));
@@ -105,7 +111,13 @@ impl DesignObjectives {
 
     /// Signed constraint values `g <= 0` when met, one per active objective, in a
     /// fixed order; normalised so that 0.01 means "1 % beyond the bound".
-    pub fn constraints(&self, ctx: &DosContext, ks: f64, cs: f64, c: &Criteria) -> Vec<(Objective, f64)> {
+    pub fn constraints(
+        &self,
+        ctx: &DosContext,
+        ks: f64,
+        cs: f64,
+        c: &Criteria,
+    ) -> Vec<(Objective, f64)> {
         let mut g = Vec::with_capacity(6);
         if let Some(l) = self.sws_limit {
             g.push((Objective::SwsLimit, c.sws / l - 1.0));
@@ -118,7 +130,11 @@ impl DesignObjectives {
             let z = damping_ratio(ks, cs, ctx.sprung_mass);
             g.push((Objective::DampingBand, band_violation(z, lo, hi)));
         }
-        let objs = [Objective::BaccDatum, Objective::DtlDatum, Objective::SwsDatum];
+        let objs = [
+            Objective::BaccDatum,
+            Objective::DtlDatum,
+            Objective::SwsDatum,
+        ];
         let (v, d) = (c.to_array(), ctx.datum.to_array());
         for i in 0..3 {
             if self.no_worse_than_datum[i] {
@@ -139,7 +155,10 @@ impl DesignObjectives {
 
     /// Total constraint violation `sum max(0, g)` (Deb's constraint domination uses it).
     pub fn violation(&self, ctx: &DosContext, ks: f64, cs: f64, c: &Criteria) -> f64 {
-        self.constraints(ctx, ks, cs, c).iter().map(|(_, g)| g.max(0.0)).sum()
+        self.constraints(ctx, ks, cs, c)
+            .iter()
+            .map(|(_, g)| g.max(0.0))
+            .sum()
     }
 }
 
@@ -156,7 +175,11 @@ mod tests {
         DosContext {
             sprung_mass: 467.7,
             tire_stiffness: 175_500.0,
-            datum: Criteria { bacc: 1.0, dtl: 500.0, sws: 0.006 },
+            datum: Criteria {
+                bacc: 1.0,
+                dtl: 500.0,
+                sws: 0.006,
+            },
         }
     }
 
@@ -172,17 +195,32 @@ mod tests {
         let mut o = DesignObjectives::default();
         o.bounce_band = Some((0.8, 1.5));
         o.no_worse_than_datum = [true, false, false];
-        let c = Criteria { bacc: 1.1, dtl: 400.0, sws: 0.008 };
+        let c = Criteria {
+            bacc: 1.1,
+            dtl: 400.0,
+            sws: 0.008,
+        };
         let b = o.broken(&ctx(), 20_000.0, 1500.0, &c);
         assert_eq!(b, vec![Objective::SwsLimit, Objective::BaccDatum]);
-        let ok = Criteria { bacc: 0.9, dtl: 400.0, sws: 0.005 };
+        let ok = Criteria {
+            bacc: 0.9,
+            dtl: 400.0,
+            sws: 0.005,
+        };
         assert!(o.broken(&ctx(), 20_000.0, 1500.0, &ok).is_empty());
         assert_eq!(o.violation(&ctx(), 20_000.0, 1500.0, &ok), 0.0);
     }
 
     #[test]
     fn bad_limits_name_the_field() {
-        let o = DesignObjectives { sws_limit: Some(-1.0), ..Default::default() };
-        assert!(o.validate().unwrap_err().to_string().starts_with("sws_limit"));
+        let o = DesignObjectives {
+            sws_limit: Some(-1.0),
+            ..Default::default()
+        };
+        assert!(o
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .starts_with("sws_limit"));
     }
 }

@@ -3,13 +3,22 @@
 //! Data flows one way: car + road -> model -> criteria -> maps / surrogate -> optimize.
 //! The core is plain Rust; `web` (wasm only) and the `ridelab` binary are thin shells.
 
+pub mod analysis;
+pub mod car;
+pub mod criteria;
 pub mod design;
 pub mod doe;
 pub mod dos;
 pub mod error;
 pub mod evaluate;
+pub mod model;
+pub mod modes;
 pub mod optimize;
+pub mod road;
 
+pub use analysis::{HiFi, LoFi, ModelKind};
+pub use car::{Car, QuarterCar};
 pub use design::DesignBox;
 pub use error::{Result, RideError};
 pub use evaluate::{Criteria, Evaluator};
+pub use road::{Road, RoadClass, Tracks};

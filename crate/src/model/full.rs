@@ -1,0 +1,122 @@
+//! HiFi: the 7-DOF full car, `q = [z, theta, phi, zu1, zu2, zu3, zu4]`.
+//!
+//! Axes x forward, y left, z up. Corner i at `(x_i, y_i)`: 1 front-right `(a, -tf/2)`,
+//! 2 front-left `(a, tf/2)`, 3 rear-right `(-b, -tr/2)`, 4 rear-left `(-b, tr/2)`.
+//! Body point above corner i: `z_si = z - x_i theta + y_i phi` (theta > 0 nose down).
+//!
+//! ```text
+//! F_i = -ks_i (z_si - z_ui) - cs_i (z_si' - z_ui')
+//! M z'' = sum F_i,  Iyy theta'' = sum (-x_i) F_i,  Ixx phi'' = sum y_i F_i
+//! mu_i z_ui'' = -F_i - kt_i (z_ui - zr_i) - ct_i (z_ui' - zr_i')
+//! ```
+//! Outputs at corner 1: BAcc = z_s1'', DTL = kt_1 (z_u1 - zr_1), SWS = z_s1 - z_u1.
+//! M, C and K are assembled as sums of rank-one terms `k d d^T` over the springs and
+//! dampers, with `d` the deflection vector of each element.
+
+use super::{LinearModel, OutputRow, Wheel};
+use crate::car::Car;
+use nalgebra::{DMatrix, DVector};
+
+const N: usize = 7;
+
+/// Builds the full-car [`LinearModel`] (three body coordinates, four wheels).
+pub fn full_car(car: &Car) -> LinearModel {
+    let (a, b) = (car.a, car.b);
+    let (tf, tr) = (car.track_front, car.track_rear);
+    let corners = [
+        (a, -tf / 2.0, &car.front),
+        (a, tf / 2.0, &car.front),
+        (-b, -tr / 2.0, &car.rear),
+        (-b, tr / 2.0, &car.rear),
+    ];
+    let mut m = DMatrix::zeros(N, N);
+    m[(0, 0)] = car.sprung_mass;
+    m[(1, 1)] = car.pitch_inertia;
+    m[(2, 2)] = car.roll_inertia;
+    let mut k = DMatrix::zeros(N, N);
+    let mut c = DMatrix::zeros(N, N);
+    let mut kr = DMatrix::zeros(N, 4);
+    let mut cr = DMatrix::zeros(N, 4);
+    let mut deflection = Vec::with_capacity(4);
+    for (i, &(x, y, axle)) in corners.iter().enumerate() {
+        let u = 3 + i;
+        m[(u, u)] = axle.unsprung_mass;
+        // Suspension deflection z_si - z_ui as a row over q.
+        let mut d = DVector::zeros(N);
+        d[0] = 1.0;
+        d[1] = -x;
+        d[2] = y;
+        d[u] = -1.0;
+        k += axle.spring * &d * d.transpose();
+        c += axle.damper * &d * d.transpose();
+        // Tyre: kt (z_ui - zr_i).
+        k[(u, u)] += axle.tire_stiffness;
+        c[(u, u)] += axle.tire_damping;
+        kr[(u, i)] = axle.tire_stiffness;
+        cr[(u, i)] = axle.tire_damping;
+        deflection.push(d);
+    }
+    let zero = DVector::zeros(N);
+    let mut body1 = DVector::zeros(N);
+    body1.rows_mut(0, 3).copy_from(&deflection[0].rows(0, 3));
+    let mut tyre1 = DVector::zeros(N);
+    tyre1[3] = car.front.tire_stiffness;
+    let mut r_dtl = DVector::zeros(4);
+    r_dtl[0] = -car.front.tire_stiffness;
+    let l = car.wheelbase();
+    LinearModel {
+        dof_names: vec![
+            "body heave z",
+            "body pitch theta",
+            "body roll phi",
+            "wheel hop front-right",
+            "wheel hop front-left",
+            "wheel hop rear-right",
+            "wheel hop rear-left",
+        ],
+        m,
+        c,
+        k,
+        kr,
+        cr,
+        n_body: 3,
+        outputs: [
+            OutputRow {
+                q: zero.clone(),
+                v: zero.clone(),
+                a: body1,
+                r: DVector::zeros(4),
+            },
+            OutputRow {
+                q: tyre1,
+                v: zero.clone(),
+                a: zero.clone(),
+                r: r_dtl,
+            },
+            OutputRow {
+                q: deflection[0].clone(),
+                v: zero.clone(),
+                a: zero,
+                r: DVector::zeros(4),
+            },
+        ],
+        wheels: vec![
+            Wheel {
+                track: 0,
+                behind: 0.0,
+            },
+            Wheel {
+                track: 1,
+                behind: 0.0,
+            },
+            Wheel {
+                track: 0,
+                behind: l,
+            },
+            Wheel {
+                track: 1,
+                behind: l,
+            },
+        ],
+    }
+}
