@@ -70,19 +70,20 @@ pub fn modes(model: &LinearModel) -> Result<Vec<Mode>> {
     Ok(out)
 }
 
-/// Eigenvector of `a` for eigenvalue `lam` by two steps of inverse iteration.
+/// Unit eigenvector of `a` for eigenvalue `lam` by two steps of shifted inverse iteration.
 fn eigenvector(a: &DMatrix<C64>, lam: C64) -> Result<Vec<C64>> {
     let n = a.nrows();
-    let shift = lam + C64::new(1e-9, 1e-9) * lam.norm().max(1.0);
-    let m = a - DMatrix::identity(n, n) * shift;
-    let lu = m.lu();
-    let mut v = nalgebra::DVector::from_fn(n, |i, _| C64::new(1.0 + 0.1 * i as f64, 0.3));
+    let shift = lam + C64::new(1e-10, 1e-10) * lam.norm().max(1.0);
+    let lu = (a - DMatrix::identity(n, n) * shift).lu();
+    let mut x = nalgebra::DVector::from_fn(n, |i, _| {
+        C64::new(1.0 + 0.1 * i as f64, 0.3 - 0.05 * i as f64)
+    });
     for _ in 0..2 {
-        v = lu
-            .solve(&v)
+        x = lu
+            .solve(&x)
             .ok_or_else(|| RideError::Numerical("eigenvector iteration failed".into()))?;
-        let nv = v.norm();
-        v /= C64::new(nv, 0.0);
+        let nx = x.norm();
+        x /= C64::new(nx, 0.0);
     }
-    Ok(v.iter().copied().collect())
+    Ok(x.iter().copied().collect())
 }

@@ -27,10 +27,111 @@ use crate::road::Road;
 use nalgebra::{DMatrix, DVector};
 
 /// A group of wheels of one source that share a delay.
-struct Group {
-    tau: f64,
-    b: DVector<f64>,
-    g: [f64; N_OUT],
+pub(super) struct Group {
+    /// Delay behind the front axle, s.
+    pub tau: f64,
+    /// Velocity input of the shifted state `z` (sum over the group's wheels).
+    pub b: DVector<f64>,
+    /// Static gain of each output from the group's road displacement.
+    pub g: [f64; N_OUT],
+}
+
+/// The white-noise form of a model on a road: state space, wheel groups per source.
+pub(super) struct WhiteForm {
+    pub a: DMatrix<f64>,
+    pub lu_a: nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
+    pub cy: DMatrix<f64>,
+    pub sources: Vec<Vec<Group>>,
+    pub intensity: f64,
+}
+
+impl WhiteForm {
+    /// Builds the form; fails when an output is unbounded (white feed-through or road warp).
+    pub fn new(model: &LinearModel, road: &Road) -> Result<WhiteForm> {
+        road.validate()?;
+        let ss = model.state_space()?;
+        let scale = ss.dr.amax().max(1.0);
+        if ss.dw.amax() > 1e-12 * scale {
+            return Err(RideError::Numerical(
+                "an output feeds through the white road velocity: its RMS is unbounded".into(),
+            ));
+        }
+        let lu_a = ss.a.clone().lu();
+        let e = -lu_a
+            .solve(&ss.bd)
+            .ok_or_else(|| RideError::Numerical("state matrix is singular".into()))?;
+        let bw = &ss.bv - &e;
+        let gain = &ss.cy * &e + &ss.dr;
+        let exc = model.excitation(road);
+        let mut sources = Vec::with_capacity(exc.sources.len());
+        for src in &exc.sources {
+            let mut groups: Vec<Group> = Vec::new();
+            for &(j, tau) in &src.channels {
+                let g: [f64; N_OUT] = std::array::from_fn(|i| gain[(i, j)]);
+                match groups
+                    .iter_mut()
+                    .find(|gr| (gr.tau - tau).abs() <= 1e-12 * (1.0 + tau))
+                {
+                    Some(gr) => {
+                        gr.b += bw.column(j);
+                        for i in 0..N_OUT {
+                            gr.g[i] += g[i];
+                        }
+                    }
+                    None => groups.push(Group {
+                        tau,
+                        b: bw.column(j).into_owned(),
+                        g,
+                    }),
+                }
+            }
+            groups.sort_by(|x, y| x.tau.total_cmp(&y.tau));
+            for i in 0..N_OUT {
+                let sum: f64 = groups.iter().map(|gr| gr.g[i]).sum();
+                let size: f64 = groups.iter().map(|gr| gr.g[i].abs()).sum();
+                if size > 1e-12 * scale && sum.abs() > 1e-9 * size {
+                    return Err(RideError::Numerical(
+                        "road warp: with independent tracks and unequal front and rear track widths the \
+                         suspension deflections follow a random walk and their RMS is unbounded"
+                            .into(),
+                    ));
+                }
+            }
+            sources.push(groups);
+        }
+        Ok(WhiteForm {
+            a: ss.a,
+            lu_a,
+            cy: ss.cy,
+            sources,
+            intensity: exc.intensity,
+        })
+    }
+
+    /// The box-box terms `W sum_gl G_g G_l min(tau_g, tau_l)` of every output.
+    pub fn box_terms(&self) -> [f64; N_OUT] {
+        let mut var = [0.0; N_OUT];
+        for groups in &self.sources {
+            for g in groups {
+                for l in groups {
+                    for (i, v) in var.iter_mut().enumerate() {
+                        *v += self.intensity * g.g[i] * l.g[i] * g.tau.min(l.tau);
+                    }
+                }
+            }
+        }
+        var
+    }
+}
+
+/// Square roots of the variances, refusing anything not finite and non-negative.
+pub(super) fn rms_of(var: [f64; N_OUT]) -> Result<Criteria> {
+    if var.iter().any(|v| !v.is_finite() || *v < 0.0) {
+        return Err(RideError::Numerical(
+            "variance is not finite: is the model stable?".into(),
+        ));
+    }
+    Ok(Criteria::from_array(var.map(f64::sqrt)))
 }
 
 /// Exact RMS `[BAcc, DTL, SWS]` of `model` on `road`.
@@ -39,63 +140,13 @@ struct Group {
 /// feed-through into an output, or a road warp (independent tracks with unequal
 /// front and rear track widths) that makes the static deflection a random walk.
 pub fn criteria_exact(model: &LinearModel, road: &Road) -> Result<Criteria> {
-    road.validate()?;
-    let ss = model.state_space()?;
-    let scale = ss.dr.amax().max(1.0);
-    if ss.dw.amax() > 1e-12 * scale {
-        return Err(RideError::Numerical(
-            "an output feeds through the white road velocity: its RMS is unbounded".into(),
-        ));
-    }
-    let ns = ss.a.nrows();
-    let lu_a = ss.a.clone().lu();
-    let e = -lu_a
-        .solve(&ss.bd)
-        .ok_or_else(|| RideError::Numerical("state matrix is singular".into()))?;
-    let bw = &ss.bv - &e;
-    let gain = &ss.cy * &e + &ss.dr;
-    let exc = model.excitation(road);
-
+    let wf = WhiteForm::new(model, road)?;
+    let ns = wf.a.nrows();
     // Kronecker operator of the Lyapunov/Sylvester equation, factorised once.
     let eye = DMatrix::<f64>::identity(ns, ns);
-    let kron = eye.kronecker(&ss.a) + ss.a.kronecker(&eye);
-    let lu_k = kron.lu();
-
-    let mut var = [0.0; N_OUT];
-    for src in &exc.sources {
-        let mut groups: Vec<Group> = Vec::new();
-        for &(j, tau) in &src.channels {
-            let g: [f64; N_OUT] = std::array::from_fn(|i| gain[(i, j)]);
-            match groups
-                .iter_mut()
-                .find(|gr| (gr.tau - tau).abs() <= 1e-12 * (1.0 + tau))
-            {
-                Some(gr) => {
-                    gr.b += bw.column(j);
-                    for i in 0..N_OUT {
-                        gr.g[i] += g[i];
-                    }
-                }
-                None => groups.push(Group {
-                    tau,
-                    b: bw.column(j).into_owned(),
-                    g,
-                }),
-            }
-        }
-        groups.sort_by(|x, y| x.tau.total_cmp(&y.tau));
-        for i in 0..N_OUT {
-            let sum: f64 = groups.iter().map(|gr| gr.g[i]).sum();
-            let size: f64 = groups.iter().map(|gr| gr.g[i].abs()).sum();
-            if sum.abs() > 1e-9 * size.max(1e-300) && size > 1e-12 * scale {
-                return Err(RideError::Numerical(
-                    "road warp: with independent tracks and unequal front and rear track widths the \
-                     suspension deflections follow a random walk and their RMS is unbounded"
-                        .into(),
-                ));
-            }
-        }
-        // Exponentials for every delay difference, and the Lyapunov solutions.
+    let lu_k = (eye.kronecker(&wf.a) + wf.a.kronecker(&eye)).lu();
+    let mut var = wf.box_terms();
+    for groups in &wf.sources {
         for (gi, g) in groups.iter().enumerate() {
             for (li, l) in groups.iter().enumerate().take(gi + 1) {
                 let dt = g.tau - l.tau;
@@ -105,42 +156,30 @@ pub fn criteria_exact(model: &LinearModel, road: &Road) -> Result<Criteria> {
                     .ok_or_else(|| RideError::Numerical("Lyapunov operator is singular".into()))?;
                 let x = DMatrix::from_column_slice(ns, ns, xv.as_slice());
                 let ex = if dt > 0.0 {
-                    (&ss.a * dt).exp()
+                    (&wf.a * dt).exp()
                 } else {
                     eye.clone()
                 };
                 let xe = &x * ex.transpose();
                 // Box-exponential term, needs A^-1 (exp(A dt) - I) b_l.
                 let box_exp = if dt > 0.0 {
-                    lu_a.solve(&((&ex - &eye) * &l.b))
+                    wf.lu_a.solve(&((&ex - &eye) * &l.b))
                 } else {
                     None
                 };
-                for i in 0..N_OUT {
-                    let c = ss.cy.row(i);
+                for (i, v) in var.iter_mut().enumerate() {
+                    let c = wf.cy.row(i);
                     let mut t = (c * &xe * c.transpose())[(0, 0)];
                     if gi != li {
                         t *= 2.0; // the (l, g) ordered pair gives the same value
                     }
-                    if let Some(v) = &box_exp {
-                        t -= 2.0 * g.g[i] * (c * v)[(0, 0)];
+                    if let Some(bx) = &box_exp {
+                        t -= 2.0 * g.g[i] * (c * bx)[(0, 0)];
                     }
-                    var[i] += exc.intensity * t;
-                }
-            }
-        }
-        for g in &groups {
-            for l in &groups {
-                for (i, v) in var.iter_mut().enumerate() {
-                    *v += exc.intensity * g.g[i] * l.g[i] * g.tau.min(l.tau);
+                    *v += wf.intensity * t;
                 }
             }
         }
     }
-    if var.iter().any(|v| !v.is_finite() || *v < 0.0) {
-        return Err(RideError::Numerical(
-            "variance is not finite: is the model stable?".into(),
-        ));
-    }
-    Ok(Criteria::from_array(var.map(f64::sqrt)))
+    rms_of(var)
 }

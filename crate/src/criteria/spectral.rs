@@ -157,15 +157,53 @@ impl<'a> Spectrum<'a> {
 
     /// RMS criteria over `[f_lo, infinity)` to relative tolerance `rtol`.
     pub fn rms(&self, f_lo: f64, rtol: f64) -> (Criteria, usize) {
-        let th0 = (f_lo / FC).atan();
-        let integrand = |th: f64| -> [f64; N_OUT] {
-            let t = th.tan();
-            let jac = FC * (1.0 + t * t);
-            self.psd(FC * t).map(|p| p * jac)
-        };
-        let (var, evals) = adaptive_gk15(integrand, th0, PI / 2.0, rtol);
-        (Criteria::from_array(var.map(|v| v.max(0.0).sqrt())), evals)
+        self.rms_band(f_lo, f64::INFINITY, rtol)
     }
+
+    /// RMS criteria over the band `[f_lo, f_hi]` (`f_hi` may be infinite) to relative
+    /// tolerance `rtol`, and the number of frequencies evaluated.
+    pub fn rms_band(&self, f_lo: f64, f_hi: f64, rtol: f64) -> (Criteria, usize) {
+        let (var, evals) = adaptive_gk15(|th| self.mapped_psd(th), theta(f_lo), theta(f_hi), rtol);
+        (to_rms(var), evals)
+    }
+
+    /// RMS criteria over the whole band by a fixed rule: `panels` equal panels in
+    /// `theta` with 15-point Gauss-Kronrod each (for grid-convergence studies).
+    pub fn rms_fixed(&self, panels: usize) -> Criteria {
+        let (lo, hi) = (0.0, PI / 2.0);
+        let w = (hi - lo) / panels as f64;
+        let mut var = [0.0; N_OUT];
+        for i in 0..panels {
+            let (k, _) = gk15(
+                &|th| self.mapped_psd(th),
+                lo + i as f64 * w,
+                lo + (i + 1) as f64 * w,
+            );
+            for o in 0..N_OUT {
+                var[o] += k[o];
+            }
+        }
+        to_rms(var)
+    }
+
+    /// The PSDs times the Jacobian of `f = FC tan(theta)`.
+    fn mapped_psd(&self, th: f64) -> [f64; N_OUT] {
+        let t = th.tan();
+        let jac = FC * (1.0 + t * t);
+        self.psd(FC * t).map(|p| p * jac)
+    }
+}
+
+fn theta(f: f64) -> f64 {
+    if f.is_infinite() {
+        PI / 2.0
+    } else {
+        (f / FC).atan()
+    }
+}
+
+fn to_rms(var: [f64; N_OUT]) -> Criteria {
+    Criteria::from_array(var.map(|v| v.max(0.0).sqrt()))
 }
 
 /// RMS criteria by the frequency route to relative tolerance `rtol` (on the variance).

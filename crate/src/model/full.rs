@@ -118,5 +118,51 @@ pub fn full_car(car: &Car) -> LinearModel {
                 behind: l,
             },
         ],
+        front_corners: vec![deflection[0].clone(), deflection[1].clone()],
+    }
+}
+
+/// The left-right symmetric half of a full-car model, `p = [z, theta, u_f, u_r]` with
+/// `q = S p`: both front wheels move by `u_f`, both rear wheels by `u_r`, no roll.
+///
+/// With correlated tracks both wheels of an axle see the same input, and a car whose
+/// left and right sides are mirror images (every car file) responds only in this
+/// subspace, so the Galerkin projection `S^T M S`, `S^T C S`, `S^T K S`, `S^T Kr`,
+/// `S^T Cr` and outputs `row S` reproduce the full model exactly with 8 states instead of 14.
+pub fn symmetric_half(full: &LinearModel) -> LinearModel {
+    let mut s = DMatrix::zeros(N, 4);
+    s[(0, 0)] = 1.0;
+    s[(1, 1)] = 1.0;
+    s[(3, 2)] = 1.0;
+    s[(4, 2)] = 1.0;
+    s[(5, 3)] = 1.0;
+    s[(6, 3)] = 1.0;
+    let st = s.transpose();
+    let row = |r: &OutputRow| OutputRow {
+        q: &st * &r.q,
+        v: &st * &r.v,
+        a: &st * &r.a,
+        r: r.r.clone(),
+    };
+    LinearModel {
+        dof_names: vec![
+            "body heave z",
+            "body pitch theta",
+            "wheel hop front",
+            "wheel hop rear",
+        ],
+        m: &st * &full.m * &s,
+        c: &st * &full.c * &s,
+        k: &st * &full.k * &s,
+        kr: &st * &full.kr,
+        cr: &st * &full.cr,
+        n_body: 2,
+        outputs: [
+            row(&full.outputs[0]),
+            row(&full.outputs[1]),
+            row(&full.outputs[2]),
+        ],
+        wheels: full.wheels.clone(),
+        front_corners: full.front_corners.iter().map(|d| &st * d).collect(),
     }
 }

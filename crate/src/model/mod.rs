@@ -16,7 +16,7 @@
 mod full;
 mod quarter;
 
-pub use full::full_car;
+pub use full::{full_car, symmetric_half};
 pub use quarter::quarter_car;
 
 use crate::error::{Result, RideError};
@@ -69,6 +69,9 @@ pub struct LinearModel {
     pub outputs: [OutputRow; N_OUT],
     /// Where each wheel runs.
     pub wheels: Vec<Wheel>,
+    /// Deflection vectors `d` (`d . q = z_s - z_u`) of the front suspension corners, whose
+    /// dampers are the design variable (the time domain's asymmetric damper acts there).
+    pub front_corners: Vec<DVector<f64>>,
 }
 
 /// One independent white road-velocity source and the wheels it drives.

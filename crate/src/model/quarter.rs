@@ -52,5 +52,6 @@ pub fn quarter_car(p: &QuarterCar) -> LinearModel {
             track: 0,
             behind: 0.0,
         }],
+        front_corners: vec![dvector![1.0, -1.0]],
     }
 }

@@ -1,0 +1,340 @@
+//! The modal route: the exact variances of [`super::criteria_exact`] from a modal
+//! expansion of the second-order model, fast enough for maps and optimisers.
+//!
+//! For symmetric `M`, `C`, `K` with distinct eigenvalues `lambda_k` of
+//! `Q(s) = s^2 M + s C + K` and eigenvectors `phi_k`,
+//! `Q(s)^-1 = sum_k phi_k phi_k^T / (N_k (s - lambda_k))`, `N_k = phi_k^T (2 lambda_k M + C) phi_k`.
+//! The transfer from the road *velocity* of a wheel group `g` (delay `tau_g`,
+//! displacement transfer `T_g(s) = row(s) Q(s)^-1 F_g(s) + Yr_g`, `F_g = Kr_g + s Cr_g`,
+//! `row(s) = Yq + s Yv + s^2 Ya`) is then
+//!
+//! ```text
+//! T_g(s) / s = sum_k rho_gk / (s - lambda_k) + G_g / s,
+//! rho_gk = row(lambda_k) phi_k  phi_k^T F_g(lambda_k) / (lambda_k N_k),   G_g = T_g(0)
+//! ```
+//!
+//! and with `sum_g G_g = 0` the impulse response is
+//! `h(u) = sum_g [1(u >= tau_g) sum_k rho_gk e^{lambda_k (u - tau_g)} - G_g 1(u < tau_g)]`, whose
+//! square integrates in closed form:
+//!
+//! ```text
+//! int_0^inf (sum_k rho_gk e^{lambda_k s})(sum_m rho_lm e^{lambda_m (s + D)}) ds
+//!     = sum_km rho_gk rho_lm e^{lambda_m D} / -(lambda_k + lambda_m)
+//! int_{tau_l}^{tau_g} sum_k rho_lk e^{lambda_k (u - tau_l)} du = sum_k rho_lk (e^{lambda_k D} - 1) / lambda_k
+//! ```
+//!
+//! Eigenvalues come from [`super::hqr`], eigenvectors from inverse iteration on `Q`.
+//! The expansion is checked against a direct solve at one frequency; if it disagrees
+//! (nearly repeated eigenvalues) the route declines and the caller uses the Kronecker route.
+
+use super::hqr;
+use crate::error::{Result, RideError};
+use crate::evaluate::Criteria;
+use crate::model::{LinearModel, N_OUT};
+use crate::road::Road;
+use nalgebra::DMatrix;
+use num_complex::Complex64 as C64;
+
+const ZERO: C64 = C64::new(0.0, 0.0);
+
+/// A wheel group of one source: delay, input polynomials and output feed-through.
+struct Group {
+    tau: f64,
+    kr: Vec<f64>,
+    cr: Vec<f64>,
+    yr: [f64; N_OUT],
+    g: [f64; N_OUT],
+}
+
+/// Exact RMS criteria by the modal route (see the module doc). Declines with an
+/// `Err(Numerical("modal: ..."))` when the modal expansion is not accurate.
+pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
+    road.validate()?;
+    let n = model.n();
+    for (name, mat) in [("M", &model.m), ("C", &model.c), ("K", &model.k)] {
+        if (mat - mat.transpose()).amax() > 1e-12 * mat.amax() {
+            return Err(RideError::Numerical(format!(
+                "modal: {name} is not symmetric"
+            )));
+        }
+    }
+    let minv = model
+        .m
+        .clone()
+        .try_inverse()
+        .ok_or_else(|| RideError::Numerical("mass matrix is singular".into()))?;
+    let kinv = model
+        .k
+        .clone()
+        .try_inverse()
+        .ok_or_else(|| RideError::Numerical("stiffness matrix is singular".into()))?;
+
+    // Eigenvalues of the companion matrix [[0, I], [-M^-1 K, -M^-1 C]].
+    let mk = &minv * &model.k;
+    let mc = &minv * &model.c;
+    let ns = 2 * n;
+    let mut a = vec![0.0; ns * ns];
+    for i in 0..n {
+        a[i * ns + n + i] = 1.0;
+        for j in 0..n {
+            a[(n + i) * ns + j] = -mk[(i, j)];
+            a[(n + i) * ns + n + j] = -mc[(i, j)];
+        }
+    }
+    let lam = hqr::eigenvalues(&mut a, ns)
+        .ok_or_else(|| RideError::Numerical("modal: QR did not converge".into()))?;
+    if lam.iter().any(|l| !(l.re < 0.0)) {
+        return Err(RideError::Numerical(
+            "model is not asymptotically stable".into(),
+        ));
+    }
+    let q_at = |s: C64| -> Vec<C64> {
+        let mut q = vec![ZERO; n * n];
+        for i in 0..n {
+            for j in 0..n {
+                q[i * n + j] = s * s * model.m[(i, j)] + s * model.c[(i, j)] + model.k[(i, j)];
+            }
+        }
+        q
+    };
+    // Eigenvectors and modal norms.
+    let mut phi: Vec<Vec<C64>> = Vec::with_capacity(ns);
+    let mut norm: Vec<C64> = Vec::with_capacity(ns);
+    for &l in &lam {
+        let shift = l + C64::new(1e-10, 1e-10) * l.norm();
+        let mut x: Vec<C64> = (0..n)
+            .map(|i| C64::new(1.0 + 0.1 * i as f64, 0.3 - 0.05 * i as f64))
+            .collect();
+        let mut q = q_at(shift);
+        let piv = lu(&mut q, n)
+            .ok_or_else(|| RideError::Numerical("modal: inverse iteration failed".into()))?;
+        for _ in 0..2 {
+            lu_solve(&q, &piv, &mut x, n);
+            let s = x.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
+            if !(s.is_finite() && s > 0.0) {
+                return Err(RideError::Numerical(
+                    "modal: inverse iteration failed".into(),
+                ));
+            }
+            x.iter_mut().for_each(|v| *v /= s);
+        }
+        let mut nk = ZERO;
+        for i in 0..n {
+            for j in 0..n {
+                nk += x[i] * (2.0 * l * model.m[(i, j)] + model.c[(i, j)]) * x[j];
+            }
+        }
+        phi.push(x);
+        norm.push(nk);
+    }
+
+    let exc = model.excitation(road);
+    let row = |o: usize, s: C64| -> Vec<C64> {
+        let r = &model.outputs[o];
+        (0..n)
+            .map(|i| r.q[i] + s * r.v[i] + s * s * r.a[i])
+            .collect()
+    };
+    let rows_at_lam: Vec<[Vec<C64>; N_OUT]> = lam
+        .iter()
+        .map(|&l| std::array::from_fn(|o| row(o, l)))
+        .collect();
+    let mut var = [0.0; N_OUT];
+    for src in &exc.sources {
+        let groups = groups(model, &kinv, &minv, &src.channels)?;
+        // rho[g][o][k]
+        let rho: Vec<Vec<Vec<C64>>> = groups
+            .iter()
+            .map(|g| {
+                (0..N_OUT)
+                    .map(|o| {
+                        (0..ns)
+                            .map(|k| {
+                                let l = lam[k];
+                                let rp: C64 =
+                                    (0..n).map(|i| rows_at_lam[k][o][i] * phi[k][i]).sum();
+                                let pf: C64 =
+                                    (0..n).map(|i| phi[k][i] * (g.kr[i] + l * g.cr[i])).sum();
+                                rp * pf / (l * norm[k])
+                            })
+                            .collect()
+                    })
+                    .collect()
+            })
+            .collect();
+        // Check the expansion against a direct solve at 3 Hz.
+        let s0 = C64::new(0.0, 2.0 * std::f64::consts::PI * 3.0);
+        for (gi, g) in groups.iter().enumerate() {
+            let mut q = q_at(s0);
+            let piv = lu(&mut q, n)
+                .ok_or_else(|| RideError::Numerical("modal: check solve failed".into()))?;
+            let mut x: Vec<C64> = (0..n).map(|i| g.kr[i] + s0 * g.cr[i]).collect();
+            lu_solve(&q, &piv, &mut x, n);
+            for o in 0..N_OUT {
+                let r0 = row(o, s0);
+                let direct = ((0..n).map(|i| r0[i] * x[i]).sum::<C64>() + g.yr[o]) / s0;
+                let modal: C64 =
+                    (0..ns).map(|k| rho[gi][o][k] / (s0 - lam[k])).sum::<C64>() + g.g[o] / s0;
+                if (direct - modal).norm() > 1e-7 * direct.norm().max(1e-300) + 1e-300 {
+                    return Err(RideError::Numerical("modal: expansion check failed".into()));
+                }
+            }
+        }
+        for (gi, g) in groups.iter().enumerate() {
+            for (li, l) in groups.iter().enumerate().take(gi + 1) {
+                let dt = g.tau - l.tau;
+                let e: Vec<C64> = lam.iter().map(|&lm| (lm * dt).exp()).collect();
+                for (o, vo) in var.iter_mut().enumerate() {
+                    let (rg, rl) = (&rho[gi][o], &rho[li][o]);
+                    let mut t = ZERO;
+                    for k in 0..ns {
+                        let mut inner = ZERO;
+                        for m in 0..ns {
+                            inner += rl[m] * e[m] / (lam[k] + lam[m]);
+                        }
+                        t -= rg[k] * inner;
+                    }
+                    let mut t = t.re;
+                    if gi != li {
+                        t *= 2.0; // the (l, g) ordered pair gives the same value
+                        let bx: C64 = (0..ns).map(|k| rl[k] * (e[k] - 1.0) / lam[k]).sum();
+                        t -= 2.0 * g.g[o] * bx.re;
+                    }
+                    *vo += exc.intensity * t;
+                }
+            }
+        }
+        for g in &groups {
+            for l in &groups {
+                for (o, v) in var.iter_mut().enumerate() {
+                    *v += exc.intensity * g.g[o] * l.g[o] * g.tau.min(l.tau);
+                }
+            }
+        }
+    }
+    if var.iter().any(|v| !v.is_finite() || *v < 0.0) {
+        return Err(RideError::Numerical(
+            "variance is not finite: is the model stable?".into(),
+        ));
+    }
+    Ok(Criteria::from_array(var.map(f64::sqrt)))
+}
+
+/// Wheel groups of one source with their static gains; refuses unbounded responses.
+fn groups(
+    model: &LinearModel,
+    kinv: &DMatrix<f64>,
+    minv: &DMatrix<f64>,
+    channels: &[(usize, f64)],
+) -> Result<Vec<Group>> {
+    let n = model.n();
+    let mut groups: Vec<Group> = Vec::new();
+    for &(j, tau) in channels {
+        let kr: Vec<f64> = (0..n).map(|i| model.kr[(i, j)]).collect();
+        let cr: Vec<f64> = (0..n).map(|i| model.cr[(i, j)]).collect();
+        let yr: [f64; N_OUT] = std::array::from_fn(|o| model.outputs[o].r[j]);
+        match groups
+            .iter_mut()
+            .find(|g| (g.tau - tau).abs() <= 1e-12 * (1.0 + tau))
+        {
+            Some(g) => {
+                for i in 0..n {
+                    g.kr[i] += kr[i];
+                    g.cr[i] += cr[i];
+                }
+                for o in 0..N_OUT {
+                    g.yr[o] += yr[o];
+                }
+            }
+            None => groups.push(Group {
+                tau,
+                kr,
+                cr,
+                yr,
+                g: [0.0; N_OUT],
+            }),
+        }
+    }
+    groups.sort_by(|x, y| x.tau.total_cmp(&y.tau));
+    let scale = model.outputs.iter().map(|r| r.r.amax()).fold(1.0, f64::max);
+    for g in groups.iter_mut() {
+        let static_q = kinv * nalgebra::DVector::from_column_slice(&g.kr);
+        let accel_in = minv * nalgebra::DVector::from_column_slice(&g.cr);
+        for o in 0..N_OUT {
+            let r = &model.outputs[o];
+            g.g[o] = r.q.dot(&static_q) + g.yr[o];
+            if r.a.dot(&accel_in).abs() > 1e-12 * scale {
+                return Err(RideError::Numerical(
+                    "an output feeds through the white road velocity: its RMS is unbounded".into(),
+                ));
+            }
+        }
+    }
+    for o in 0..N_OUT {
+        let sum: f64 = groups.iter().map(|g| g.g[o]).sum();
+        let size: f64 = groups.iter().map(|g| g.g[o].abs()).sum();
+        if size > 1e-12 * scale && sum.abs() > 1e-9 * size {
+            return Err(RideError::Numerical(
+                "road warp: with independent tracks and unequal front and rear track widths the \
+                 suspension deflections follow a random walk and their RMS is unbounded"
+                    .into(),
+            ));
+        }
+    }
+    Ok(groups)
+}
+
+/// In-place LU with partial pivoting of a row-major `n x n` complex matrix.
+fn lu(a: &mut [C64], n: usize) -> Option<Vec<usize>> {
+    let mut piv: Vec<usize> = (0..n).collect();
+    for k in 0..n {
+        let p = (k..n).max_by(|&i, &j| a[i * n + k].norm().total_cmp(&a[j * n + k].norm()))?;
+        if a[p * n + k] == ZERO {
+            return None;
+        }
+        if p != k {
+            for j in 0..n {
+                a.swap(k * n + j, p * n + j);
+            }
+            piv.swap(k, p);
+        }
+        let inv = a[k * n + k].inv();
+        for i in k + 1..n {
+            let l = a[i * n + k] * inv;
+            a[i * n + k] = l;
+            for j in k + 1..n {
+                let akj = a[k * n + j];
+                a[i * n + j] -= l * akj;
+            }
+        }
+    }
+    Some(piv)
+}
+
+fn lu_solve(a: &[C64], piv: &[usize], b: &mut [C64], n: usize) {
+    let mut x: Vec<C64> = piv.iter().map(|&p| b[p]).collect();
+    for i in 0..n {
+        for j in 0..i {
+            let t = a[i * n + j] * x[j];
+            x[i] -= t;
+        }
+    }
+    for i in (0..n).rev() {
+        for j in i + 1..n {
+            let t = a[i * n + j] * x[j];
+            x[i] -= t;
+        }
+        x[i] /= a[i * n + i];
+    }
+    b.copy_from_slice(&x);
+}
+
+/// Exact criteria: the modal route when it is accurate, the Kronecker route otherwise.
+pub fn criteria_fast_exact(model: &LinearModel, road: &Road) -> Result<Criteria> {
+    match criteria_modal(model, road) {
+        Err(RideError::Numerical(m)) if m.starts_with("modal:") => {
+            super::criteria_exact(model, road)
+        }
+        other => other,
+    }
+}
