@@ -15,6 +15,8 @@ pub mod model;
 pub mod modes;
 pub mod optimize;
 pub mod road;
+#[cfg(target_arch = "wasm32")]
+pub mod web;
 
 pub use analysis::{HiFi, LoFi, ModelKind};
 pub use car::{Car, QuarterCar};
