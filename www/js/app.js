@@ -64,7 +64,7 @@ window.__ridelab = app;
 
 function banner(text, kind = 'warn') {
   const b = $('banner');
-  b.textContent = text;
+  $('banner-text').textContent = text;
   b.className = kind === 'error' ? 'banner error' : 'banner';
   b.hidden = !text;
 }
@@ -233,18 +233,18 @@ function renderScenario() {
   const status = $('map-status');
   const limit = desc.swsLimit;
   const n = maps.nx * maps.ny;
-  const road = `class ${state.class} at ${fmt(state.speed, 3)} m/s, ${state.tracks} tracks`;
+  const road = `class ${state.class} at ${fmtInput(state.speed, 3)} m/s, ${state.tracks} tracks`;
   if (limit == null) {
     status.textContent = 'No SWS limit set: every design in the box is feasible.';
     status.className = 'status';
   } else if (maps.feasibleCount === 0) {
     status.textContent =
-      `No design in the box meets SWS ≤ ${fmt(limit * 1000, 3)} mm on ${road} (LoFi): the whole map is hatched. ` +
+      `No design in the box meets SWS ≤ ${fmtInput(limit * 1000, 4)} mm on ${road} (LoFi): the whole map is hatched. ` +
       'Try a smoother road, a lower speed or a larger limit.';
     status.className = 'status bad';
   } else {
     status.textContent =
-      `${fmt((100 * maps.feasibleCount) / n, 3)} % of the design box meets SWS ≤ ${fmt(limit * 1000, 3)} mm on ${road} (LoFi).`;
+      `${fmt((100 * maps.feasibleCount) / n, 3)} % of the design box meets SWS ≤ ${fmtInput(limit * 1000, 4)} mm on ${road} (LoFi).`;
     status.className = 'status good';
   }
   $('speed-kmh').textContent = `= ${fmt(state.speed * 3.6, 3)} km/h`;
@@ -468,6 +468,7 @@ function wire() {
     }
     setTimeout(() => (btn.textContent = 'Copy link'), 2000);
   });
+  $('banner-close').addEventListener('click', () => banner(''));
   window.addEventListener('hashchange', () => {
     if (location.hash === lastHash) return;
     enqueue(async () => applyLoaded(await loadFromHash(location.hash)));

@@ -263,7 +263,7 @@ export class MapView {
       const hg = hatch.getContext('2d');
       hg.fillStyle = 'rgba(150,150,150,0.62)';
       hg.fillRect(0, 0, hatch.width, hatch.height);
-      hg.strokeStyle = 'rgba(40,40,40,0.8)';
+      hg.strokeStyle = 'rgb(58,58,58)';
       hg.lineWidth = 1.1 * dpr;
       const gap = 7 * dpr;
       hg.beginPath();

@@ -2,7 +2,7 @@
 // properties and modes. Every value cell carries its full-precision SI number in
 // `data-value` (the tests compare those with the native CLI).
 
-import { fmt, fmtPct, fmtSmall } from './format.js';
+import { fmt, fmtInput, fmtPct, fmtSmall } from './format.js';
 
 const ROWS = [
   { crit: 'bacc', get: (r) => r.bacc, show: (v) => fmt(v, 4) },
@@ -51,7 +51,7 @@ export function renderCriteria(table, model, design, datum, swsLimit, pending = 
 /** The design's SWS against the limit, in words (`hifi` may be null while computing). */
 export function feasibilityText(lofi, hifi, swsLimit) {
   if (swsLimit == null) return { text: 'No SWS limit set.', ok: true };
-  const lim = fmt(swsLimit * 1000, 3);
+  const lim = fmtInput(swsLimit * 1000, 4);
   const okL = lofi.sws <= swsLimit;
   if (!hifi) {
     return {
