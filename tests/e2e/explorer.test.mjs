@@ -41,7 +41,7 @@ after(async () => {
   if (srv) await srv.close();
   if (Object.keys(figures).length) {
     fs.writeFileSync(path.join(OUT, 'figures.json'), JSON.stringify(figures, null, 2));
-    console.log(`# figures: ${JSON.stringify(figures)}`);
+    console.log(`figures: ${JSON.stringify(figures)}`);
   }
 });
 
@@ -162,7 +162,10 @@ test('loads with no console errors, no other hosts, timing and wasm size', { tim
   const timing = await page.evaluate(() => ({
     interactive: window.__ridelab.interactiveAt,
     ready: window.__ridelab.readyAt,
+    marks: window.__ridelab.marks,
+    nav: performance.getEntriesByType('navigation')[0].toJSON(),
   }));
+  t.diagnostic(`script start ${timing.marks.start.toFixed(0)} ms, wasm ready ${timing.marks.wasm.toFixed(0)} ms, DOMContentLoaded ${timing.nav.domContentLoadedEventEnd.toFixed(0)} ms`);
   await page.screenshot({ path: path.join(OUT, 'default.png'), fullPage: true });
   assertClean(log);
   assert.equal(await page.locator('#banner').isHidden(), true, 'no banner on a clean load');
@@ -565,6 +568,71 @@ test('performance: slider input to updated views, p95 over 30 moves', { timeout:
   });
   figures.wasmCallMs = Object.fromEntries(Object.entries(engine).map(([k, v]) => [k, +v.toFixed(2)]));
   t.diagnostic(`wasm on the main thread: LoFi report ${engine.lofiReport.toFixed(2)} ms, HiFi report ${engine.hifiReport.toFixed(1)} ms, HiFi criteria ${engine.hifiCriteria.toFixed(2)} ms, LoFi map 240x180 ${engine.lofiMap.toFixed(1)} ms`);
+  assertClean(log);
+  await context.close();
+});
+
+test('the JS API refuses bad input with messages naming the field, and keeps working', { timeout: TIMEOUT }, async () => {
+  const { page, context, log } = await open();
+  const r = await page.evaluate(() => {
+    const api = window.__ridelab.api;
+    const s = api.defaultState();
+    const fail = (f) => {
+      try {
+        f();
+        return null;
+      } catch (e) {
+        return { message: e.message, field: e.field, isError: e instanceof Error };
+      }
+    };
+    const map = api.lofiMap(s, 4, 3);
+    return {
+      presets: api.presets().map((p) => p.name),
+      mapLength: map.length,
+      mapIsF64: map instanceof Float64Array,
+      evaluate: Object.keys(api.evaluate(s)).sort(),
+      empty: fail(() => api.evaluate({})),
+      unknown: fail(() => api.evaluate({ ...s, colour: 'red' })),
+      speed: fail(() => api.evaluate({ ...s, speed: -5 })),
+      nan: fail(() => api.evaluate({ ...s, speed: NaN })),
+      ks: fail(() => api.evaluate({ ...s, ks: 0 })),
+      cs: fail(() => api.evaluate({ ...s, cs: -1 })),
+      model: fail(() => api.analyse(s, 'bicycle')),
+      grid: fail(() => api.lofiMap(s, 0, 10)),
+      hugeGrid: fail(() => api.lofiMap(s, 100000, 10)),
+      car: fail(() => api.parseCar('{"name": "x"}')),
+      json: fail(() => api.parseCar('{oops')),
+      box: fail(() => api.lofiMap({ ...s, ksMin: 50000 }, 4, 4)),
+      sws: fail(() => api.evaluate({ ...s, swsLimit: 0 })),
+      after: api.criteria(s, 'quarter').bacc,
+    };
+  });
+  assert.deepEqual(r.presets, ['sedan', 'compact', 'suv']);
+  assert.equal(r.mapLength, 3 * 4 * 3);
+  assert.ok(r.mapIsF64);
+  assert.deepEqual(r.evaluate, ['hifi', 'lofi']);
+  const expect = {
+    empty: ['state', /missing field/],
+    unknown: ['state', /unknown field `colour`/],
+    speed: ['speed', /^speed: must be a finite number > 0/],
+    nan: ['speed', /^speed:/],
+    ks: ['ks', /^front\.spring: must be > 0/],
+    cs: ['cs', /^front\.damper: must not be negative/],
+    model: ['model', /^model: 'bicycle' is not 'quarter' or 'full'/],
+    grid: ['nx', /^nx: grid size must be 1\.\.1024/],
+    hugeGrid: ['nx', /^nx:/],
+    car: ['car', /missing field/],
+    json: ['car', /./],
+    box: ['box', /^ks-range: minimum 50000 must be below maximum 40000/],
+    sws: ['swsLimit', /^sws_limit:/],
+  };
+  for (const [k, [field, re]] of Object.entries(expect)) {
+    assert.ok(r[k], `${k}: refused`);
+    assert.ok(r[k].isError, `${k}: a JS Error`);
+    assert.equal(r[k].field, field, `${k}: field (${r[k].message})`);
+    assert.match(r[k].message, re, k);
+  }
+  assert.ok(r.after > 0, 'the module still works after every refusal');
   assertClean(log);
   await context.close();
 });

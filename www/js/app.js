@@ -11,7 +11,7 @@
 // good state stays.
 
 import init, * as api from '../ridelab.js';
-import { createEngine, latestOnly } from './engine.js';
+import { createEngine, deferredEngine, latestOnly } from './engine.js';
 import { encodeHash, decodeHash } from './urlstate.js';
 import { MapView, CRITERIA } from './mapview.js';
 import { renderCriteria, feasibilityText, routeNote, renderProps, renderModes } from './readout.js';
@@ -498,25 +498,28 @@ function buildSelects() {
 // ---------------------------------------------------------------- start
 
 async function main() {
+  app.marks = { start: performance.now() };
+  // The worker loads its own copy of the module: start it first, in parallel.
+  const kind = new URLSearchParams(location.search).get('engine') === 'main' ? 'main' : 'worker';
+  const worker = kind === 'worker' ? createEngine(api, 'worker') : null;
+  worker?.catch(() => {}); // handled by deferredEngine (falls back to the main thread)
   try {
     await init({ module_or_path: new URL('../ridelab_bg.wasm', import.meta.url) });
   } catch (e) {
     fatal(`The ride models (WebAssembly) failed to load: ${e && e.message ? e.message : e}`);
     return;
   }
-  const kind = new URLSearchParams(location.search).get('engine') === 'main' ? 'main' : 'worker';
+  app.marks.wasm = performance.now();
   try {
     app.engine = await createEngine(api, 'main');
-    try {
-      app.hifiEngine = await createEngine(api, kind);
-    } catch (e) {
-      console.warn(`RideLab: no worker (${e.message || e}); the HiFi model runs on the main thread`);
-      app.hifiEngine = app.engine;
-    }
+    app.hifiEngine = worker ? deferredEngine(worker, app.engine) : app.engine;
     app.defaults = await app.engine.call('defaultState');
     app.presets = await app.engine.call('presets');
     app.classes = await app.engine.call('roadClasses');
-    $('version').textContent = `RideLab ${await app.engine.call('version')}; HiFi model on the ${app.hifiEngine.kind === 'worker' ? 'worker' : 'main'} thread.`;
+    const version = await app.engine.call('version');
+    Promise.resolve(app.hifiEngine.ready).then(() => {
+      $('version').textContent = `RideLab ${version}; HiFi model on the ${app.hifiEngine.kind === 'worker' ? 'worker' : 'main'} thread.`;
+    });
   } catch (e) {
     fatal(`The ride models could not start: ${e.message || e}`);
     return;

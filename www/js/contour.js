@@ -1,46 +1,47 @@
 // Marching squares over a grid of cell-centre values.
 
+// For each of the 16 corner codes (bit 0 bottom-left, 1 bottom-right, 2 top-right,
+// 3 top-left above the level), the crossed edges to join, in pairs:
+// 0 bottom, 1 right, 2 top, 3 left. The saddles 5 and 10 are resolved at run time.
+const EDGES = [
+  [], [3, 0], [0, 1], [3, 1], [1, 2], null, [0, 2], [3, 2],
+  [3, 2], [0, 2], null, [1, 2], [3, 1], [0, 1], [3, 0], [],
+];
+
 /**
  * Line segments where the grid crosses `level`: a flat array `[x0, y0, x1, y1, ...]`
- * in grid coordinates (cell centre i at x = i, row j at y = j). `get(i, j)` reads a value.
+ * in grid coordinates (cell centre i at x = i, row j at y = j). The grid is
+ * `v[offset + j nx + i]`.
  */
-export function contourSegments(get, nx, ny, level) {
+export function contourSegments(v, offset, nx, ny, level) {
   const seg = [];
-  const lerp = (a, b) => (level - a) / (b - a);
+  const px = [0, 0, 0, 0];
+  const py = [0, 0, 0, 0];
   for (let j = 0; j < ny - 1; j++) {
+    const row = offset + j * nx;
     for (let i = 0; i < nx - 1; i++) {
-      const a = get(i, j); // bottom-left
-      const b = get(i + 1, j); // bottom-right
-      const c = get(i + 1, j + 1); // top-right
-      const d = get(i, j + 1); // top-left
+      const a = v[row + i]; // bottom-left
+      const b = v[row + i + 1]; // bottom-right
+      const c = v[row + nx + i + 1]; // top-right
+      const d = v[row + nx + i]; // top-left
       const code = (a > level ? 1 : 0) | (b > level ? 2 : 0) | (c > level ? 4 : 0) | (d > level ? 8 : 0);
       if (code === 0 || code === 15) continue;
-      // Edge crossing points: bottom, right, top, left.
-      const B = () => [i + lerp(a, b), j];
-      const R = () => [i + 1, j + lerp(b, c)];
-      const T = () => [i + lerp(d, c), j + 1];
-      const L = () => [i, j + lerp(a, d)];
-      const push = (p, q) => seg.push(p[0], p[1], q[0], q[1]);
-      switch (code) {
-        case 1: case 14: push(L(), B()); break;
-        case 2: case 13: push(B(), R()); break;
-        case 3: case 12: push(L(), R()); break;
-        case 4: case 11: push(R(), T()); break;
-        case 6: case 9: push(B(), T()); break;
-        case 7: case 8: push(L(), T()); break;
-        case 5: case 10: {
-          const centre = (a + b + c + d) / 4 > level;
-          if ((code === 5) === centre) {
-            push(L(), T());
-            push(B(), R());
-          } else {
-            push(L(), B());
-            push(R(), T());
-          }
-          break;
-        }
-        default: break;
+      // Crossing points on the four edges (only the crossed ones are used).
+      px[0] = i + (level - a) / (b - a);
+      py[0] = j;
+      px[1] = i + 1;
+      py[1] = j + (level - b) / (c - b);
+      px[2] = i + (level - d) / (c - d);
+      py[2] = j + 1;
+      px[3] = i;
+      py[3] = j + (level - a) / (d - a);
+      let e = EDGES[code];
+      if (e === null) {
+        const centreHigh = (a + b + c + d) / 4 > level;
+        // Code 5 (a, c high): a high centre joins them, cutting off b and d.
+        e = (code === 5) === centreHigh ? [3, 2, 0, 1] : [3, 0, 1, 2];
       }
+      for (let k = 0; k < e.length; k += 2) seg.push(px[e[k]], py[e[k]], px[e[k + 1]], py[e[k + 1]]);
     }
   }
   return seg;

@@ -70,6 +70,24 @@ export async function createEngine(api, kind = 'main') {
 }
 
 /**
+ * An engine usable at once: calls wait for `starting` (a promise of an engine) and go
+ * to `fallback` if it fails to start, so a worker's start-up is off the critical path.
+ */
+export function deferredEngine(starting, fallback) {
+  const ready = starting.catch((e) => {
+    console.warn(`RideLab: no worker (${e && e.message ? e.message : e}); running on the main thread`);
+    return fallback;
+  });
+  const engine = {
+    kind: 'starting',
+    ready,
+    call: (method, ...args) => ready.then((e) => e.call(method, ...args)),
+  };
+  ready.then((e) => (engine.kind = e.kind));
+  return engine;
+}
+
+/**
  * Runs `task(arg)` so that at most one is in flight and only the latest request waits:
  * while one runs, newer requests replace each other, and the last one runs next.
  * Resolves each request with the task's result, or `undefined` if it was superseded.

@@ -176,10 +176,8 @@ export class MapView {
 
     const { ticks, step } = niceTicks(lo, hi, 5);
     const levels = ticks.filter((t) => t > lo + 1e-9 * (hi - lo) && t < hi - 1e-9 * (hi - lo));
-    const get = (i, j) => shown[j * nx + i];
-    const contours = levels.map((lv) => contourSegments(get, nx, ny, lv));
-    const sws = values.subarray(2 * n, 3 * n);
-    const limitLine = swsLimit ? contourSegments((i, j) => sws[j * nx + i], nx, ny, swsLimit) : [];
+    const contours = levels.map((lv) => contourSegments(shown, 0, nx, ny, lv));
+    const limitLine = swsLimit ? contourSegments(values, 2 * n, nx, ny, swsLimit) : [];
 
     this.data = {
       nx, ny, box, lo, hi, ticks, step, table, colour, maskCanvas, contours, limitLine, scale, over, under,

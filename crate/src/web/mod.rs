@@ -10,7 +10,7 @@
 
 mod state;
 
-pub use state::{lofi_map, LoFiMap, Scenario, State, MAX_GRID};
+pub use state::{lofi_map, LoFiMap, Scenario, State, MAX_GRID, STATE_FIELDS};
 
 use crate::analysis::{report, ModelKind};
 use crate::car::{Car, PRESETS};
@@ -25,6 +25,8 @@ use wasm_bindgen::prelude::*;
 fn js_error(e: RideError) -> JsValue {
     let field = match &e {
         RideError::Field { field, .. } => ui_field(field),
+        // The only JSON the core parses is a car file.
+        RideError::Json(_) => "car".into(),
         _ => String::new(),
     };
     let err = js_sys::Error::new(&e.to_string());
@@ -34,15 +36,36 @@ fn js_error(e: RideError) -> JsValue {
 }
 
 /// The state field a core field path belongs to: the design variables are the car's
-/// front spring and damper; any other car-file field is the car's.
+/// front spring and damper; every other car-file field is the car's; the rest are
+/// state fields already ("speed", "class", "tracks", "model", "nx", ...).
 fn ui_field(core: &str) -> String {
+    const CAR_FIELDS: [&str; 12] = [
+        "car",
+        "name",
+        "source",
+        "sprung_mass",
+        "pitch_inertia",
+        "roll_inertia",
+        "a",
+        "b",
+        "track_front",
+        "track_rear",
+        "front",
+        "rear",
+    ];
     match core {
         "front.spring" | "ks" => "ks".into(),
         "front.damper" | "cs" => "cs".into(),
-        "speed" | "class" | "tracks" | "nx" | "ny" => core.into(),
         "ks-range" | "cs-range" => "box".into(),
         "sws_limit" => "swsLimit".into(),
-        _ => "car".into(),
+        f if CAR_FIELDS.contains(&f)
+            || f.starts_with("front.")
+            || f.starts_with("rear.")
+            || !f.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') =>
+        {
+            "car".into()
+        }
+        f => f.into(),
     }
 }
 
@@ -51,12 +74,29 @@ fn to_js<T: Serialize>(v: &T) -> Result<JsValue, JsValue> {
         .map_err(|e| js_sys::Error::new(&format!("serialisation: {e}")).into())
 }
 
+fn state_error(msg: String) -> JsValue {
+    let err = js_sys::Error::new(&format!("state: {msg}"));
+    let _ = Reflect::set(&err, &"field".into(), &"state".into());
+    err.into()
+}
+
+/// The state object as a [`State`]. serde-wasm-bindgen reads only the fields it knows,
+/// so unknown (misspelt) keys are refused here first.
 fn parse_state(state: JsValue) -> Result<State, JsValue> {
-    serde_wasm_bindgen::from_value(state).map_err(|e| {
-        let err = js_sys::Error::new(&format!("state: {e}"));
-        let _ = Reflect::set(&err, &"field".into(), &"state".into());
-        err.into()
-    })
+    if let Some(obj) = state.dyn_ref::<Object>() {
+        for key in Object::keys(obj).iter() {
+            let key = key.as_string().unwrap_or_default();
+            if !STATE_FIELDS.contains(&key.as_str()) {
+                return Err(state_error(format!(
+                    "unknown field `{key}`, expected one of {}",
+                    STATE_FIELDS.join(", ")
+                )));
+            }
+        }
+    } else {
+        return Err(state_error("must be an object".into()));
+    }
+    serde_wasm_bindgen::from_value(state).map_err(|e| state_error(e.to_string()))
 }
 
 fn scenario(state: JsValue) -> Result<Scenario, JsValue> {

@@ -12,6 +12,12 @@ use crate::road::{Road, RoadClass, Tracks};
 use crate::LoFi;
 use serde::{Deserialize, Serialize};
 
+/// The JS names of the [`State`] fields.
+pub const STATE_FIELDS: [&str; 12] = [
+    "car", "carJson", "ks", "cs", "class", "speed", "tracks", "ksMin", "ksMax", "csMin", "csMax",
+    "swsLimit",
+];
+
 /// Everything the page needs to define one view: car, design point, road, design box
 /// and the SWS objective. Field names are camelCase on the JS side.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -32,13 +38,16 @@ pub struct State {
     pub speed: f64,
     /// "correlated" or "independent".
     pub tracks: String,
-    /// Design box, N/m and N s/m (defaults: [`DesignBox::default`]).
+    /// Design box: lowest Ks, N/m (default [`DesignBox::default`]).
     #[serde(default)]
     pub ks_min: Option<f64>,
+    /// Design box: highest Ks, N/m.
     #[serde(default)]
     pub ks_max: Option<f64>,
+    /// Design box: lowest Cs, N s/m.
     #[serde(default)]
     pub cs_min: Option<f64>,
+    /// Design box: highest Cs, N s/m.
     #[serde(default)]
     pub cs_max: Option<f64>,
     /// RMS SWS limit, m (default 0.007).
