@@ -322,6 +322,17 @@ test('URL state round-trips: a link reproduces the view', { timeout: TIMEOUT }, 
   await page.reload();
   await page.waitForFunction(() => window.__ridelab && window.__ridelab.ready);
   assert.deepEqual(await readout(page), first, 'same readout after a reload');
+
+  // A link that names only the car shows that car's own (datum) design.
+  const suv = await open('#car=suv');
+  const st = await suv.page.evaluate(() => window.__ridelab.state);
+  const preset = await suv.page.evaluate(() => window.__ridelab.presets.find((p) => p.name === 'suv'));
+  assert.equal(st.ks, preset.ks);
+  assert.equal(st.cs, preset.cs);
+  const r = await readout(suv.page);
+  for (const k of ['bacc', 'dtl', 'sws']) assert.equal(r[`${k}.lofi-d`], 0, `${k}: the datum itself`);
+  assertClean(suv.log);
+  await suv.context.close();
   assertClean(log);
   assertClean(again.log);
   await again.context.close();

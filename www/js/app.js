@@ -50,7 +50,8 @@ const app = {
   maps: null,
   views: [],
   bad: new Set(),
-  customLabel: null,
+  /** The last custom car that was loaded: {json, ks, cs}. */
+  custom: null,
   /** ms from an input to the LoFi views (design), to the HiFi views too (full). */
   metrics: { design: [], full: [], scenario: [] },
   pending: 0,
@@ -310,7 +311,7 @@ function ensureCustomOption() {
       sel.append(opt);
     }
     opt.textContent = `${app.desc ? app.desc.car.name : 'custom car'} (file)`;
-  } else if (opt && !app.customJson) {
+  } else if (opt && !app.custom) {
     opt.remove();
   }
 }
@@ -342,11 +343,13 @@ async function loadFromHash(hash) {
   if (d.problems.length) return fallback(d.problems.join('; '));
   const s = { ...app.defaults, ...d.state };
   if (s.car !== 'custom') s.carJson = null;
-  if (d.state.car && d.state.ks === undefined && d.state.cs === undefined) {
-    const p = app.presets.find((x) => x.name === s.car);
-    if (p) Object.assign(s, { ks: p.ks, cs: p.cs });
-  }
   try {
+    // A link without ks or cs means the car's own (datum) front spring or damper.
+    if (d.state.ks === undefined || d.state.cs === undefined) {
+      const desc = await app.engine.call('describe', { ...s, ks: app.defaults.ks, cs: app.defaults.cs });
+      if (d.state.ks === undefined) s.ks = desc.datumKs;
+      if (d.state.cs === undefined) s.cs = desc.datumCs;
+    }
     await app.engine.call('describe', s);
   } catch (e) {
     return fallback(e.message);
@@ -364,7 +367,7 @@ async function applyLoaded({ state, view }) {
     state = { ...app.defaults };
     r = await computeScenario(state);
   }
-  if (state.car === 'custom') app.customJson = state.carJson;
+  if (state.car === 'custom') app.custom = { json: state.carJson, ks: r.desc.datumKs, cs: r.desc.datumCs };
   Object.assign(app, r, { state });
   app.view = { ...app.view, ...view };
   for (const f of Object.keys(FIELD_INPUT)) setMsg(f, '');
@@ -423,9 +426,8 @@ function wire() {
   $('car').addEventListener('change', (ev) => {
     const name = ev.target.value;
     if (name === 'custom') {
-      const p = app.customParsed;
-      if (!app.customJson || !p) return;
-      changeScenario({ car: 'custom', carJson: app.customJson, ks: p.ks, cs: p.cs }, 'car');
+      const c = app.custom;
+      if (c) changeScenario({ car: 'custom', carJson: c.json, ks: c.ks, cs: c.cs }, 'car');
     } else {
       const p = app.presets.find((x) => x.name === name);
       changeScenario({ car: name, carJson: null, ks: p.ks, cs: p.cs }, 'car');
@@ -443,9 +445,9 @@ function wire() {
       return;
     }
     const json = JSON.stringify(JSON.parse(text));
-    app.customJson = json;
-    app.customParsed = parsed;
-    await changeScenario({ car: 'custom', carJson: json, ks: parsed.ks, cs: parsed.cs }, 'car');
+    const ok = await changeScenario({ car: 'custom', carJson: json, ks: parsed.ks, cs: parsed.cs }, 'car');
+    if (ok) app.custom = { json, ks: parsed.ks, cs: parsed.cs };
+    ev.target.value = ''; // the same file can be loaded again after an edit
   });
   $('reset-datum').addEventListener('click', () => changeDesign(app.desc.datumKs, app.desc.datumCs, 'ks'));
   $('map-scale').addEventListener('change', (ev) => {
