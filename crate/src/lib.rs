@@ -16,6 +16,8 @@ pub mod modes;
 pub mod optimize;
 pub mod road;
 pub mod time_domain;
+#[cfg(target_arch = "wasm32")]
+pub mod web;
 
 pub use analysis::{HiFi, LoFi, ModelKind};
 pub use car::{Car, QuarterCar};

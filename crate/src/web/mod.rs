@@ -1,0 +1,294 @@
+//! The browser shell (wasm32 only): a thin JS API over the core, exported with
+//! wasm-bindgen. Every entry returns `Result<_, JsValue>`; an error is a JS `Error`
+//! whose message is the core's [`RideError`] text and whose `field` property names the
+//! state field at fault (`"speed"`, `"ks"`, `"car"`, ...), so the page can show it
+//! next to that field. Nothing here panics on bad input, and nothing touches the DOM:
+//! the same module runs in a Web Worker.
+//!
+//! State objects (see [`State`]) are plain JS objects in SI units:
+//! `{car, carJson?, ks, cs, class, speed, tracks, ksMin?, ksMax?, csMin?, csMax?, swsLimit?}`.
+
+mod state;
+
+pub use state::{lofi_map, LoFiMap, Scenario, State, MAX_GRID, STATE_FIELDS};
+
+use crate::analysis::{report, ModelKind};
+use crate::car::{Car, PRESETS};
+use crate::error::RideError;
+use crate::evaluate::Evaluator;
+use crate::road::RoadClass;
+use js_sys::{Float64Array, Object, Reflect, Uint8Array};
+use serde::Serialize;
+use wasm_bindgen::prelude::*;
+
+/// Converts a core error to a JS `Error` with a `field` property.
+fn js_error(e: RideError) -> JsValue {
+    let field = match &e {
+        RideError::Field { field, .. } => ui_field(field),
+        // The only JSON the core parses is a car file.
+        RideError::Json(_) => "car".into(),
+        _ => String::new(),
+    };
+    let err = js_sys::Error::new(&e.to_string());
+    // Setting a property on a fresh Error object cannot fail.
+    let _ = Reflect::set(&err, &"field".into(), &field.into());
+    err.into()
+}
+
+/// The state field a core field path belongs to: the design variables are the car's
+/// front spring and damper; every other car-file field is the car's; the rest are
+/// state fields already ("speed", "class", "tracks", "model", "nx", ...).
+fn ui_field(core: &str) -> String {
+    const CAR_FIELDS: [&str; 12] = [
+        "car",
+        "name",
+        "source",
+        "sprung_mass",
+        "pitch_inertia",
+        "roll_inertia",
+        "a",
+        "b",
+        "track_front",
+        "track_rear",
+        "front",
+        "rear",
+    ];
+    match core {
+        "front.spring" | "ks" => "ks".into(),
+        "front.damper" | "cs" => "cs".into(),
+        "ks-range" | "cs-range" => "box".into(),
+        "sws_limit" => "swsLimit".into(),
+        f if CAR_FIELDS.contains(&f)
+            || f.starts_with("front.")
+            || f.starts_with("rear.")
+            || !f.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') =>
+        {
+            "car".into()
+        }
+        f => f.into(),
+    }
+}
+
+fn to_js<T: Serialize>(v: &T) -> Result<JsValue, JsValue> {
+    v.serialize(&serde_wasm_bindgen::Serializer::json_compatible())
+        .map_err(|e| js_sys::Error::new(&format!("serialisation: {e}")).into())
+}
+
+fn state_error(msg: String) -> JsValue {
+    let err = js_sys::Error::new(&format!("state: {msg}"));
+    let _ = Reflect::set(&err, &"field".into(), &"state".into());
+    err.into()
+}
+
+/// The state object as a [`State`]. serde-wasm-bindgen reads only the fields it knows,
+/// so unknown (misspelt) keys are refused here first.
+fn parse_state(state: JsValue) -> Result<State, JsValue> {
+    if let Some(obj) = state.dyn_ref::<Object>() {
+        for key in Object::keys(obj).iter() {
+            let key = key.as_string().unwrap_or_default();
+            if !STATE_FIELDS.contains(&key.as_str()) {
+                return Err(state_error(format!(
+                    "unknown field `{key}`, expected one of {}",
+                    STATE_FIELDS.join(", ")
+                )));
+            }
+        }
+    } else {
+        return Err(state_error("must be an object".into()));
+    }
+    serde_wasm_bindgen::from_value(state).map_err(|e| state_error(e.to_string()))
+}
+
+fn scenario(state: JsValue) -> Result<Scenario, JsValue> {
+    parse_state(state)?.scenario().map_err(js_error)
+}
+
+/// The crate version.
+#[wasm_bindgen]
+pub fn version() -> String {
+    env!("CARGO_PKG_VERSION").into()
+}
+
+/// The default state: the datum car at its own front spring and damper, class B at
+/// 20 m/s, correlated tracks, the default design box and the 7 mm SWS limit.
+#[wasm_bindgen(js_name = defaultState)]
+pub fn default_state() -> Result<JsValue, JsValue> {
+    to_js(&State::default())
+}
+
+#[derive(Serialize)]
+struct PresetInfo {
+    name: &'static str,
+    label: String,
+    json: &'static str,
+    ks: f64,
+    cs: f64,
+}
+
+/// The shipped car presets: `[{name, label, json, ks, cs}]` (`ks`, `cs`: the preset's
+/// own front spring and damper, the datum design).
+#[wasm_bindgen]
+pub fn presets() -> Result<JsValue, JsValue> {
+    let mut out = Vec::with_capacity(PRESETS.len());
+    for (name, json) in PRESETS {
+        let car = Car::from_json(json).map_err(js_error)?;
+        out.push(PresetInfo {
+            name,
+            label: car.name.clone(),
+            json,
+            ks: car.front.spring,
+            cs: car.front.damper,
+        });
+    }
+    to_js(&out)
+}
+
+/// The ISO 8608 classes with `Gd(n0)` in m^3: `[{name, gd}]`.
+#[wasm_bindgen(js_name = roadClasses)]
+pub fn road_classes() -> Result<JsValue, JsValue> {
+    #[derive(Serialize)]
+    struct C {
+        name: String,
+        gd: f64,
+    }
+    let v: Vec<C> = RoadClass::ALL
+        .iter()
+        .map(|c| C {
+            name: format!("{c:?}"),
+            gd: c.gd_n0(),
+        })
+        .collect();
+    to_js(&v)
+}
+
+/// Parses and validates a car file; returns `{car, ks, cs}` or an error naming the field.
+#[wasm_bindgen(js_name = parseCar)]
+pub fn parse_car(json: &str) -> Result<JsValue, JsValue> {
+    #[derive(Serialize)]
+    struct Parsed {
+        car: Car,
+        ks: f64,
+        cs: f64,
+    }
+    let car = Car::from_json(json).map_err(js_error)?;
+    let (ks, cs) = (car.front.spring, car.front.damper);
+    to_js(&Parsed { car, ks, cs })
+}
+
+/// Checks a state; returns the normalised state or an error naming the field.
+#[wasm_bindgen(js_name = checkState)]
+pub fn check_state(state: JsValue) -> Result<JsValue, JsValue> {
+    let s = parse_state(state)?;
+    s.scenario().map_err(js_error)?;
+    to_js(&s)
+}
+
+/// What the page shows about the scenario besides the criteria: the datum car, its
+/// quarter car, the datum design `{ks, cs}`, the static front wheel load (N), the road
+/// velocity PSD (m^2/s^2/Hz) and the design box.
+#[wasm_bindgen]
+pub fn describe(state: JsValue) -> Result<JsValue, JsValue> {
+    #[derive(Serialize)]
+    #[serde(rename_all = "camelCase")]
+    struct Description {
+        car: Car,
+        quarter: crate::car::QuarterCar,
+        datum_ks: f64,
+        datum_cs: f64,
+        static_wheel_load: f64,
+        road: crate::road::Road,
+        velocity_psd: f64,
+        delay: f64,
+        design_box: crate::design::DesignBox,
+        sws_limit: Option<f64>,
+    }
+    let s = scenario(state)?;
+    to_js(&Description {
+        quarter: s.datum.quarter(),
+        datum_ks: s.datum.front.spring,
+        datum_cs: s.datum.front.damper,
+        static_wheel_load: s.datum.front_wheel_load(),
+        road: s.road,
+        velocity_psd: s.road.velocity_psd(),
+        delay: s.road.delay(s.datum.wheelbase()),
+        design_box: s.dbox,
+        sws_limit: s.objectives.sws_limit,
+        car: s.datum,
+    })
+}
+
+/// The full analysis report of the state's design by one model: `model` is
+/// "quarter" (LoFi) or "full" (HiFi). The same [`report`] as `ridelab eval`.
+#[wasm_bindgen]
+pub fn analyse(state: JsValue, model: &str) -> Result<JsValue, JsValue> {
+    let kind = ModelKind::parse(model).map_err(js_error)?;
+    let s = scenario(state)?;
+    let r = report(kind, &s.design, &s.road).map_err(js_error)?;
+    to_js(&r)
+}
+
+/// Both reports of the state's design: `{lofi, hifi}` (see [`analyse`]).
+#[wasm_bindgen]
+pub fn evaluate(state: JsValue) -> Result<JsValue, JsValue> {
+    let s = scenario(state)?;
+    let lofi = report(ModelKind::Quarter, &s.design, &s.road).map_err(js_error)?;
+    let hifi = report(ModelKind::Full, &s.design, &s.road).map_err(js_error)?;
+    let out = Object::new();
+    Reflect::set(&out, &"lofi".into(), &to_js(&lofi)?)?;
+    Reflect::set(&out, &"hifi".into(), &to_js(&hifi)?)?;
+    Ok(out.into())
+}
+
+/// The criteria `{bacc, dtl, sws}` of the state's design by the fast evaluators the
+/// maps and optimisers use (`model`: "quarter" or "full").
+#[wasm_bindgen]
+pub fn criteria(state: JsValue, model: &str) -> Result<JsValue, JsValue> {
+    let kind = ModelKind::parse(model).map_err(js_error)?;
+    let s = scenario(state)?;
+    let (ks, cs) = (s.design.front.spring, s.design.front.damper);
+    let c = match kind {
+        ModelKind::Quarter => s.lofi().evaluate(ks, cs),
+        ModelKind::Full => crate::HiFi {
+            car: s.datum.clone(),
+            road: s.road,
+        }
+        .evaluate(ks, cs),
+    }
+    .map_err(js_error)?;
+    to_js(&c)
+}
+
+/// The three LoFi criteria over an `nx` x `ny` grid of cell centres of the design box,
+/// as one `Float64Array` of `3 nx ny` values: BAcc (m/s^2), DTL (N), SWS (m) planes in
+/// that order, each row-major with Cs slow (row 0 at the lowest Cs) and Ks fast:
+/// index `c nx ny + j nx + i`, `ks_i = ks_min + (i + 1/2) (ks_max - ks_min) / nx`.
+#[wasm_bindgen(js_name = lofiMap)]
+pub fn lofi_map_js(state: JsValue, nx: usize, ny: usize) -> Result<Float64Array, JsValue> {
+    let s = scenario(state)?;
+    let m = lofi_map(&s, nx, ny).map_err(js_error)?;
+    Ok(Float64Array::from(m.values.as_slice()))
+}
+
+/// [`lofi_map_js`] plus the feasibility mask of the design objectives:
+/// `{nx, ny, values: Float64Array, feasible: Uint8Array, feasibleCount}`.
+#[wasm_bindgen(js_name = lofiMaps)]
+pub fn lofi_maps_js(state: JsValue, nx: usize, ny: usize) -> Result<JsValue, JsValue> {
+    let s = scenario(state)?;
+    let m = lofi_map(&s, nx, ny).map_err(js_error)?;
+    let count = m.feasible.iter().filter(|&&f| f == 1).count();
+    let out = Object::new();
+    Reflect::set(&out, &"nx".into(), &(nx as f64).into())?;
+    Reflect::set(&out, &"ny".into(), &(ny as f64).into())?;
+    Reflect::set(
+        &out,
+        &"values".into(),
+        &Float64Array::from(m.values.as_slice()).into(),
+    )?;
+    Reflect::set(
+        &out,
+        &"feasible".into(),
+        &Uint8Array::from(m.feasible.as_slice()).into(),
+    )?;
+    Reflect::set(&out, &"feasibleCount".into(), &(count as f64).into())?;
+    Ok(out.into())
+}

@@ -1,0 +1,649 @@
+// End-to-end tests of the RideLab page in headless Chromium.
+//
+//   trunk build --release --offline      # builds dist/
+//   node --test tests/e2e/               # or: npm run test:e2e
+//
+// Serves dist/ on a free localhost port, drives /usr/bin/chromium with playwright-core,
+// checks pixels on the map canvases, the readout against the native code, the URL
+// state, every bad-input message, and prints the timing figures. Screenshots go to
+// tests/e2e/out/ (gitignored).
+
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import zlib from 'node:zlib';
+import { execFileSync } from 'node:child_process';
+import { fileURLToPath } from 'node:url';
+import { startServer } from './server.mjs';
+import { launch } from './browser.mjs';
+
+const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
+const DIST = process.env.RIDELAB_DIST || path.join(ROOT, 'dist');
+const OUT = path.join(ROOT, 'tests/e2e/out');
+const TIMEOUT = 90_000;
+
+let srv;
+let browser;
+const figures = {};
+
+before(async () => {
+  if (!fs.existsSync(path.join(DIST, 'index.html'))) {
+    throw new Error(`${DIST}/index.html is missing: build the page first (trunk build --release --offline)`);
+  }
+  fs.mkdirSync(OUT, { recursive: true });
+  srv = await startServer(DIST);
+  browser = await launch();
+});
+
+after(async () => {
+  if (browser) await browser.close();
+  if (srv) await srv.close();
+  if (Object.keys(figures).length) {
+    fs.writeFileSync(path.join(OUT, 'figures.json'), JSON.stringify(figures, null, 2));
+    console.log(`figures: ${JSON.stringify(figures)}`);
+  }
+});
+
+// ------------------------------------------------------------------ helpers
+
+/** Opens the page at `hash` (and `query`), waits until every view is ready. */
+async function open(hash = '', { query = '', dpr = 1, width = 1400, height = 1000 } = {}) {
+  const context = await browser.newContext({ viewport: { width, height }, deviceScaleFactor: dpr });
+  const page = await context.newPage();
+  const log = { errors: [], foreign: [] };
+  page.on('console', (m) => {
+    if (m.type() === 'error') log.errors.push(m.text());
+  });
+  page.on('pageerror', (e) => log.errors.push(`pageerror: ${e.message}`));
+  page.on('request', (r) => {
+    const u = new URL(r.url());
+    if (!['data:', 'blob:'].includes(u.protocol) && u.hostname !== '127.0.0.1') log.foreign.push(r.url());
+  });
+  await page.goto(srv.url + query + hash);
+  await page.waitForFunction(() => window.__ridelab && window.__ridelab.ready, null, { timeout: 30_000 });
+  return { page, context, log };
+}
+
+/** Waits until every view shows the current state and the URL has been written. */
+async function settle(page) {
+  await page.waitForFunction(() => window.__ridelab.isSettled(), null, { timeout: 30_000 });
+  await page.waitForTimeout(200); // the URL is written 120 ms after the last change
+}
+
+/** The criteria table as `{"bacc.lofi": value, ...}` (full-precision SI values). */
+function readout(page) {
+  return page.evaluate(() => {
+    const out = {};
+    for (const tr of document.querySelectorAll('#criteria tbody tr')) {
+      for (const td of tr.querySelectorAll('td[data-model]')) {
+        out[`${tr.dataset.crit}.${td.dataset.model}`] = td.dataset.value === undefined ? null : Number(td.dataset.value);
+      }
+    }
+    return out;
+  });
+}
+
+/** Statistics of a canvas (or its plot area): distinct colours, hatch-grey and opaque pixels. */
+function canvasStats(page, id, plotOnly = true) {
+  return page.evaluate(
+    ([id, plotOnly]) => {
+      const c = document.getElementById(id);
+      const view = window.__ridelab.views.find((v) => v.base === c || v.overlay === c);
+      const dpr = view.size.dpr;
+      let x0 = 0;
+      let y0 = 0;
+      let w = c.width;
+      let h = c.height;
+      if (plotOnly) {
+        const { plot } = view.layout();
+        x0 = Math.ceil(plot.x * dpr) + 2;
+        y0 = Math.ceil(plot.y * dpr) + 2;
+        w = Math.floor(plot.w * dpr) - 4;
+        h = Math.floor(plot.h * dpr) - 4;
+      }
+      const d = c.getContext('2d').getImageData(x0, y0, w, h).data;
+      const colours = new Set();
+      let grey = 0;
+      let opaque = 0;
+      for (let k = 0; k < d.length; k += 4) {
+        colours.add((d[k] << 16) | (d[k + 1] << 8) | d[k + 2]);
+        if (d[k + 3] > 0) opaque++;
+        // The hatch lines: dark grey (no colour of either colour map is).
+        const mx = Math.max(d[k], d[k + 1], d[k + 2]);
+        const mn = Math.min(d[k], d[k + 1], d[k + 2]);
+        if (d[k + 3] === 255 && mx - mn < 30 && mx < 120) grey++;
+      }
+      return {
+        width: c.width, height: c.height, cssWidth: c.clientWidth, cssHeight: c.clientHeight, dpr,
+        colours: colours.size, grey, opaque, pixels: w * h,
+      };
+    },
+    [id, plotOnly],
+  );
+}
+
+/** Where the design marker of map `k` is (CSS px in the overlay) and what is drawn there. */
+function marker(page, k = 0) {
+  return page.evaluate((k) => {
+    const a = window.__ridelab;
+    const v = a.views[k];
+    const { plot, fs } = v.layout();
+    const [x, y] = v.toPlot(a.state.ks, a.state.cs, plot);
+    const r = Math.max(4, fs * 0.45);
+    const g = v.overlay.getContext('2d');
+    const px = (dx, dy) => Array.from(g.getImageData(Math.round((x + dx) * v.size.dpr), Math.round((y + dy) * v.size.dpr), 1, 1).data);
+    return { x, y, centre: px(0, 0), ring: px(r * 0.55, 0) };
+  }, k);
+}
+
+function relErr(a, b) {
+  return Math.abs(a / b - 1);
+}
+
+const p95 = (xs) => {
+  const s = [...xs].sort((a, b) => a - b);
+  return s[Math.min(s.length - 1, Math.ceil(0.95 * s.length) - 1)];
+};
+const median = (xs) => {
+  const s = [...xs].sort((a, b) => a - b);
+  return s[Math.floor(s.length / 2)];
+};
+
+function assertClean(log) {
+  assert.deepEqual(log.errors, [], 'console errors');
+  assert.deepEqual(log.foreign, [], 'requests to other hosts');
+}
+
+// ------------------------------------------------------------------ tests
+
+test('loads with no console errors, no other hosts, timing and wasm size', { timeout: TIMEOUT }, async (t) => {
+  const { page, context, log } = await open();
+  const timing = await page.evaluate(() => ({
+    interactive: window.__ridelab.interactiveAt,
+    ready: window.__ridelab.readyAt,
+    marks: window.__ridelab.marks,
+    nav: performance.getEntriesByType('navigation')[0].toJSON(),
+  }));
+  t.diagnostic(`script start ${timing.marks.start.toFixed(0)} ms, wasm ready ${timing.marks.wasm.toFixed(0)} ms, DOMContentLoaded ${timing.nav.domContentLoadedEventEnd.toFixed(0)} ms`);
+  await page.screenshot({ path: path.join(OUT, 'default.png'), fullPage: true });
+  assertClean(log);
+  assert.equal(await page.locator('#banner').isHidden(), true, 'no banner on a clean load');
+  const wasm = fs.readFileSync(path.join(DIST, 'ridelab_bg.wasm'));
+  const gz = zlib.gzipSync(wasm, { level: 9 }).length;
+  figures.loadToInteractiveMs = Math.round(timing.interactive);
+  figures.loadToHiFiReadyMs = Math.round(timing.ready);
+  figures.wasmBytes = wasm.length;
+  figures.wasmGzipBytes = gz;
+  t.diagnostic(`load to interactive (LoFi readout + maps drawn): ${timing.interactive.toFixed(0)} ms`);
+  t.diagnostic(`load to every view ready (HiFi readout too): ${timing.ready.toFixed(0)} ms`);
+  t.diagnostic(`ridelab_bg.wasm: ${wasm.length} bytes, ${gz} bytes gzipped (zlib level 9)`);
+  await context.close();
+});
+
+test('the three maps draw colour maps, hatching, axes and markers', { timeout: TIMEOUT }, async () => {
+  const { page, context, log } = await open();
+  for (const key of ['bacc', 'dtl', 'sws']) {
+    const s = await canvasStats(page, `map-${key}`);
+    assert.ok(s.colours > 200, `${key}: plot has ${s.colours} distinct colours (a real colour map)`);
+    assert.ok(s.grey > 0.01 * s.pixels, `${key}: hatching where SWS > 7 mm (${s.grey} of ${s.pixels} px)`);
+    const whole = await canvasStats(page, `map-${key}`, false);
+    assert.equal(whole.width, Math.round(whole.cssWidth * whole.dpr), 'canvas sized in device pixels');
+    const o = await canvasStats(page, `map-${key}-overlay`, false);
+    assert.ok(o.opaque > 50, `${key}: markers drawn on the overlay`);
+  }
+  const m = await marker(page);
+  assert.deepEqual(m.centre.slice(0, 3), [0, 0, 0], 'design marker: black centre');
+  assert.ok(m.ring.every((c) => c > 200), `design marker: white ring (${m.ring})`);
+  assertClean(log);
+  await context.close();
+});
+
+test('moving the Ks slider changes the readout and the marker', { timeout: TIMEOUT }, async () => {
+  const { page, context, log } = await open();
+  const before = await readout(page);
+  const m0 = await marker(page);
+  await page.focus('#ks-range');
+  for (let i = 0; i < 20; i++) await page.keyboard.press('ArrowRight');
+  await settle(page);
+  const after = await readout(page);
+  const m1 = await marker(page);
+  const ks = await page.evaluate(() => window.__ridelab.state.ks);
+  assert.equal(ks, 19960 + 20 * 50 - 10, 'twenty 0.05 kN/m steps from 19.96 (the slider snaps to its grid first)');
+  assert.equal(await page.inputValue('#ks-num'), String(ks / 1000));
+  for (const k of ['bacc.lofi', 'bacc.hifi', 'dtl.lofi', 'dtl.hifi']) {
+    assert.notEqual(after[k], before[k], `${k} changed`);
+  }
+  assert.ok(after['bacc.lofi'] > before['bacc.lofi'], 'a stiffer spring gives more body acceleration');
+  assert.ok(after['bacc.lofi-d'] > 0 && after['bacc.hifi-d'] > 0, 'change vs datum is positive');
+  assert.ok(m1.x > m0.x + 5, `marker moved right (${m0.x.toFixed(1)} -> ${m1.x.toFixed(1)})`);
+  assert.equal(m1.y, m0.y, 'marker kept its Cs');
+  assert.ok(m1.ring.every((c) => c > 200), `marker drawn at the new place (${m1.ring})`);
+  assert.match(page.url(), /ks=20950/, 'URL follows the design');
+  assertClean(log);
+  await context.close();
+});
+
+/** Native reference numbers: the `ridelab` CLI when built, else the native-reference program. */
+function nativeReference() {
+  const car = path.join(ROOT, 'assets/cars/sedan.json');
+  const cli = process.env.RIDELAB_CLI || path.join(ROOT, 'target/release/ridelab');
+  if (fs.existsSync(cli)) {
+    const run = (model) =>
+      JSON.parse(execFileSync(cli, ['eval', '--model', model, '--car', car, '--class', 'B', '--speed', '20', '--json'], { encoding: 'utf8' }));
+    return { source: `CLI ${path.relative(ROOT, cli)}`, quarter: run('quarter'), full: run('full') };
+  }
+  const bins = [
+    process.env.RIDELAB_NATIVE_REF,
+    path.join(ROOT, 'tests/e2e/native-reference/target/release/native-reference'),
+    path.join(ROOT, 'target/native-reference/release/native-reference'),
+  ].filter(Boolean);
+  const bin = bins.find((b) => fs.existsSync(b));
+  if (bin) {
+    const r = JSON.parse(execFileSync(bin, [car, 'B', '20', 'correlated'], { encoding: 'utf8' }));
+    return { source: `native program ${path.relative(ROOT, bin)} (the CLI is not built)`, ...r };
+  }
+  const file = path.join(ROOT, 'tests/e2e/native-reference/sedan-B-20-correlated.json');
+  return { source: `committed output of tests/e2e/native-reference (the CLI is not built)`, ...JSON.parse(fs.readFileSync(file, 'utf8')) };
+}
+
+test('datum readout at class B 20 m/s equals the native code to 1e-9', { timeout: TIMEOUT }, async (t) => {
+  const ref = nativeReference();
+  t.diagnostic(`reference: ${ref.source}`);
+  const { page, context, log } = await open('#car=sedan&class=B&speed=20&tracks=correlated');
+  const r = await readout(page);
+  let worst = 0;
+  for (const [model, col] of [['quarter', 'lofi'], ['full', 'hifi']]) {
+    for (const k of ['bacc', 'dtl', 'sws']) {
+      const e = relErr(r[`${k}.${col}`], ref[model][k]);
+      worst = Math.max(worst, e);
+      assert.ok(e <= 1e-9, `${model} ${k}: page ${r[`${k}.${col}`]} vs native ${ref[model][k]} (rel ${e})`);
+    }
+  }
+  t.diagnostic(`largest relative difference page vs native: ${worst.toExponential(2)}`);
+  figures.pageVsNativeMaxRelDiff = worst;
+  assertClean(log);
+  await context.close();
+});
+
+test('the worker and the main thread give identical numbers', { timeout: TIMEOUT }, async () => {
+  // A car with unequal track widths on independent tracks: the road warp needs the low cut-off.
+  const car = JSON.parse(fs.readFileSync(path.join(ROOT, 'assets/cars/sedan.json'), 'utf8'));
+  Object.assign(car, { name: 'Sedan, published tracks', track_front: 1.522, track_rear: 1.51 });
+  const hash = `#car=custom&carjson=${encodeURIComponent(JSON.stringify(car))}&class=D&speed=27&ks=31000&cs=2100&tracks=independent`;
+  const a = await open(hash);
+  const b = await open(hash, { query: '?engine=main' });
+  assert.deepEqual(await readout(a.page), await readout(b.page));
+  assert.match(await a.page.textContent('#version'), /worker thread/);
+  assert.match(await b.page.textContent('#version'), /main thread/);
+  assert.match(await a.page.textContent('#route-note'), /lowest frequency/, 'independent tracks: the low cut-off is explained');
+  assertClean(a.log);
+  assertClean(b.log);
+  await a.context.close();
+  await b.context.close();
+});
+
+test('URL state round-trips: a link reproduces the view', { timeout: TIMEOUT }, async () => {
+  const { page, context, log } = await open();
+  await page.selectOption('#class', 'D');
+  await page.fill('#speed', '25');
+  await page.press('#speed', 'Enter');
+  await page.fill('#ks-num', '30.5');
+  await page.press('#ks-num', 'Enter');
+  await page.fill('#cs-num', '2.25');
+  await page.press('#cs-num', 'Enter');
+  await page.selectOption('#tracks', 'independent');
+  await page.selectOption('#car', 'suv');
+  await page.fill('#ks-num', '33');
+  await page.press('#ks-num', 'Enter');
+  await page.selectOption('#map-scale', 'rel');
+  await page.fill('#sws-limit', '9');
+  await page.press('#sws-limit', 'Enter');
+  await settle(page);
+  const url = page.url();
+  assert.match(url, /car=suv/);
+  assert.match(url, /ks=33000/);
+  assert.match(url, /class=D/);
+  assert.match(url, /speed=25/);
+  assert.match(url, /tracks=independent/);
+  assert.match(url, /sws=9/);
+  assert.match(url, /scale=rel/);
+  const first = await readout(page);
+  const state = await page.evaluate(() => window.__ridelab.state);
+  await page.screenshot({ path: path.join(OUT, 'relative-suv-D.png'), fullPage: true });
+
+  const again = await open(new URL(url).hash);
+  assert.deepEqual(await readout(again.page), first, 'same readout from the link');
+  assert.deepEqual(await again.page.evaluate(() => window.__ridelab.state), state, 'same state from the link');
+  assert.equal(await again.page.inputValue('#ks-num'), '33');
+  assert.equal(await again.page.inputValue('#class'), 'D');
+  assert.equal(await again.page.inputValue('#car'), 'suv');
+  assert.equal(await again.page.inputValue('#map-scale'), 'rel');
+  await page.reload();
+  await page.waitForFunction(() => window.__ridelab && window.__ridelab.ready);
+  assert.deepEqual(await readout(page), first, 'same readout after a reload');
+
+  // A link that names only the car shows that car's own (datum) design.
+  const suv = await open('#car=suv');
+  const st = await suv.page.evaluate(() => window.__ridelab.state);
+  const preset = await suv.page.evaluate(() => window.__ridelab.presets.find((p) => p.name === 'suv'));
+  assert.equal(st.ks, preset.ks);
+  assert.equal(st.cs, preset.cs);
+  const r = await readout(suv.page);
+  for (const k of ['bacc', 'dtl', 'sws']) assert.equal(r[`${k}.lofi-d`], 0, `${k}: the datum itself`);
+  assertClean(suv.log);
+  await suv.context.close();
+  assertClean(log);
+  assertClean(again.log);
+  await again.context.close();
+  await context.close();
+});
+
+test('a corrupt or invalid URL shows a message and falls back to the defaults', { timeout: TIMEOUT }, async () => {
+  const clean = await open();
+  const defaults = await readout(clean.page);
+  await clean.context.close();
+  const cases = [
+    ['#ks=abc&class=B', /ks: 'abc' is not a number/],
+    ['#class=Z', /class: 'Z' is not an ISO 8608 class/],
+    ['#speed=-5', /speed: must be a finite number > 0/],
+    ['#tracks=diagonal', /tracks: 'diagonal' is not/],
+    ['#car=hovercraft', /no preset named 'hovercraft'/],
+    ['#car=custom&carjson=%7Bnot%20json', /invalid JSON|key must be a string/],
+    ['#cs=0', /damper: must be > 0/],
+    ['#zoom=3', /unknown key 'zoom'/],
+    ['#%E0%A4%A', /./],
+  ];
+  for (const [hash, message] of cases) {
+    const { page, context, log } = await open(hash);
+    const banner = page.locator('#banner');
+    if (hash === '#%E0%A4%A') {
+      // Undecodable percent escapes are read leniently by URLSearchParams: an unknown key.
+      assert.equal(await banner.isVisible(), true, `${hash}: message shown`);
+    } else {
+      assert.equal(await banner.isVisible(), true, `${hash}: message shown`);
+      assert.match(await banner.textContent(), message, `${hash}: message names the problem`);
+    }
+    assert.match(await banner.textContent(), /default view/);
+    assert.deepEqual(await readout(page), defaults, `${hash}: default readout`);
+    if (hash === '#ks=abc&class=B') {
+      await page.screenshot({ path: path.join(OUT, 'corrupt-url.png') });
+      await page.click('#banner-close');
+      assert.equal(await banner.isHidden(), true, 'the message can be dismissed');
+    }
+    assertClean(log);
+    await context.close();
+  }
+});
+
+test('each bad input shows its message next to the field and keeps the last good state', { timeout: TIMEOUT }, async () => {
+  const { page, context, log } = await open();
+  const good = await readout(page);
+  const goodUrl = page.url();
+  const cases = [
+    ['#speed', 'speed', '-5', /speed: must be a finite number > 0 \(m\/s\)/],
+    ['#speed', 'speed', '', /enter a number/],
+    ['#speed', 'speed', 'NaN', /'NaN' is not a number/],
+    ['#speed', 'speed', '1e999', /not a finite number/],
+    ['#speed', 'speed', '150', /at most 100 m\/s/],
+    ['#ks-num', 'ks', '-5', /Ks \(front spring, N\/m\): must be > 0/],
+    ['#ks-num', 'ks', 'abc', /'abc' is not a number/],
+    ['#ks-num', 'ks', '0', /must be > 0/],
+    ['#cs-num', 'cs', '0', /unbounded/],
+    ['#cs-num', 'cs', '-1', /must not be negative/],
+    ['#cs-num', 'cs', '', /enter a number/],
+    ['#sws-limit', 'swsLimit', '0', /SWS limit: must be a number > 0 \(mm\)/],
+    ['#sws-limit', 'swsLimit', 'seven', /not a number/],
+  ];
+  for (const [sel, field, text, message] of cases) {
+    await page.fill(sel, text);
+    await page.press(sel, 'Enter');
+    await settle(page);
+    const msg = page.locator(`#msg-${field}`);
+    assert.equal(await msg.isVisible(), true, `${sel} '${text}': message visible`);
+    assert.match(await msg.textContent(), message, `${sel} '${text}'`);
+    assert.equal(await page.getAttribute(sel, 'aria-invalid'), 'true');
+    assert.deepEqual(await readout(page), good, `${sel} '${text}': last good state kept`);
+    assert.equal(page.url(), goodUrl, `${sel} '${text}': URL unchanged`);
+    if (sel === '#speed' && text === '-5') {
+      await page.fill('#cs-num', '0');
+      await page.press('#cs-num', 'Enter');
+      await settle(page);
+      await page.screenshot({ path: path.join(OUT, 'bad-inputs.png') });
+      await page.fill('#cs-num', '1.29');
+      await page.press('#cs-num', 'Enter');
+      await settle(page);
+    }
+    // Escape restores the field; the message goes.
+    await page.press(sel, 'Escape');
+    assert.equal(await msg.isVisible(), false, `${sel}: message cleared by Escape`);
+  }
+  // A bad car file names the field; a good one becomes the datum and travels in the URL.
+  const bad = JSON.parse(fs.readFileSync(path.join(ROOT, 'assets/cars/sedan.json'), 'utf8'));
+  bad.sprung_mass = -3;
+  await page.setInputFiles('#car-file', { name: 'bad.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(bad)) });
+  await page.waitForFunction(() => document.getElementById('msg-car').textContent !== '');
+  assert.match(await page.textContent('#msg-car'), /bad\.json: sprung_mass: must be > 0/);
+  const misspelt = fs.readFileSync(path.join(ROOT, 'assets/cars/sedan.json'), 'utf8').replace('"pitch_inertia"', '"pitch_inertai"');
+  await page.setInputFiles('#car-file', { name: 'typo.json', mimeType: 'application/json', buffer: Buffer.from(misspelt) });
+  await page.waitForFunction(() => /typo/.test(document.getElementById('msg-car').textContent));
+  assert.match(await page.textContent('#msg-car'), /pitch_inertai/);
+  assert.deepEqual(await readout(page), good, 'bad car files change nothing');
+  const mine = { ...JSON.parse(fs.readFileSync(path.join(ROOT, 'assets/cars/sedan.json'), 'utf8')), name: 'Test hatchback', sprung_mass: 1100 };
+  await page.setInputFiles('#car-file', { name: 'mine.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(mine)) });
+  await settle(page);
+  assert.equal(await page.textContent('#msg-car'), '');
+  assert.match(await page.locator('#car option:checked').textContent(), /Test hatchback/);
+  const custom = await readout(page);
+  assert.notDeepEqual(custom, good);
+  assert.match(page.url(), /car=custom&carjson=/);
+  const again = await open(new URL(page.url()).hash);
+  assert.deepEqual(await readout(again.page), custom, 'a custom car travels in the link');
+  await again.context.close();
+  assertClean(log);
+  await context.close();
+});
+
+test('class C: no feasible design, and the page says so', { timeout: TIMEOUT }, async () => {
+  const { page, context, log } = await open();
+  await page.selectOption('#class', 'C');
+  await settle(page);
+  const status = page.locator('#map-status');
+  assert.match(await status.textContent(), /No design in the box meets SWS ≤ 7 mm on class C/);
+  assert.match((await status.getAttribute('class')) || '', /bad/);
+  const s = await canvasStats(page, 'map-bacc');
+  assert.ok(s.grey > 0.08 * s.pixels, `the whole map is hatched (${s.grey} of ${s.pixels} px)`);
+  const b = await open();
+  const sb = await canvasStats(b.page, 'map-bacc');
+  assert.ok(s.grey > 3 * sb.grey, 'far more hatching than at class B');
+  await b.context.close();
+  await page.screenshot({ path: path.join(OUT, 'class-c.png'), fullPage: true });
+  assertClean(log);
+  await context.close();
+});
+
+test('clicking and dragging on a map sets Ks and Cs', { timeout: TIMEOUT }, async () => {
+  const { page, context, log } = await open();
+  await page.locator('#map-dtl-overlay').scrollIntoViewIfNeeded();
+  const geo = await page.evaluate(() => {
+    const v = window.__ridelab.views[1];
+    const r = v.overlay.getBoundingClientRect();
+    const { plot } = v.layout();
+    return { left: r.left + plot.x, top: r.top + plot.y, w: plot.w, h: plot.h };
+  });
+  const at = (u, v) => [geo.left + u * geo.w, geo.top + (1 - v) * geo.h];
+  await page.mouse.click(...at(0.5, 0.75));
+  await settle(page);
+  let s = await page.evaluate(() => window.__ridelab.state);
+  assert.ok(Math.abs(s.ks - 25000) <= 30000 / geo.w + 10, `click: ks ${s.ks}`);
+  assert.ok(Math.abs(s.cs - (500 + 0.75 * 3500)) <= 3500 / geo.h + 5, `click: cs ${s.cs}`);
+  assert.equal(await page.inputValue('#cs-num'), String(s.cs / 1000));
+  await page.mouse.move(...at(0.2, 0.3));
+  await page.mouse.down();
+  await page.mouse.move(...at(0.5, 0.5), { steps: 5 });
+  await page.mouse.move(...at(0.9, 0.6), { steps: 5 });
+  await page.mouse.up();
+  await settle(page);
+  s = await page.evaluate(() => window.__ridelab.state);
+  assert.ok(Math.abs(s.ks - (10000 + 0.9 * 30000)) <= 30000 / geo.w + 10, `drag: ks ${s.ks}`);
+  assert.ok(Math.abs(s.cs - (500 + 0.6 * 3500)) <= 3500 / geo.h + 5, `drag: cs ${s.cs}`);
+  const m = await marker(page, 1);
+  const plot = await page.evaluate(() => window.__ridelab.views[1].layout().plot);
+  assert.ok(Math.abs(m.x - (plot.x + 0.9 * plot.w)) < 2, `marker under the pointer (${m.x} vs ${plot.x + 0.9 * plot.w})`);
+  assert.ok(Math.abs(m.y - (plot.y + 0.4 * plot.h)) < 2, 'marker under the pointer (y)');
+  assertClean(log);
+  await context.close();
+});
+
+test('HiDPI canvases and large type', { timeout: TIMEOUT }, async () => {
+  const { page, context, log } = await open('', { dpr: 2 });
+  const s = await canvasStats(page, 'map-dtl', false);
+  assert.equal(s.dpr, 2);
+  assert.equal(s.width, Math.round(s.cssWidth * 2), 'backing store at 2x');
+  assert.equal(s.height, Math.round(s.cssHeight * 2));
+  await page.screenshot({ path: path.join(OUT, 'hidpi.png'), fullPage: true });
+  await page.locator('.maps').screenshot({ path: path.join(OUT, 'hidpi-maps.png') });
+
+  const font0 = await page.evaluate(() => getComputedStyle(document.documentElement).fontSize);
+  await page.check('#large');
+  await page.waitForTimeout(300);
+  const font1 = await page.evaluate(() => getComputedStyle(document.documentElement).fontSize);
+  assert.equal(font0, '15px');
+  assert.equal(font1, '21px');
+  await settle(page);
+  assert.match(page.url(), /large=1/);
+  await page.screenshot({ path: path.join(OUT, 'large.png'), fullPage: true });
+  const again = await open(new URL(page.url()).hash);
+  assert.equal(await again.page.evaluate(() => getComputedStyle(document.documentElement).fontSize), '21px');
+  await again.context.close();
+  assertClean(log);
+  await context.close();
+});
+
+test('keyboard: every control is a native, focusable input', { timeout: TIMEOUT }, async () => {
+  const { page, context, log } = await open();
+  const order = [];
+  for (let i = 0; i < 16; i++) {
+    await page.keyboard.press('Tab');
+    order.push(await page.evaluate(() => document.activeElement.id || document.activeElement.tagName));
+  }
+  for (const id of ['car', 'ks-range', 'ks-num', 'cs-range', 'cs-num', 'class', 'speed', 'tracks', 'sws-limit']) {
+    assert.ok(order.includes(id), `${id} reachable with Tab (${order.join(', ')})`);
+  }
+  await page.focus('#cs-range');
+  await page.keyboard.press('ArrowLeft');
+  await settle(page);
+  assert.equal(await page.evaluate(() => window.__ridelab.state.cs), 1280);
+  await page.focus('#class');
+  await page.keyboard.press('ArrowDown');
+  await settle(page);
+  assert.equal(await page.evaluate(() => window.__ridelab.state.class), 'C');
+  assertClean(log);
+  await context.close();
+});
+
+test('performance: slider input to updated views, p95 over 30 moves', { timeout: TIMEOUT }, async (t) => {
+  const { page, context, log } = await open();
+  await page.evaluate(() => {
+    window.__ridelab.metrics.design.length = 0;
+    window.__ridelab.metrics.full.length = 0;
+  });
+  await page.focus('#ks-range');
+  for (let i = 0; i < 30; i++) {
+    await page.keyboard.press(i % 10 < 5 ? 'ArrowRight' : 'ArrowLeft');
+    await page.waitForTimeout(120);
+  }
+  await settle(page);
+  const m = await page.evaluate(() => window.__ridelab.metrics);
+  assert.equal(m.design.length, 30, 'every move updated the LoFi views');
+  assert.ok(m.full.length >= 25, `most moves got their HiFi result (${m.full.length})`);
+  figures.sliderToLofiViewsMs = { p50: +median(m.design).toFixed(1), p95: +p95(m.design).toFixed(1), n: m.design.length };
+  figures.sliderToAllViewsMs = { p50: +median(m.full).toFixed(1), p95: +p95(m.full).toFixed(1), n: m.full.length };
+  t.diagnostic(`slider input -> LoFi readout + map markers updated: p50 ${median(m.design).toFixed(1)} ms, p95 ${p95(m.design).toFixed(1)} ms (n=${m.design.length})`);
+  t.diagnostic(`slider input -> all views incl. HiFi (worker) updated: p50 ${median(m.full).toFixed(1)} ms, p95 ${p95(m.full).toFixed(1)} ms (n=${m.full.length})`);
+  const engine = await page.evaluate(() => {
+    const a = window.__ridelab;
+    const s = a.state;
+    const time = (f, n) => {
+      f();
+      const t0 = performance.now();
+      for (let i = 0; i < n; i++) f();
+      return (performance.now() - t0) / n;
+    };
+    return {
+      lofiReport: time(() => a.api.analyse(s, 'quarter'), 20),
+      hifiReport: time(() => a.api.analyse(s, 'full'), 5),
+      hifiCriteria: time(() => a.api.criteria(s, 'full'), 10),
+      lofiMap: time(() => a.api.lofiMap(s, 240, 180), 3),
+    };
+  });
+  figures.wasmCallMs = Object.fromEntries(Object.entries(engine).map(([k, v]) => [k, +v.toFixed(2)]));
+  t.diagnostic(`wasm on the main thread: LoFi report ${engine.lofiReport.toFixed(2)} ms, HiFi report ${engine.hifiReport.toFixed(1)} ms, HiFi criteria ${engine.hifiCriteria.toFixed(2)} ms, LoFi map 240x180 ${engine.lofiMap.toFixed(1)} ms`);
+  assertClean(log);
+  await context.close();
+});
+
+test('the JS API refuses bad input with messages naming the field, and keeps working', { timeout: TIMEOUT }, async () => {
+  const { page, context, log } = await open();
+  const r = await page.evaluate(() => {
+    const api = window.__ridelab.api;
+    const s = api.defaultState();
+    const fail = (f) => {
+      try {
+        f();
+        return null;
+      } catch (e) {
+        return { message: e.message, field: e.field, isError: e instanceof Error };
+      }
+    };
+    const map = api.lofiMap(s, 4, 3);
+    return {
+      presets: api.presets().map((p) => p.name),
+      mapLength: map.length,
+      mapIsF64: map instanceof Float64Array,
+      evaluate: Object.keys(api.evaluate(s)).sort(),
+      empty: fail(() => api.evaluate({})),
+      unknown: fail(() => api.evaluate({ ...s, colour: 'red' })),
+      speed: fail(() => api.evaluate({ ...s, speed: -5 })),
+      nan: fail(() => api.evaluate({ ...s, speed: NaN })),
+      ks: fail(() => api.evaluate({ ...s, ks: 0 })),
+      cs: fail(() => api.evaluate({ ...s, cs: -1 })),
+      model: fail(() => api.analyse(s, 'bicycle')),
+      grid: fail(() => api.lofiMap(s, 0, 10)),
+      hugeGrid: fail(() => api.lofiMap(s, 100000, 10)),
+      car: fail(() => api.parseCar('{"name": "x"}')),
+      json: fail(() => api.parseCar('{oops')),
+      box: fail(() => api.lofiMap({ ...s, ksMin: 50000 }, 4, 4)),
+      sws: fail(() => api.evaluate({ ...s, swsLimit: 0 })),
+      after: api.criteria(s, 'quarter').bacc,
+    };
+  });
+  assert.deepEqual(r.presets, ['sedan', 'compact', 'suv']);
+  assert.equal(r.mapLength, 3 * 4 * 3);
+  assert.ok(r.mapIsF64);
+  assert.deepEqual(r.evaluate, ['hifi', 'lofi']);
+  const expect = {
+    empty: ['state', /missing field/],
+    unknown: ['state', /unknown field `colour`/],
+    speed: ['speed', /^speed: must be a finite number > 0/],
+    nan: ['speed', /^speed:/],
+    ks: ['ks', /^front\.spring: must be > 0/],
+    cs: ['cs', /^front\.damper: must not be negative/],
+    model: ['model', /^model: 'bicycle' is not 'quarter' or 'full'/],
+    grid: ['nx', /^nx: grid size must be 1\.\.1024/],
+    hugeGrid: ['nx', /^nx:/],
+    car: ['car', /missing field/],
+    json: ['car', /./],
+    box: ['box', /^ks-range: minimum 50000 must be below maximum 40000/],
+    sws: ['swsLimit', /^sws_limit:/],
+  };
+  for (const [k, [field, re]] of Object.entries(expect)) {
+    assert.ok(r[k], `${k}: refused`);
+    assert.ok(r[k].isError, `${k}: a JS Error`);
+    assert.equal(r[k].field, field, `${k}: field (${r[k].message})`);
+    assert.match(r[k].message, re, k);
+  }
+  assert.ok(r.after > 0, 'the module still works after every refusal');
+  assertClean(log);
+  await context.close();
+});

@@ -1,0 +1,547 @@
+// RideLab page: state, URL, controls and views. All computing goes through engines
+// (js/engine.js) over the wasm core: the LoFi model and the maps run on the main thread
+// (well under a millisecond per design), the HiFi full-car report in a Web Worker, so
+// the sliders stay smooth while it computes ("?engine=main" runs everything on the
+// main thread).
+//
+// Data flow: a control changes -> the candidate state is computed by the LoFi engine
+// (which also validates it) -> on success it becomes the state, the LoFi views are
+// redrawn and the HiFi report is requested; when it arrives for the current state the
+// HiFi views are redrawn. On failure the message goes next to the field and the last
+// good state stays.
+
+import init, * as api from '../ridelab.js';
+import { createEngine, deferredEngine, latestOnly } from './engine.js';
+import { encodeHash, decodeHash } from './urlstate.js';
+import { MapView, CRITERIA } from './mapview.js';
+import { renderCriteria, feasibilityText, routeNote, renderProps, renderModes } from './readout.js';
+import { fmt, fmtInput, parseNumber } from './format.js';
+
+/** LoFi map resolution (cells); the image is scaled smoothly onto the plot. */
+const GRID = { nx: 240, ny: 180 };
+
+/** ISO 8608 wording of the classes. */
+const CLASS_WORDS = {
+  A: 'very good', B: 'good', C: 'average', D: 'poor', E: 'very poor', F: 'bad', G: 'very bad', H: 'extremely bad',
+};
+
+/** The input element of each state field (the engine's error `field`). */
+const FIELD_INPUT = {
+  ks: 'ks-num', cs: 'cs-num', speed: 'speed', class: 'class', tracks: 'tracks', swsLimit: 'sws-limit', car: 'car',
+};
+
+const $ = (id) => document.getElementById(id);
+
+const app = {
+  ready: false,
+  readyAt: null,
+  api,
+  engine: null,
+  hifiEngine: null,
+  defaults: null,
+  presets: [],
+  state: null,
+  view: { scale: 'abs', large: false },
+  desc: null,
+  /** LoFi reports of the design and the datum, always for the current state. */
+  lofi: { design: null, datum: null },
+  /** HiFi reports and the state keys they belong to (may lag the state). */
+  hifi: { design: null, datum: null, key: '', datumKey: '' },
+  maps: null,
+  views: [],
+  bad: new Set(),
+  /** The last custom car that was loaded: {json, ks, cs}. */
+  custom: null,
+  /** ms from an input to the LoFi views (design), to the HiFi views too (full). */
+  metrics: { design: [], full: [], scenario: [] },
+  pending: 0,
+  interactiveAt: null,
+  /** True when every view shows the current state and nothing is queued. */
+  isSettled: () => app.pending === 0 && pendingDesign === null && hifiCurrent(),
+};
+window.__ridelab = app;
+
+// ---------------------------------------------------------------- messages
+
+function banner(text, kind = 'warn') {
+  const b = $('banner');
+  $('banner-text').textContent = text;
+  b.className = kind === 'error' ? 'banner error' : 'banner';
+  b.hidden = !text;
+}
+
+function fatal(text) {
+  banner(text, 'error');
+  $('loading').hidden = true;
+}
+
+/** A core message shown next to its input, with the display name and unit. */
+function explain(failure, field) {
+  const msg = failure.message || String(failure);
+  if (field === 'ks') return msg.replace(/^front\.spring: /, 'Ks (front spring, N/m): ');
+  if (field === 'cs') return msg.replace(/^front\.damper: /, 'Cs (front damper, N s/m): ');
+  if (field === 'swsLimit') return msg.replace(/^sws_limit: must be a finite number > 0 \(m\)/, 'SWS limit: must be a number > 0 (mm)');
+  return msg;
+}
+
+function setMsg(field, text) {
+  const m = $(`msg-${field}`);
+  if (m) m.textContent = text || '';
+  const input = $(FIELD_INPUT[field]);
+  if (input) {
+    if (text) input.setAttribute('aria-invalid', 'true');
+    else input.removeAttribute('aria-invalid');
+  }
+  if (text) app.bad.add(field);
+  else app.bad.delete(field);
+}
+
+/** Shows an engine failure next to the field it names (or the field being edited). */
+function showFailure(failure, source) {
+  const field = failure.field && FIELD_INPUT[failure.field] ? failure.field : source;
+  if (field && FIELD_INPUT[field]) setMsg(field, explain(failure, field));
+  else banner(failure.message || String(failure));
+  if (source && source !== field && FIELD_INPUT[source]) {
+    // The edit was refused because of another field; keep the edited one marked too.
+    setMsg(source, `not applied: ${explain(failure, field)}`);
+  }
+}
+
+// ---------------------------------------------------------------- computing
+
+/** The key of everything a report depends on. */
+function keyOf(s) {
+  return JSON.stringify([s.car, s.carJson, s.ks, s.cs, s.class, s.speed, s.tracks]);
+}
+
+function datumStateOf(s, desc) {
+  return { ...s, ks: desc.datumKs, cs: desc.datumCs };
+}
+
+function hifiCurrent() {
+  return app.state !== null && app.hifi.key === keyOf(app.state) && app.hifi.datumKey === keyOf(datumStateOf(app.state, app.desc));
+}
+
+/** Everything LoFi that depends on car, road and objectives, plus the design. */
+async function computeScenario(s) {
+  const desc = await app.engine.call('describe', s);
+  const [datum, design, maps] = await Promise.all([
+    app.engine.call('analyse', datumStateOf(s, desc), 'quarter'),
+    app.engine.call('analyse', s, 'quarter'),
+    app.engine.call('lofiMaps', s, GRID.nx, GRID.ny),
+  ]);
+  return { desc, lofi: { datum, design }, maps };
+}
+
+/** All updates run one after another; each reads the state when it starts. */
+let chain = Promise.resolve();
+function enqueue(fn) {
+  app.pending++;
+  const p = chain.then(fn).finally(() => app.pending--);
+  chain = p.catch((e) => banner(`Internal error: ${e && e.message ? e.message : e}`, 'error'));
+  return p;
+}
+
+/** A change of car, road or objective (`patch` of the state) made in field `source`. */
+function changeScenario(patch, source) {
+  return enqueue(async () => {
+    const t0 = performance.now();
+    const s = { ...app.state, ...patch };
+    let r;
+    try {
+      r = await computeScenario(s);
+    } catch (e) {
+      showFailure(e, source);
+      return false;
+    }
+    if (source) setMsg(source, '');
+    for (const f of Object.keys(patch)) if (FIELD_INPUT[f]) setMsg(f, '');
+    Object.assign(app, r, { state: s });
+    renderScenario();
+    app.metrics.scenario.push(performance.now() - t0);
+    requestHifi(t0);
+    return true;
+  });
+}
+
+/** The latest design request; bursts of slider or drag input coalesce into it. */
+let pendingDesign = null;
+function changeDesign(ks, cs, source, t0 = performance.now()) {
+  const queued = pendingDesign !== null;
+  pendingDesign = { ks, cs, source, t0 };
+  if (queued) return chain;
+  return enqueue(async () => {
+    const { ks: k, cs: c, source: src, t0: start } = pendingDesign;
+    pendingDesign = null;
+    const s = { ...app.state, ks: k, cs: c };
+    let design;
+    try {
+      design = await app.engine.call('analyse', s, 'quarter');
+    } catch (e) {
+      showFailure(e, src);
+      syncInputs();
+      return false;
+    }
+    setMsg('ks', '');
+    setMsg('cs', '');
+    app.state = s;
+    app.lofi.design = design;
+    renderDesign();
+    app.metrics.design.push(performance.now() - start);
+    requestHifi(start);
+    return true;
+  });
+}
+
+/**
+ * The HiFi reports of the current design and datum, from the HiFi engine. At most one
+ * runs at a time; while it runs, newer requests replace each other (latestOnly).
+ */
+const hifiRun = latestOnly(async (req) => {
+  const dkey = keyOf(req.datumState);
+  if (app.hifi.datumKey !== dkey) {
+    const datum = await app.hifiEngine.call('analyse', req.datumState, 'full');
+    app.hifi.datum = datum;
+    app.hifi.datumKey = dkey;
+  }
+  const design = await app.hifiEngine.call('analyse', req.s, 'full');
+  return { ...req, design };
+});
+
+function requestHifi(t0) {
+  const s = app.state;
+  app.pending++;
+  hifiRun({ s, key: keyOf(s), datumState: datumStateOf(s, app.desc), t0 })
+    .then((r) => {
+      if (!r || r.key !== keyOf(app.state)) return; // superseded
+      app.hifi.design = r.design;
+      app.hifi.key = r.key;
+      renderHifi();
+      app.metrics.full.push(performance.now() - r.t0);
+    })
+    .catch((e) => banner(`The HiFi model failed: ${e.message || e}`, 'error'))
+    .finally(() => app.pending--);
+}
+
+// ---------------------------------------------------------------- rendering
+
+function renderScenario() {
+  const { state, desc, maps, lofi } = app;
+  const box = desc.designBox;
+  for (const v of app.views) {
+    v.setData({ maps, box, swsLimit: desc.swsLimit, scale: app.view.scale, datum: lofi.datum });
+  }
+  const status = $('map-status');
+  const limit = desc.swsLimit;
+  const n = maps.nx * maps.ny;
+  const road = `class ${state.class} at ${fmtInput(state.speed, 3)} m/s, ${state.tracks} tracks`;
+  if (limit == null) {
+    status.textContent = 'No SWS limit set: every design in the box is feasible.';
+    status.className = 'status';
+  } else if (maps.feasibleCount === 0) {
+    status.textContent =
+      `No design in the box meets SWS ≤ ${fmtInput(limit * 1000, 4)} mm on ${road} (LoFi): the whole map is hatched. ` +
+      'Try a smoother road, a lower speed or a larger limit.';
+    status.className = 'status bad';
+  } else {
+    status.textContent =
+      `${fmt((100 * maps.feasibleCount) / n, 3)} % of the design box meets SWS ≤ ${fmtInput(limit * 1000, 4)} mm on ${road} (LoFi).`;
+    status.className = 'status good';
+  }
+  $('speed-kmh').textContent = `= ${fmt(state.speed * 3.6, 3)} km/h`;
+  renderDesign();
+}
+
+function renderDesign() {
+  const { state, desc, lofi } = app;
+  renderCriteria($('criteria'), 'lofi', lofi.design, lofi.datum, desc.swsLimit);
+  renderProps($('ride-props'), lofi.design);
+  renderModes($('modes-lofi'), lofi.design.modes);
+  const d = { ks: desc.datumKs, cs: desc.datumCs };
+  for (const v of app.views) {
+    const k = v.crit.key;
+    v.setMarkers({ ks: state.ks, cs: state.cs }, d, MapView.caption(v.crit, lofi.design[k], lofi.datum[k], app.view.scale));
+  }
+  renderHifi();
+  syncInputs();
+  scheduleUrl();
+}
+
+/** The HiFi column and modes; greyed while they belong to an earlier state. */
+function renderHifi() {
+  const { desc, lofi, hifi } = app;
+  const current = hifiCurrent();
+  const datumOk = hifi.datumKey === keyOf(datumStateOf(app.state, desc));
+  renderCriteria($('criteria'), 'hifi', hifi.design, datumOk ? hifi.datum : null, desc.swsLimit, !current);
+  if (hifi.design) renderModes($('modes-hifi'), hifi.design.modes, !current);
+  const f = feasibilityText(lofi.design, current ? hifi.design : null, desc.swsLimit);
+  const fe = $('feasibility');
+  fe.textContent = f.text;
+  fe.className = f.ok ? 'status good' : 'status bad';
+  $('route-note').textContent = routeNote(lofi.design, current ? hifi.design : null);
+}
+
+/** Puts the state into every control that does not hold a refused entry. */
+function syncInputs() {
+  const s = app.state;
+  const put = (field, id, value) => {
+    if (!app.bad.has(field)) $(id).value = value;
+  };
+  $('ks-range').value = String(s.ks / 1000);
+  $('cs-range').value = String(s.cs / 1000);
+  put('ks', 'ks-num', fmtInput(s.ks / 1000, 3));
+  put('cs', 'cs-num', fmtInput(s.cs / 1000, 3));
+  put('speed', 'speed', fmtInput(s.speed, 3));
+  put('class', 'class', s.class);
+  put('tracks', 'tracks', s.tracks);
+  put('swsLimit', 'sws-limit', s.swsLimit == null ? '' : fmtInput(s.swsLimit * 1000, 4));
+  ensureCustomOption();
+  put('car', 'car', s.car);
+  $('map-scale').value = app.view.scale;
+  $('large').checked = app.view.large;
+}
+
+function ensureCustomOption() {
+  const sel = $('car');
+  let opt = sel.querySelector('option[value="custom"]');
+  if (app.state.car === 'custom') {
+    if (!opt) {
+      opt = document.createElement('option');
+      opt.value = 'custom';
+      sel.append(opt);
+    }
+    opt.textContent = `${app.desc ? app.desc.car.name : 'custom car'} (file)`;
+  } else if (opt && !app.custom) {
+    opt.remove();
+  }
+}
+
+// ---------------------------------------------------------------- URL
+
+let urlTimer = null;
+let lastHash = '';
+function scheduleUrl() {
+  clearTimeout(urlTimer);
+  urlTimer = setTimeout(writeUrl, 120);
+}
+function writeUrl() {
+  urlTimer = null;
+  const hash = encodeHash(app.state, app.view);
+  if (hash !== location.hash) {
+    lastHash = hash;
+    history.replaceState(null, '', hash);
+  }
+}
+
+/** The state and view a hash asks for, validated; the defaults (and a message) if not. */
+async function loadFromHash(hash) {
+  const d = decodeHash(hash);
+  const fallback = (why) => {
+    banner(`This link's view could not be restored (${why}); showing the default view instead.`);
+    return { state: { ...app.defaults }, view: { scale: 'abs', large: false } };
+  };
+  if (d.problems.length) return fallback(d.problems.join('; '));
+  const s = { ...app.defaults, ...d.state };
+  if (s.car !== 'custom') s.carJson = null;
+  try {
+    // A link without ks or cs means the car's own (datum) front spring or damper.
+    if (d.state.ks === undefined || d.state.cs === undefined) {
+      const desc = await app.engine.call('describe', { ...s, ks: app.defaults.ks, cs: app.defaults.cs });
+      if (d.state.ks === undefined) s.ks = desc.datumKs;
+      if (d.state.cs === undefined) s.cs = desc.datumCs;
+    }
+    await app.engine.call('describe', s);
+  } catch (e) {
+    return fallback(e.message);
+  }
+  return { state: s, view: { scale: 'abs', large: false, ...d.view } };
+}
+
+async function applyLoaded({ state, view }) {
+  let r;
+  try {
+    r = await computeScenario(state);
+  } catch (e) {
+    // Valid but not computable (a numerical failure): the defaults always are.
+    banner(`This view could not be computed (${e.message}); showing the default view instead.`);
+    state = { ...app.defaults };
+    r = await computeScenario(state);
+  }
+  if (state.car === 'custom') app.custom = { json: state.carJson, ks: r.desc.datumKs, cs: r.desc.datumCs };
+  Object.assign(app, r, { state });
+  app.view = { ...app.view, ...view };
+  for (const f of Object.keys(FIELD_INPUT)) setMsg(f, '');
+  applyLarge();
+  renderScenario();
+  requestHifi(performance.now());
+}
+
+// ---------------------------------------------------------------- controls
+
+function numberField(id, field, toState) {
+  const el = $(id);
+  el.addEventListener('change', () => {
+    const p = parseNumber(el.value);
+    if (p.error) {
+      setMsg(field, p.error);
+      return;
+    }
+    toState(p.value);
+  });
+  el.addEventListener('keydown', (ev) => {
+    if (ev.key === 'Escape') {
+      setMsg(field, '');
+      syncInputs();
+    }
+  });
+}
+
+function applyLarge() {
+  document.documentElement.classList.toggle('large', app.view.large);
+  requestAnimationFrame(() => {
+    for (const v of app.views) {
+      v.resize();
+      v.drawBase();
+      v.drawOverlay();
+    }
+  });
+}
+
+function wire() {
+  for (const [kind, id] of [['ks', 'ks-range'], ['cs', 'cs-range']]) {
+    $(id).addEventListener('input', (ev) => {
+      const t0 = performance.now();
+      const v = Math.round(Number(ev.target.value) * 1e6) / 1e3;
+      const s = app.state;
+      if (kind === 'ks') changeDesign(v, s.cs, 'ks', t0);
+      else changeDesign(s.ks, v, 'cs', t0);
+    });
+  }
+  numberField('ks-num', 'ks', (v) => changeDesign(Math.round(v * 1e6) / 1e3, app.state.cs, 'ks'));
+  numberField('cs-num', 'cs', (v) => changeDesign(app.state.ks, Math.round(v * 1e6) / 1e3, 'cs'));
+  numberField('speed', 'speed', (v) => changeScenario({ speed: v }, 'speed'));
+  numberField('sws-limit', 'swsLimit', (v) => changeScenario({ swsLimit: v / 1000 }, 'swsLimit'));
+  $('class').addEventListener('change', (ev) => changeScenario({ class: ev.target.value }, 'class'));
+  $('tracks').addEventListener('change', (ev) => changeScenario({ tracks: ev.target.value }, 'tracks'));
+  $('car').addEventListener('change', (ev) => {
+    const name = ev.target.value;
+    if (name === 'custom') {
+      const c = app.custom;
+      if (c) changeScenario({ car: 'custom', carJson: c.json, ks: c.ks, cs: c.cs }, 'car');
+    } else {
+      const p = app.presets.find((x) => x.name === name);
+      changeScenario({ car: name, carJson: null, ks: p.ks, cs: p.cs }, 'car');
+    }
+  });
+  $('car-file').addEventListener('change', async (ev) => {
+    const file = ev.target.files && ev.target.files[0];
+    if (!file) return;
+    const text = await file.text();
+    let parsed;
+    try {
+      parsed = await app.engine.call('parseCar', text);
+    } catch (e) {
+      setMsg('car', `${file.name}: ${e.message}`);
+      return;
+    }
+    const json = JSON.stringify(JSON.parse(text));
+    const ok = await changeScenario({ car: 'custom', carJson: json, ks: parsed.ks, cs: parsed.cs }, 'car');
+    if (ok) app.custom = { json, ks: parsed.ks, cs: parsed.cs };
+    ev.target.value = ''; // the same file can be loaded again after an edit
+  });
+  $('reset-datum').addEventListener('click', () => changeDesign(app.desc.datumKs, app.desc.datumCs, 'ks'));
+  $('map-scale').addEventListener('change', (ev) => {
+    app.view.scale = ev.target.value;
+    renderScenario();
+  });
+  $('large').addEventListener('change', (ev) => {
+    app.view.large = ev.target.checked;
+    applyLarge();
+    scheduleUrl();
+  });
+  $('copy-link').addEventListener('click', async () => {
+    writeUrl();
+    const btn = $('copy-link');
+    try {
+      await navigator.clipboard.writeText(location.href);
+      btn.textContent = 'Link copied';
+    } catch {
+      btn.textContent = 'Copy the address bar';
+    }
+    setTimeout(() => (btn.textContent = 'Copy link'), 2000);
+  });
+  $('banner-close').addEventListener('click', () => banner(''));
+  window.addEventListener('hashchange', () => {
+    if (location.hash === lastHash) return;
+    enqueue(async () => applyLoaded(await loadFromHash(location.hash)));
+  });
+  matchMedia(`(resolution: ${window.devicePixelRatio}dppx)`).addEventListener('change', () => {
+    for (const v of app.views) v.resize();
+  });
+}
+
+function buildSelects() {
+  const car = $('car');
+  for (const p of app.presets) {
+    const o = document.createElement('option');
+    o.value = p.name;
+    o.textContent = p.label;
+    car.append(o);
+  }
+  const cls = $('class');
+  for (const c of app.classes) {
+    const o = document.createElement('option');
+    o.value = c.name;
+    o.textContent = `${c.name}: ${CLASS_WORDS[c.name] || ''} (Gd = ${Math.round(c.gd * 1e6)}e-6 m³)`;
+    cls.append(o);
+  }
+}
+
+// ---------------------------------------------------------------- start
+
+async function main() {
+  app.marks = { start: performance.now() };
+  // The worker loads its own copy of the module: start it first, in parallel.
+  const kind = new URLSearchParams(location.search).get('engine') === 'main' ? 'main' : 'worker';
+  const worker = kind === 'worker' ? createEngine(api, 'worker') : null;
+  worker?.catch(() => {}); // handled by deferredEngine (falls back to the main thread)
+  try {
+    await init({ module_or_path: new URL('../ridelab_bg.wasm', import.meta.url) });
+  } catch (e) {
+    fatal(`The ride models (WebAssembly) failed to load: ${e && e.message ? e.message : e}`);
+    return;
+  }
+  app.marks.wasm = performance.now();
+  try {
+    app.engine = await createEngine(api, 'main');
+    app.hifiEngine = worker ? deferredEngine(worker, app.engine) : app.engine;
+    app.defaults = await app.engine.call('defaultState');
+    app.presets = await app.engine.call('presets');
+    app.classes = await app.engine.call('roadClasses');
+    const version = await app.engine.call('version');
+    Promise.resolve(app.hifiEngine.ready).then(() => {
+      $('version').textContent = `RideLab ${version}; HiFi model on the ${app.hifiEngine.kind === 'worker' ? 'worker' : 'main'} thread.`;
+    });
+  } catch (e) {
+    fatal(`The ride models could not start: ${e.message || e}`);
+    return;
+  }
+  buildSelects();
+  const grid = $('map-grid');
+  app.views = CRITERIA.map((c) => new MapView(grid, c, (ks, cs) => {
+    changeDesign(Math.round(ks / 10) * 10, Math.round(cs / 5) * 5, 'ks');
+  }));
+  wire();
+  $('loading').hidden = true;
+  $('app').removeAttribute('aria-busy');
+  await enqueue(async () => applyLoaded(await loadFromHash(location.hash)));
+  for (const v of app.views) v.resize();
+  app.interactiveAt = performance.now();
+  // Ready when the HiFi column has arrived too.
+  while (!app.isSettled()) await new Promise((r) => setTimeout(r, 5));
+  app.ready = true;
+  app.readyAt = performance.now();
+  document.documentElement.dataset.ready = '1';
+}
+
+main();

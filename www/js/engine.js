@@ -1,0 +1,116 @@
+// The compute engine: one asynchronous interface over the wasm API, so the page never
+// cares whether the models run on the main thread ("main", the default: a HiFi report
+// takes a few milliseconds) or in a Web Worker ("worker": same module, same numbers).
+// Errors are always `{message, field}` objects; `field` names the state field at fault.
+
+/** The wasm API functions the page calls (also the worker's whitelist). */
+export const METHODS = [
+  'version', 'defaultState', 'presets', 'roadClasses', 'parseCar', 'checkState',
+  'describe', 'evaluate', 'analyse', 'criteria', 'lofiMap', 'lofiMaps',
+];
+
+/** Turns anything thrown into `{message, field}`. */
+export function toFailure(e) {
+  if (e && typeof e === 'object' && 'message' in e) {
+    return { message: String(e.message), field: typeof e.field === 'string' ? e.field : '' };
+  }
+  return { message: String(e), field: '' };
+}
+
+class MainEngine {
+  constructor(api) {
+    this.api = api;
+    this.kind = 'main';
+  }
+  call(method, ...args) {
+    if (!METHODS.includes(method)) return Promise.reject({ message: `no method ${method}`, field: '' });
+    try {
+      return Promise.resolve(this.api[method](...args));
+    } catch (e) {
+      return Promise.reject(toFailure(e));
+    }
+  }
+}
+
+class WorkerEngine {
+  constructor(worker) {
+    this.worker = worker;
+    this.kind = 'worker';
+    this.next = 1;
+    this.pending = new Map();
+    worker.onmessage = ({ data }) => {
+      const p = this.pending.get(data.id);
+      if (!p) return;
+      this.pending.delete(data.id);
+      if (data.ok) p.resolve(data.value);
+      else p.reject(data.error);
+    };
+    worker.onerror = (ev) => {
+      const err = { message: `worker failed: ${ev.message || 'unknown error'}`, field: '' };
+      for (const p of this.pending.values()) p.reject(err);
+      this.pending.clear();
+    };
+  }
+  call(method, ...args) {
+    const id = this.next++;
+    return new Promise((resolve, reject) => {
+      this.pending.set(id, { resolve, reject });
+      this.worker.postMessage({ id, method, args });
+    });
+  }
+}
+
+/** An engine of the given kind ("main" or "worker"); the worker answers a ping first. */
+export async function createEngine(api, kind = 'main') {
+  if (kind !== 'worker') return new MainEngine(api);
+  const worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+  const engine = new WorkerEngine(worker);
+  await engine.call('version');
+  return engine;
+}
+
+/**
+ * An engine usable at once: calls wait for `starting` (a promise of an engine) and go
+ * to `fallback` if it fails to start, so a worker's start-up is off the critical path.
+ */
+export function deferredEngine(starting, fallback) {
+  const ready = starting.catch((e) => {
+    console.warn(`RideLab: no worker (${e && e.message ? e.message : e}); running on the main thread`);
+    return fallback;
+  });
+  const engine = {
+    kind: 'starting',
+    ready,
+    call: (method, ...args) => ready.then((e) => e.call(method, ...args)),
+  };
+  ready.then((e) => (engine.kind = e.kind));
+  return engine;
+}
+
+/**
+ * Runs `task(arg)` so that at most one is in flight and only the latest request waits:
+ * while one runs, newer requests replace each other, and the last one runs next.
+ * Resolves each request with the task's result, or `undefined` if it was superseded.
+ */
+export function latestOnly(task) {
+  let running = null;
+  let queued = null;
+  const run = (item) => {
+    running = task(item.arg).then(item.resolve, item.reject).finally(() => {
+      running = null;
+      if (queued) {
+        const q = queued;
+        queued = null;
+        run(q);
+      }
+    });
+  };
+  return (arg) => new Promise((resolve, reject) => {
+    const item = { arg, resolve, reject };
+    if (!running) run(item);
+    else {
+      if (queued) queued.resolve(undefined);
+      queued = item;
+    }
+  });
+}

@@ -1,0 +1,469 @@
+// One design-criteria-space map: a criterion over Ks x Cs as a dense colour image
+// (an RGBA ImageData put on an offscreen canvas, then scaled onto the plot), contour
+// lines, the infeasible area hatched, axes with units, a colour bar, and the design
+// and datum markers on a separate overlay canvas (so moving the design redraws only
+// the markers). Click or drag on the plot picks a design.
+
+import { VIRIDIS, DIVERGING, paint } from './colormap.js';
+import { contourSegments } from './contour.js';
+import { fmtTick, niceTicks, fmt, fmtPct } from './format.js';
+
+/** The criteria drawn as maps: plane index in the wasm map, display unit and factor. */
+export const CRITERIA = [
+  {
+    key: 'bacc', plane: 0, title: 'BAcc', long: 'RMS body acceleration', unit: 'm/s²', factor: 1,
+    teach: 'Comfort: grows with a stiffer spring and a harder damper.',
+  },
+  {
+    key: 'dtl', plane: 1, title: 'DTL', long: 'RMS dynamic tyre load', unit: 'N', factor: 1,
+    teach: 'Road holding: has a best damper rate; too soft or too hard lets the wheel hop.',
+  },
+  {
+    key: 'sws', plane: 2, title: 'SWS', long: 'RMS suspension working space', unit: 'mm', factor: 1000,
+    teach: 'Working space: a softer damper lets the suspension travel further.',
+  },
+];
+
+const KS_UNIT = 1000; // N/m per kN/m
+const CS_UNIT = 1000; // N s/m per kN s/m
+
+function rootFontPx() {
+  return parseFloat(getComputedStyle(document.documentElement).fontSize) || 15;
+}
+
+export class MapView {
+  /**
+   * @param {HTMLElement} parent where the figure goes
+   * @param {object} crit one of CRITERIA
+   * @param {(ks: number, cs: number) => void} onPick called with N/m and N s/m
+   */
+  constructor(parent, crit, onPick) {
+    this.crit = crit;
+    this.onPick = onPick;
+    this.data = null;
+    this.markers = null;
+
+    const fig = document.createElement('figure');
+    fig.className = 'map-panel';
+    fig.dataset.crit = crit.key;
+    const cap = document.createElement('figcaption');
+    const title = document.createElement('span');
+    title.textContent = `${crit.title}: ${crit.long}`;
+    this.atEl = document.createElement('span');
+    this.atEl.className = 'at';
+    cap.append(title, this.atEl);
+    const teach = document.createElement('p');
+    teach.className = 'teach';
+    teach.textContent = crit.teach;
+    const stack = document.createElement('div');
+    stack.className = 'map-stack';
+    this.base = document.createElement('canvas');
+    this.base.className = 'base';
+    this.base.setAttribute('role', 'img');
+    this.base.id = `map-${crit.key}`;
+    this.overlay = document.createElement('canvas');
+    this.overlay.className = 'overlay';
+    this.overlay.id = `map-${crit.key}-overlay`;
+    this.overlay.setAttribute('aria-hidden', 'true');
+    stack.append(this.base, this.overlay);
+    fig.append(cap, teach, stack);
+    parent.append(fig);
+    this.fig = fig;
+    this.stack = stack;
+
+    this.size = { w: 0, h: 0, dpr: 1 };
+    this.ro = new ResizeObserver(() => this.resize());
+    this.ro.observe(stack);
+    this.bindPointer();
+  }
+
+  /** Lays out the plot, colour bar and margins in CSS px for the current font size. */
+  layout() {
+    const { w, h } = this.size;
+    const fs = Math.round(rootFontPx() * 0.8);
+    const left = fs * 3.4;
+    const bottom = fs * 2.9;
+    const top = fs * 0.7;
+    const barW = fs * 0.9;
+    const right = fs * 0.9 + barW + fs * 0.4 + fs * 2.9 + fs * 1.4;
+    const plot = { x: left, y: top, w: Math.max(10, w - left - right), h: Math.max(10, h - top - bottom) };
+    const bar = { x: plot.x + plot.w + fs * 0.9, y: plot.y + fs * 0.8, w: barW, h: plot.h - fs * 1.6 };
+    return { fs, plot, bar };
+  }
+
+  resize() {
+    const r = this.stack.getBoundingClientRect();
+    const dpr = window.devicePixelRatio || 1;
+    const w = Math.round(r.width);
+    const h = Math.round(r.height);
+    if (w === this.size.w && h === this.size.h && dpr === this.size.dpr) return;
+    this.size = { w, h, dpr };
+    for (const c of [this.base, this.overlay]) {
+      c.width = Math.max(1, Math.round(w * dpr));
+      c.height = Math.max(1, Math.round(h * dpr));
+    }
+    this.drawBase();
+    this.drawOverlay();
+  }
+
+  /**
+   * New map data. `maps`: {nx, ny, values, feasible, feasibleCount} from the engine;
+   * `box`: design box (N/m, N s/m); `swsLimit`: m or null; `scale`: "abs" or "rel";
+   * `datum`: the datum's LoFi criteria {bacc, dtl, sws} (for "rel").
+   */
+  setData({ maps, box, swsLimit, scale, datum }) {
+    const { nx, ny, values } = maps;
+    const n = nx * ny;
+    const off = this.crit.plane * n;
+    const f = this.crit.factor;
+    const ref = datum[this.crit.key];
+    const shown = new Float64Array(n);
+    for (let k = 0; k < n; k++) {
+      const v = values[off + k];
+      shown[k] = scale === 'rel' ? (v / ref - 1) * 100 : v * f;
+    }
+    // The colour range spans the feasible designs (those the designer can choose), so
+    // their differences show; values beyond it (in the hatched area) take the end
+    // colours and the bar gets an "and above" / "and below" triangle.
+    const feasible = maps.feasibleCount > 0 ? maps.feasible : null;
+    let lo = Infinity;
+    let hi = -Infinity;
+    let allLo = Infinity;
+    let allHi = -Infinity;
+    for (let k = 0; k < n; k++) {
+      const v = shown[k];
+      if (v < allLo) allLo = v;
+      if (v > allHi) allHi = v;
+      if (feasible && !feasible[k]) continue;
+      if (v < lo) lo = v;
+      if (v > hi) hi = v;
+    }
+    if (scale === 'rel') {
+      const m = Math.max(Math.abs(lo), Math.abs(hi), 1e-9);
+      lo = -m;
+      hi = m;
+    } else if (!(hi > lo)) {
+      const pad = Math.max(1e-9, Math.abs(lo) * 1e-3);
+      lo -= pad;
+      hi += pad;
+    }
+    const tol = 1e-9 * (hi - lo);
+    const over = allHi > hi + tol;
+    const under = allLo < lo - tol;
+    const table = scale === 'rel' ? DIVERGING : VIRIDIS;
+
+    // The dense colour image: one pixel per grid cell, row 0 at the top (highest Cs).
+    const img = new ImageData(nx, ny);
+    for (let j = 0; j < ny; j++) {
+      const row = (ny - 1 - j) * nx;
+      for (let i = 0; i < nx; i++) {
+        paint(table, (shown[j * nx + i] - lo) / (hi - lo), img.data, 4 * (row + i));
+      }
+    }
+    const colour = new OffscreenCanvas(nx, ny);
+    colour.getContext('2d').putImageData(img, 0, 0);
+
+    // The infeasible mask: opaque where a design breaks an objective.
+    const mask = new ImageData(nx, ny);
+    for (let j = 0; j < ny; j++) {
+      const row = (ny - 1 - j) * nx;
+      for (let i = 0; i < nx; i++) {
+        if (!maps.feasible[j * nx + i]) mask.data[4 * (row + i) + 3] = 255;
+      }
+    }
+    const maskCanvas = new OffscreenCanvas(nx, ny);
+    maskCanvas.getContext('2d').putImageData(mask, 0, 0);
+
+    const { ticks, step } = niceTicks(lo, hi, 5);
+    const levels = ticks.filter((t) => t > lo + 1e-9 * (hi - lo) && t < hi - 1e-9 * (hi - lo));
+    const contours = levels.map((lv) => contourSegments(shown, 0, nx, ny, lv));
+    const limitLine = swsLimit ? contourSegments(values, 2 * n, nx, ny, swsLimit) : [];
+
+    this.data = {
+      nx, ny, box, lo, hi, ticks, step, table, colour, maskCanvas, contours, limitLine, scale, over, under,
+      infeasible: maps.feasibleCount < n, unit: scale === 'rel' ? '% vs datum' : this.crit.unit,
+      shown,
+    };
+    this.base.setAttribute(
+      'aria-label',
+      `${this.crit.long} map over spring rate Ks ${box.ks_min / KS_UNIT} to ${box.ks_max / KS_UNIT} kN/m ` +
+        `and damper rate Cs ${box.cs_min / CS_UNIT} to ${box.cs_max / CS_UNIT} kNs/m; ` +
+        `values ${fmt(lo)} to ${fmt(hi)} ${this.data.unit}.`,
+    );
+    this.drawBase();
+  }
+
+  /** The design and datum points (N/m, N s/m) and the design's value for the caption. */
+  setMarkers(design, datum, valueText) {
+    this.markers = { design, datum };
+    this.atEl.textContent = valueText;
+    this.drawOverlay();
+  }
+
+  ctx(canvas) {
+    const g = canvas.getContext('2d');
+    g.setTransform(this.size.dpr, 0, 0, this.size.dpr, 0, 0);
+    return g;
+  }
+
+  toPlot(ks, cs, plot) {
+    const b = this.data.box;
+    return [
+      plot.x + ((ks - b.ks_min) / (b.ks_max - b.ks_min)) * plot.w,
+      plot.y + plot.h - ((cs - b.cs_min) / (b.cs_max - b.cs_min)) * plot.h,
+    ];
+  }
+
+  drawBase() {
+    if (!this.size.w) return;
+    const g = this.ctx(this.base);
+    const { w, h } = this.size;
+    g.clearRect(0, 0, w, h);
+    if (!this.data) return;
+    const d = this.data;
+    const { fs, plot, bar } = this.layout();
+    const gx = (x) => plot.x + ((x + 0.5) / d.nx) * plot.w; // grid -> CSS px
+    const gy = (y) => plot.y + plot.h - ((y + 0.5) / d.ny) * plot.h;
+
+    // Colour image, smoothly scaled from one pixel per cell.
+    g.imageSmoothingEnabled = true;
+    g.imageSmoothingQuality = 'high';
+    g.drawImage(d.colour, plot.x, plot.y, plot.w, plot.h);
+
+    // Contour lines at the colour-bar ticks: a dark halo under a light line reads on
+    // both ends of the colour map.
+    const strokeSegs = (segs) => {
+      g.beginPath();
+      for (let k = 0; k < segs.length; k += 4) {
+        g.moveTo(gx(segs[k]), gy(segs[k + 1]));
+        g.lineTo(gx(segs[k + 2]), gy(segs[k + 3]));
+      }
+      g.stroke();
+    };
+    g.save();
+    g.beginPath();
+    g.rect(plot.x, plot.y, plot.w, plot.h);
+    g.clip();
+    g.lineCap = 'round';
+    for (const segs of d.contours) {
+      g.strokeStyle = 'rgba(0,0,0,0.35)';
+      g.lineWidth = 2;
+      strokeSegs(segs);
+      g.strokeStyle = 'rgba(255,255,255,0.85)';
+      g.lineWidth = 0.8;
+      strokeSegs(segs);
+    }
+
+    // Infeasible area: grey wash plus diagonal hatching, cut to the mask.
+    if (d.infeasible) {
+      const dpr = this.size.dpr;
+      const hatch = new OffscreenCanvas(Math.ceil(plot.w * dpr), Math.ceil(plot.h * dpr));
+      const hg = hatch.getContext('2d');
+      hg.fillStyle = 'rgba(150,150,150,0.62)';
+      hg.fillRect(0, 0, hatch.width, hatch.height);
+      hg.strokeStyle = 'rgb(58,58,58)';
+      hg.lineWidth = 1.1 * dpr;
+      const gap = 7 * dpr;
+      hg.beginPath();
+      for (let x = -hatch.height; x < hatch.width; x += gap) {
+        hg.moveTo(x, hatch.height);
+        hg.lineTo(x + hatch.height, 0);
+      }
+      hg.stroke();
+      hg.globalCompositeOperation = 'destination-in';
+      hg.imageSmoothingEnabled = false;
+      hg.drawImage(d.maskCanvas, 0, 0, hatch.width, hatch.height);
+      g.drawImage(hatch, plot.x, plot.y, plot.w, plot.h);
+    }
+    // The SWS limit itself.
+    if (d.limitLine.length) {
+      g.strokeStyle = '#fff';
+      g.lineWidth = 3.5;
+      strokeSegs(d.limitLine);
+      g.strokeStyle = '#000';
+      g.lineWidth = 1.6;
+      strokeSegs(d.limitLine);
+    }
+    g.restore();
+
+    // Frame and axes.
+    g.strokeStyle = '#333';
+    g.lineWidth = 1;
+    g.strokeRect(plot.x, plot.y, plot.w, plot.h);
+    g.fillStyle = '#1b1f24';
+    g.font = `${fs}px system-ui, sans-serif`;
+    const b = d.box;
+    const kt = niceTicks(b.ks_min / KS_UNIT, b.ks_max / KS_UNIT, Math.max(3, Math.floor(plot.w / (fs * 4.5))));
+    g.textAlign = 'center';
+    g.textBaseline = 'top';
+    g.beginPath();
+    for (const t of kt.ticks) {
+      const [x] = this.toPlot(t * KS_UNIT, b.cs_min, plot);
+      g.moveTo(x, plot.y + plot.h);
+      g.lineTo(x, plot.y + plot.h + fs * 0.35);
+      g.fillText(fmtTick(t, kt.step), x, plot.y + plot.h + fs * 0.45);
+    }
+    const ct = niceTicks(b.cs_min / CS_UNIT, b.cs_max / CS_UNIT, Math.max(3, Math.floor(plot.h / (fs * 3))));
+    g.textAlign = 'right';
+    g.textBaseline = 'middle';
+    for (const t of ct.ticks) {
+      const [, y] = this.toPlot(b.ks_min, t * CS_UNIT, plot);
+      g.moveTo(plot.x, y);
+      g.lineTo(plot.x - fs * 0.35, y);
+      g.fillText(fmtTick(t, ct.step), plot.x - fs * 0.5, y);
+    }
+    g.stroke();
+    g.textAlign = 'center';
+    g.textBaseline = 'bottom';
+    g.fillText('Spring rate Ks (kN/m)', plot.x + plot.w / 2, this.size.h - fs * 0.15);
+    g.save();
+    g.translate(fs * 0.2, plot.y + plot.h / 2);
+    g.rotate(-Math.PI / 2);
+    g.textBaseline = 'top';
+    g.fillText('Damper rate Cs (kNs/m)', 0, 0);
+    g.restore();
+
+    // Colour bar with ticks and unit.
+    const strip = new ImageData(1, 256);
+    for (let k = 0; k < 256; k++) paint(d.table, 1 - k / 255, strip.data, 4 * k);
+    const stripCanvas = new OffscreenCanvas(1, 256);
+    stripCanvas.getContext('2d').putImageData(strip, 0, 0);
+    g.imageSmoothingEnabled = true;
+    g.drawImage(stripCanvas, bar.x, bar.y, bar.w, bar.h);
+    g.strokeRect(bar.x, bar.y, bar.w, bar.h);
+    // "and above" / "and below" triangles for values beyond the colour range.
+    const tri = (y, dir, t) => {
+      const c = new Uint8ClampedArray(4);
+      paint(d.table, t, c, 0);
+      g.save();
+      g.beginPath();
+      g.moveTo(bar.x, y);
+      g.lineTo(bar.x + bar.w / 2, y - dir * bar.w * 0.9);
+      g.lineTo(bar.x + bar.w, y);
+      g.closePath();
+      g.fillStyle = `rgb(${c[0]},${c[1]},${c[2]})`;
+      g.fill();
+      g.stroke();
+      g.restore();
+    };
+    if (d.over) tri(bar.y, 1, 1);
+    if (d.under) tri(bar.y + bar.h, -1, 0);
+    g.textAlign = 'left';
+    g.textBaseline = 'middle';
+    g.beginPath();
+    for (const t of d.ticks) {
+      const y = bar.y + bar.h - ((t - d.lo) / (d.hi - d.lo)) * bar.h;
+      g.moveTo(bar.x + bar.w, y);
+      g.lineTo(bar.x + bar.w + fs * 0.3, y);
+      g.fillText(fmtTick(t, d.step), bar.x + bar.w + fs * 0.4, y);
+    }
+    g.stroke();
+    g.save();
+    g.translate(this.size.w - fs * 0.15, bar.y + bar.h / 2);
+    g.rotate(-Math.PI / 2);
+    g.textAlign = 'center';
+    g.textBaseline = 'bottom';
+    g.fillText(`${this.crit.title} (${d.unit})`, 0, 0);
+    g.restore();
+  }
+
+  drawOverlay() {
+    if (!this.size.w) return;
+    const g = this.ctx(this.overlay);
+    g.clearRect(0, 0, this.size.w, this.size.h);
+    if (!this.data || !this.markers) return;
+    const { fs, plot } = this.layout();
+    const { design, datum } = this.markers;
+    const inside = (p) => p[0] >= plot.x - 0.5 && p[0] <= plot.x + plot.w + 0.5 && p[1] >= plot.y - 0.5 && p[1] <= plot.y + plot.h + 0.5;
+    const r = Math.max(4, fs * 0.45);
+
+    const pd = this.toPlot(datum.ks, datum.cs, plot);
+    if (inside(pd)) {
+      g.lineWidth = 3.5;
+      g.strokeStyle = '#fff';
+      diamond(g, pd, r * 1.35);
+      g.stroke();
+      g.lineWidth = 1.6;
+      g.strokeStyle = '#000';
+      diamond(g, pd, r * 1.35);
+      g.stroke();
+    }
+    const p = this.toPlot(design.ks, design.cs, plot);
+    if (inside(p)) {
+      g.save();
+      g.beginPath();
+      g.rect(plot.x, plot.y, plot.w, plot.h);
+      g.clip();
+      g.setLineDash([4, 3]);
+      g.strokeStyle = 'rgba(255,255,255,0.9)';
+      g.lineWidth = 1;
+      g.beginPath();
+      g.moveTo(plot.x, p[1]);
+      g.lineTo(plot.x + plot.w, p[1]);
+      g.moveTo(p[0], plot.y);
+      g.lineTo(p[0], plot.y + plot.h);
+      g.stroke();
+      g.restore();
+      g.beginPath();
+      g.arc(p[0], p[1], r, 0, 2 * Math.PI);
+      g.fillStyle = '#fff';
+      g.fill();
+      g.lineWidth = 2;
+      g.strokeStyle = '#000';
+      g.stroke();
+      g.beginPath();
+      g.arc(p[0], p[1], r * 0.3, 0, 2 * Math.PI);
+      g.fillStyle = '#000';
+      g.fill();
+    }
+  }
+
+  bindPointer() {
+    let dragging = false;
+    const pick = (ev, clamp) => {
+      if (!this.data) return false;
+      const rect = this.overlay.getBoundingClientRect();
+      const { plot } = this.layout();
+      let u = (ev.clientX - rect.left - plot.x) / plot.w;
+      let v = 1 - (ev.clientY - rect.top - plot.y) / plot.h;
+      if (!clamp && (u < 0 || u > 1 || v < 0 || v > 1)) return false;
+      u = Math.min(1, Math.max(0, u));
+      v = Math.min(1, Math.max(0, v));
+      const b = this.data.box;
+      this.onPick(b.ks_min + u * (b.ks_max - b.ks_min), b.cs_min + v * (b.cs_max - b.cs_min));
+      return true;
+    };
+    this.overlay.addEventListener('pointerdown', (ev) => {
+      if (ev.button !== 0) return;
+      if (pick(ev, false)) {
+        dragging = true;
+        this.overlay.setPointerCapture(ev.pointerId);
+        ev.preventDefault();
+      }
+    });
+    this.overlay.addEventListener('pointermove', (ev) => {
+      if (dragging) pick(ev, true);
+    });
+    const end = (ev) => {
+      dragging = false;
+      if (this.overlay.hasPointerCapture(ev.pointerId)) this.overlay.releasePointerCapture(ev.pointerId);
+    };
+    this.overlay.addEventListener('pointerup', end);
+    this.overlay.addEventListener('pointercancel', end);
+  }
+
+  /** The value under a design point, for captions: absolute or relative. */
+  static caption(crit, value, datumValue, scale) {
+    if (scale === 'rel') return `design: ${fmtPct(value / datumValue - 1)}`;
+    return `design: ${fmt(value * crit.factor)} ${crit.unit}`;
+  }
+}
+
+function diamond(g, [x, y], r) {
+  g.beginPath();
+  g.moveTo(x, y - r);
+  g.lineTo(x + r, y);
+  g.lineTo(x, y + r);
+  g.lineTo(x - r, y);
+  g.closePath();
+}

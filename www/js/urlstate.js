@@ -1,0 +1,69 @@
+// The view state in the URL hash, so that a link reproduces the view:
+//   #car=sedan&ks=19960&cs=1290&class=B&speed=20&tracks=correlated&sws=7&scale=abs&large=1
+// ks in N/m, cs in N s/m, speed in m/s (SI, as the CLI), sws (the SWS limit) in mm.
+// A custom car travels as its JSON text: car=custom&carjson=...
+
+const NUMBERS = { ks: 'ks', cs: 'cs', speed: 'speed' };
+
+/** The hash (with '#') for `state` (core state) and `view` (page-only settings). */
+export function encodeHash(state, view) {
+  const p = new URLSearchParams();
+  p.set('car', state.car);
+  if (state.car === 'custom' && state.carJson) p.set('carjson', state.carJson);
+  p.set('ks', String(state.ks));
+  p.set('cs', String(state.cs));
+  p.set('class', state.class);
+  p.set('speed', String(state.speed));
+  p.set('tracks', state.tracks);
+  if (state.swsLimit !== null && state.swsLimit !== undefined) p.set('sws', String(+(state.swsLimit * 1000).toPrecision(12)));
+  if (view.scale && view.scale !== 'abs') p.set('scale', view.scale);
+  if (view.large) p.set('large', '1');
+  return '#' + p.toString();
+}
+
+/**
+ * Reads a hash. Returns `{state, view, problems}`: `state` holds only the keys present
+ * (the caller merges them over the defaults and lets the core validate them), and
+ * `problems` lists what could not be read at all (then the caller uses the defaults).
+ */
+export function decodeHash(hash) {
+  const out = { state: {}, view: {}, problems: [] };
+  const text = (hash || '').replace(/^#/, '');
+  if (text === '') return out;
+  let p;
+  try {
+    p = new URLSearchParams(text);
+  } catch (e) {
+    out.problems.push('the link could not be read');
+    return out;
+  }
+  for (const [key, raw] of p) {
+    const v = raw.trim();
+    if (key in NUMBERS) {
+      const n = v === '' ? NaN : Number(v);
+      if (!Number.isFinite(n)) out.problems.push(`${key}: '${raw}' is not a number`);
+      else out.state[NUMBERS[key]] = n;
+    } else if (key === 'sws') {
+      const n = v === '' ? NaN : Number(v);
+      if (!Number.isFinite(n)) out.problems.push(`sws: '${raw}' is not a number`);
+      else out.state.swsLimit = n / 1000;
+    } else if (key === 'car') {
+      out.state.car = v;
+    } else if (key === 'carjson') {
+      out.state.carJson = raw;
+    } else if (key === 'class') {
+      out.state.class = v.toUpperCase();
+    } else if (key === 'tracks') {
+      out.state.tracks = v.toLowerCase();
+    } else if (key === 'scale') {
+      if (v === 'abs' || v === 'rel') out.view.scale = v;
+      else out.problems.push(`scale: '${raw}' is not 'abs' or 'rel'`);
+    } else if (key === 'large') {
+      if (v === '1' || v === '0') out.view.large = v === '1';
+      else out.problems.push(`large: '${raw}' is not 0 or 1`);
+    } else {
+      out.problems.push(`unknown key '${key}'`);
+    }
+  }
+  return out;
+}
