@@ -189,8 +189,8 @@ pub fn report(kind: ModelKind, car: &Car, road: &Road) -> Result<Report> {
     car.validate()?;
     road.validate()?;
     let model = kind.build(car);
-    let spectral = criteria_spectral(&model, road, 1e-10)?;
-    let (values, route) = match criteria_exact(&model, road) {
+    let spectral = criteria_spectral(&model, road, 1e-8)?;
+    let (values, route) = match criteria_fast_exact(&model, road) {
         Ok(c) => (c, "exact"),
         Err(RideError::Numerical(_)) if spectral.low_cutoff_hz.is_some() => {
             (spectral.criteria, "spectral")

@@ -83,7 +83,7 @@ impl Car {
         let car: Car = serde_path_to_error::deserialize(de).map_err(|e| {
             let path = e.path().to_string();
             let inner = e.into_inner();
-            if path == "." || path.is_empty() {
+            if path == "." || path == "?" || path.is_empty() {
                 RideError::Json(inner.to_string())
             } else {
                 RideError::field(path, inner.to_string())

@@ -59,11 +59,12 @@ pub fn modes(model: &LinearModel) -> Result<Vec<Mode>> {
             .max_by(|&i, &j| (shape[i].norm() * scale[i]).total_cmp(&(shape[j].norm() * scale[j])))
             .unwrap_or(0);
         let wn = lam.norm();
+        let label = label_of(model, &shape, dom);
         out.push(Mode {
             frequency: wn / (2.0 * PI),
             damped_frequency: lam.im.abs() / (2.0 * PI),
             damping_ratio: -lam.re / wn,
-            label: model.dof_names[dom].to_string(),
+            label,
         });
     }
     out.sort_by(|a, b| a.frequency.total_cmp(&b.frequency));
@@ -86,4 +87,32 @@ fn eigenvector(a: &DMatrix<C64>, lam: C64) -> Result<Vec<C64>> {
         x /= C64::new(nx, 0.0);
     }
     Ok(x.iter().copied().collect())
+}
+
+/// The dominant coordinate's name; for a wheel whose mirror wheel moves as much
+/// (a symmetric car), the pair's name and whether they move in or out of phase.
+fn label_of(model: &LinearModel, shape: &[C64], dom: usize) -> String {
+    let name = model.dof_names[dom];
+    let Some(side) = ["right", "left"].into_iter().find(|s| name.ends_with(s)) else {
+        return name.to_string();
+    };
+    let mirror_name = if side == "right" {
+        name.replace("right", "left")
+    } else {
+        name.replace("left", "right")
+    };
+    let Some(mirror) = model.dof_names.iter().position(|n| *n == mirror_name) else {
+        return name.to_string();
+    };
+    let ratio = shape[mirror] / shape[dom];
+    if ratio.norm() < 0.5 {
+        return name.to_string();
+    }
+    let base = name.trim_end_matches(side).trim_end_matches('-');
+    let phase = if ratio.re > 0.0 {
+        "in phase"
+    } else {
+        "anti-phase"
+    };
+    format!("{base} ({phase})")
 }

@@ -270,12 +270,11 @@ impl Stepper {
                 big.view_mut((ns, 2 * ns), (ns, ns))
                     .copy_from(&(DMatrix::identity(ns, ns) * h));
                 let e = big.exp();
-                // Top row of the exponential: [Phi, G0 / h... ] scaled as exp(B h): blocks are
-                // Phi, G0 and G1 / h (the identity blocks carry one factor h each).
+                // exp([[A, I, 0], [0, 0, I], [0, 0, 0]] h) has top row [Phi, G0, G1].
                 Ok(Stepper::Linear {
                     phi: e.view((0, 0), (ns, ns)).into_owned(),
                     g0: e.view((0, ns), (ns, ns)).into_owned(),
-                    g1: e.view((0, 2 * ns), (ns, ns)).into_owned() * h,
+                    g1: e.view((0, 2 * ns), (ns, ns)).into_owned(),
                     bd: ss.bd.clone(),
                     bv: ss.bv.clone(),
                 })

@@ -101,7 +101,7 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
     let mut phi: Vec<Vec<C64>> = Vec::with_capacity(ns);
     let mut norm: Vec<C64> = Vec::with_capacity(ns);
     for &l in &lam {
-        let shift = l + C64::new(1e-10, 1e-10) * l.norm();
+        let shift = l + C64::new(1e-12, 1e-12) * l.norm();
         let mut x: Vec<C64> = (0..n)
             .map(|i| C64::new(1.0 + 0.1 * i as f64, 0.3 - 0.05 * i as f64))
             .collect();
