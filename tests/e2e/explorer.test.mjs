@@ -224,27 +224,15 @@ test('moving the Ks slider changes the readout and the marker', { timeout: TIMEO
   await context.close();
 });
 
-/** Native reference numbers: the `ridelab` CLI when built, else the native-reference program. */
+/** Native reference numbers: the `ridelab` CLI (RIDELAB_CLI, else target/debug or target/release). */
 function nativeReference() {
   const car = path.join(ROOT, 'assets/cars/sedan.json');
-  const cli = process.env.RIDELAB_CLI || path.join(ROOT, 'target/release/ridelab');
-  if (fs.existsSync(cli)) {
-    const run = (model) =>
-      JSON.parse(execFileSync(cli, ['eval', '--model', model, '--car', car, '--class', 'B', '--speed', '20', '--json'], { encoding: 'utf8' }));
-    return { source: `CLI ${path.relative(ROOT, cli)}`, quarter: run('quarter'), full: run('full') };
-  }
-  const bins = [
-    process.env.RIDELAB_NATIVE_REF,
-    path.join(ROOT, 'tests/e2e/native-reference/target/release/native-reference'),
-    path.join(ROOT, 'target/native-reference/release/native-reference'),
-  ].filter(Boolean);
-  const bin = bins.find((b) => fs.existsSync(b));
-  if (bin) {
-    const r = JSON.parse(execFileSync(bin, [car, 'B', '20', 'correlated'], { encoding: 'utf8' }));
-    return { source: `native program ${path.relative(ROOT, bin)} (the CLI is not built)`, ...r };
-  }
-  const file = path.join(ROOT, 'tests/e2e/native-reference/sedan-B-20-correlated.json');
-  return { source: `committed output of tests/e2e/native-reference (the CLI is not built)`, ...JSON.parse(fs.readFileSync(file, 'utf8')) };
+  const candidates = [process.env.RIDELAB_CLI, path.join(ROOT, 'target/debug/ridelab'), path.join(ROOT, 'target/release/ridelab')];
+  const cli = candidates.filter(Boolean).find((c) => fs.existsSync(c));
+  assert.ok(cli, 'the native CLI is built (cargo build -p ridelab)');
+  const run = (model) =>
+    JSON.parse(execFileSync(cli, ['eval', '--model', model, '--car', car, '--class', 'B', '--speed', '20', '--json'], { encoding: 'utf8' }));
+  return { source: `CLI ${path.relative(ROOT, cli)}`, quarter: run('quarter'), full: run('full') };
 }
 
 test('datum readout at class B 20 m/s equals the native code to 1e-9', { timeout: TIMEOUT }, async (t) => {
