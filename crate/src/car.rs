@@ -265,8 +265,8 @@ mod tests {
         let d = Car::datum();
         assert_eq!(d.sprung_mass, 1460.0);
         assert_eq!(d.front.spring, 19960.0);
-        // ms = 1460 * 1.803 / (2 * 2.814) = 467.73 kg
-        assert!((d.quarter().ms - 467.734_186).abs() < 1e-5);
+        // ms = 1460 * 1.803 / (2 * 2.814) = 467.729 211 kg
+        assert!((d.quarter().ms - 467.729_211).abs() < 1e-5);
     }
 
     fn datum_value() -> serde_json::Value {
