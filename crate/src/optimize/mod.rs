@@ -20,9 +20,9 @@ mod test_problems;
 mod tests;
 
 pub use hypervolume::{front_distance, hypervolume, reference_point, FrontDistance};
-pub use minmax::{min_max_pick, recheck, Pick, Recheck};
+pub use minmax::{min_max_pick, normalised_distances, recheck, Pick, Recheck};
 pub use nsga2::{nsga2, Nsga2Params};
-pub use problem::{Eval, Problem, Solution};
+pub use problem::{dominates, non_dominated, Eval, Problem, Solution};
 pub use stm::{stm, StmParams};
 pub use study::{run_study, Method, Study};
 pub use suspension::{Counted, FrontPoint, SuspensionProblem};

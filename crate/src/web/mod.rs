@@ -248,11 +248,7 @@ pub fn criteria(state: JsValue, model: &str) -> Result<JsValue, JsValue> {
     let (ks, cs) = (s.design.front.spring, s.design.front.damper);
     let c = match kind {
         ModelKind::Quarter => s.lofi().evaluate(ks, cs),
-        ModelKind::Full => crate::HiFi {
-            car: s.datum.clone(),
-            road: s.road,
-        }
-        .evaluate(ks, cs),
+        ModelKind::Full => crate::HiFi::new(&s.datum, &s.road).and_then(|h| h.evaluate(ks, cs)),
     }
     .map_err(js_error)?;
     to_js(&c)
