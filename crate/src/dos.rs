@@ -192,9 +192,11 @@ mod tests {
 
     #[test]
     fn broken_names_each_objective() {
-        let mut o = DesignObjectives::default();
-        o.bounce_band = Some((0.8, 1.5));
-        o.no_worse_than_datum = [true, false, false];
+        let o = DesignObjectives {
+            bounce_band: Some((0.8, 1.5)),
+            no_worse_than_datum: [true, false, false],
+            ..Default::default()
+        };
         let c = Criteria {
             bacc: 1.1,
             dtl: 400.0,

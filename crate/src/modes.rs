@@ -49,7 +49,7 @@ pub fn modes(model: &LinearModel) -> Result<Vec<Mode>> {
         if lam.im < -1e-12 * lam.norm() {
             continue; // the conjugate of a pair already listed
         }
-        if !(lam.re < 0.0) {
+        if lam.re.is_nan() || lam.re >= 0.0 {
             return Err(RideError::Numerical(
                 "model is not asymptotically stable".into(),
             ));

@@ -203,7 +203,7 @@ pub fn simulate(model: &LinearModel, road: &Road, opt: &TimeOptions) -> Result<T
             for o in 0..N_OUT {
                 sumsq[o] += y[o] * y[o];
             }
-            if i % keep == 0 {
+            if i.is_multiple_of(keep) {
                 out.t.push(i as f64 * h);
                 out.road.push(r_now[0]);
                 for o in 0..N_OUT {

@@ -210,7 +210,7 @@ fn hqr(a: &mut [f64], n: usize) -> Option<Vec<C64>> {
             }
             // Double QR step on rows l..nn and columns m..nn.
             let mut k = m;
-            while k + 1 <= nu {
+            while k < nu {
                 if k != m {
                     p = a[at(k, k - 1)];
                     q = a[at(k + 1, k - 1)];

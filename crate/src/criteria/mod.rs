@@ -3,6 +3,11 @@
 //! Kronecker or modal form) and spectral (frequency-domain integration with the exact
 //! delay factor).
 
+// Index loops over small fixed-size arrays read like the equations they implement.
+#![allow(clippy::needless_range_loop)]
+// Quadrature nodes are quoted to the digits of their published tables.
+#![allow(clippy::excessive_precision)]
+
 mod closed_form;
 mod exact;
 mod hqr;

@@ -83,7 +83,7 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
     }
     let lam = hqr::eigenvalues(&mut a, ns)
         .ok_or_else(|| RideError::Numerical("modal: QR did not converge".into()))?;
-    if lam.iter().any(|l| !(l.re < 0.0)) {
+    if lam.iter().any(|l| l.re.is_nan() || l.re >= 0.0) {
         return Err(RideError::Numerical(
             "model is not asymptotically stable".into(),
         ));
