@@ -65,7 +65,7 @@ export class ObjectivePlane {
     const msg = $('op-msg');
     const wrap = $('op-wrap');
     if (!fr || fr.error) {
-      msg.textContent = fr ? `No feasible design, so no front: ${fr.error}` : '';
+      msg.textContent = fr ? `No front to draw: ${fr.error.replace(/^sws_limit: /, 'SWS limit: ')}` : '';
       msg.className = 'status bad';
       msg.hidden = !fr;
       wrap.hidden = true;
@@ -117,7 +117,7 @@ export class ObjectivePlane {
     // The HiFi re-check of the pick, on the same datum-relative scale as its model.
     const hp = this.ratio ? [rc.bacc / dh.bacc, rc.dtl / dh.dtl] : [rc.bacc, rc.dtl];
     this.base.marker(hp[0], hp[1], 'diamond', '#fff', COL.hifi, 5);
-    this.base.marker(d[0], d[1], 'square', COL.datum, '#000', 5);
+    this.base.marker(d[0], d[1], 'square', COL.datum, '#000', 8);
     legend.push({ label: 'min-max pick (LoFi)', colour: COL.pick, kind: 'marker', stroke: '#000' });
     legend.push({ label: 'pick re-checked (HiFi)', colour: '#fff', kind: 'marker', stroke: COL.hifi });
     legend.push({ label: 'datum', colour: '#fff', kind: 'marker', stroke: '#000' });
@@ -143,7 +143,7 @@ export class ObjectivePlane {
     g.clip();
     this.over.g = g;
     const [x, y] = this.xy(app.lofi.design.bacc, app.lofi.design.dtl);
-    this.designAt = this.over.marker(x, y, 'circle', '#000', '#fff', 6);
+    this.designAt = this.over.marker(x, y, 'circle', '#000', '#fff', 4.5);
     g.restore();
   }
 

@@ -34,10 +34,16 @@ export class Plot {
     this.canvas.width = Math.round(w * dpr);
     this.canvas.height = Math.round(h * dpr);
     this.size = { w, h, dpr };
+    this.lay = null;
   }
 
-  /** The plot rectangle in CSS px. */
+  /** The plot rectangle in CSS px (cached until the next resize or begin). */
   layout() {
+    if (!this.lay) this.lay = this.computeLayout();
+    return this.lay;
+  }
+
+  computeLayout() {
     const fs = parseFloat(getComputedStyle(document.documentElement).fontSize) || 16;
     const f = Math.max(11, fs * 0.75);
     const left = f * (this.opts.yLog ? 5.4 : 4.6);
@@ -62,6 +68,17 @@ export class Plot {
     this.y = widen(y, this.opts.yLog);
   }
 
+  /** A function data -> CSS px along one axis. */
+  axisMap([lo, hi], log, start, len, flip) {
+    if (log) {
+      const l0 = Math.log10(lo);
+      const k = len / (Math.log10(hi) - l0);
+      return flip ? (v) => start + len - (Math.log10(v) - l0) * k : (v) => start + (Math.log10(v) - l0) * k;
+    }
+    const k = len / (hi - lo);
+    return flip ? (v) => start + len - (v - lo) * k : (v) => start + (v - lo) * k;
+  }
+
   /** Data -> CSS px. */
   px(xv, yv) {
     const { plot } = this.layout();
@@ -72,6 +89,7 @@ export class Plot {
   /** Clears and draws frame, grid, ticks and axis labels; returns the 2D context (CSS px units). */
   begin() {
     if (this.size.w === 0 || this.canvas.width !== Math.round(this.size.w * this.size.dpr)) this.resize();
+    this.lay = null; // the root font size may have changed (large type)
     const g = this.canvas.getContext('2d');
     g.setTransform(this.size.dpr, 0, 0, this.size.dpr, 0, 0);
     g.clearRect(0, 0, this.size.w, this.size.h);
@@ -152,10 +170,13 @@ export class Plot {
   dots(xs, ys, colour, r = 1.5) {
     const g = this.g;
     g.fillStyle = colour;
-    for (let i = 0; i < xs.length; i++) {
-      const [x, y] = this.px(xs[i], ys[i]);
-      g.fillRect(x - r, y - r, 2 * r, 2 * r);
-    }
+    // One path for all dots (one fill call), with the axis maps hoisted out of the loop.
+    const { plot } = this.layout();
+    const tx = this.axisMap(this.x, this.opts.xLog, plot.x, plot.w, false);
+    const ty = this.axisMap(this.y, this.opts.yLog, plot.y, plot.h, true);
+    g.beginPath();
+    for (let i = 0; i < xs.length; i++) g.rect(tx(xs[i]) - r, ty(ys[i]) - r, 2 * r, 2 * r);
+    g.fill();
   }
 
   /** A marker: 'circle', 'square', 'diamond' or 'cross'. */
