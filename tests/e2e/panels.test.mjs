@@ -346,3 +346,24 @@ test('exports: maps CSV, front CSV, PNG, session round trip', { timeout: TIMEOUT
   assertClean(log);
   await context.close();
 });
+
+test('HiDPI and large type: the new charts are sized in device pixels and redraw', { timeout: TIMEOUT }, async () => {
+  const { page, context, log } = await open('', { dpr: 2 });
+  const sizes = () =>
+    page.evaluate(() =>
+      ['op-base', 'op-overlay', 'sp-frf-bacc', 'sp-psd-sws'].map((id) => {
+        const c = document.getElementById(id);
+        return { id, w: c.width, css: c.clientWidth };
+      }),
+    );
+  for (const s of await sizes()) assert.equal(s.w, Math.round(s.css * 2), `${s.id}: ${s.w} px for ${s.css} CSS px at dpr 2`);
+  const line = await countColour(page, 'op-base', STM);
+  assert.ok(line > 300, `front drawn at dpr 2 (${line} px)`);
+  await page.check('#large');
+  await page.waitForTimeout(400);
+  for (const s of await sizes()) assert.equal(s.w, Math.round(s.css * 2), `${s.id} after large type`);
+  assert.ok((await countColour(page, 'sp-frf-bacc', LOFI)) > 100, 'FRF redrawn after large type');
+  await page.locator('.objective').screenshot({ path: path.join(OUT, 'objective-hidpi-large.png') });
+  assertClean(log);
+  await context.close();
+});

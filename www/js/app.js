@@ -334,6 +334,7 @@ function renderDesign() {
   }
   app.objPlane.drawOverlay();
   requestSpectra();
+  renderTimeStale();
   renderHifi();
   syncInputs();
   scheduleUrl();
@@ -608,9 +609,13 @@ async function runTime() {
   app.pending++;
   const t0 = performance.now();
   try {
-    const r = await app.hifiEngine.call('timeResponse', app.state, opts);
+    const s = app.state;
+    const r = await app.hifiEngine.call('timeResponse', s, opts);
     app.time = r;
+    app.timeKey = JSON.stringify(s);
+    $('tp-charts').hidden = false;
     app.timePanel.draw(r);
+    renderTimeStale();
     $('tp-play').disabled = false;
     status.textContent = `Done in ${fmt(performance.now() - t0, 3)} ms (${opts.asymmetric ? `asymmetric damper ${fmt(bump.value, 3)} / ${fmt(rebound.value, 3)} kNs/m` : 'linear damper'}, seed ${seed.value}).`;
   } catch (e) {
@@ -619,6 +624,18 @@ async function runTime() {
     $('tp-run').disabled = false;
     app.pending--;
   }
+}
+
+/** Says when the time response shown belongs to an earlier design or scenario. */
+function renderTimeStale() {
+  const el = $('tp-stale');
+  if (!app.time) {
+    el.textContent = 'Press "Run time response" to simulate the current design.';
+    return;
+  }
+  el.textContent = app.timeKey === JSON.stringify(app.state)
+    ? ''
+    : 'The time response shown is for an earlier design or road; run it again for the current one.';
 }
 
 function stamp() {

@@ -118,9 +118,9 @@ export class ObjectivePlane {
     const hp = this.ratio ? [rc.bacc / dh.bacc, rc.dtl / dh.dtl] : [rc.bacc, rc.dtl];
     this.base.marker(hp[0], hp[1], 'diamond', '#fff', COL.hifi, 5);
     this.base.marker(d[0], d[1], 'square', COL.datum, '#000', 8);
-    legend.push({ label: 'min-max pick (LoFi)', colour: COL.pick, kind: 'marker', stroke: '#000' });
-    legend.push({ label: 'pick re-checked (HiFi)', colour: '#fff', kind: 'marker', stroke: COL.hifi });
-    legend.push({ label: 'datum', colour: '#fff', kind: 'marker', stroke: '#000' });
+    legend.push({ label: 'min-max pick (LoFi)', colour: COL.pick, kind: 'marker', shape: 'diamond', stroke: '#000' });
+    legend.push({ label: 'pick re-checked (HiFi)', colour: '#fff', kind: 'marker', shape: 'diamond', stroke: COL.hifi });
+    legend.push({ label: 'datum', colour: '#fff', kind: 'marker', shape: 'square', stroke: '#000' });
     legend.push({ label: 'current design', colour: '#000', kind: 'marker', stroke: '#fff' });
     this.base.end();
     this.base.legend(legend);

@@ -226,8 +226,17 @@ export class Plot {
         g.lineTo(x0 + fs * 1.8, y);
         g.stroke();
       } else {
+        const cx = x0 + fs * 1.1;
+        const r = it.kind === 'dot' ? 2 : fs * 0.35;
         g.beginPath();
-        g.arc(x0 + fs * 1.1, y, it.kind === 'dot' ? 2 : fs * 0.35, 0, 2 * Math.PI);
+        if (it.shape === 'square') g.rect(cx - r, y - r, 2 * r, 2 * r);
+        else if (it.shape === 'diamond') {
+          g.moveTo(cx, y - r * 1.3);
+          g.lineTo(cx + r * 1.3, y);
+          g.lineTo(cx, y + r * 1.3);
+          g.lineTo(cx - r * 1.3, y);
+          g.closePath();
+        } else g.arc(cx, y, r, 0, 2 * Math.PI);
         g.fill();
         if (it.stroke) {
           g.strokeStyle = it.stroke;
