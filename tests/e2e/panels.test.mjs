@@ -367,3 +367,46 @@ test('HiDPI and large type: the new charts are sized in device pixels and redraw
   assertClean(log);
   await context.close();
 });
+
+test('front, spectra, timeResponse: bad arguments name the field; front timing', { timeout: TIMEOUT }, async (t) => {
+  const { page, context, log } = await open();
+  const r = await page.evaluate(() => {
+    const a = window.__ridelab;
+    const s = a.state;
+    const err = (f) => {
+      try {
+        f();
+        return null;
+      } catch (e) {
+        return { message: e.message, field: e.field };
+      }
+    };
+    const times = [];
+    for (let i = 0; i < 15; i++) {
+      const t0 = performance.now();
+      a.api.front({ ...s, swsLimit: 0.007 + 0.0002 * i }, 'stm');
+      times.push(performance.now() - t0);
+    }
+    return {
+      method: err(() => a.api.front(s, 'simplex')),
+      nfreq: err(() => a.api.spectra(s, 1)),
+      dt: err(() => a.api.timeResponse(s, { dt: 0.5 })),
+      asym: err(() => a.api.timeResponse(s, { asymmetric: [-1, 2] })),
+      unknown: err(() => a.api.front({ ...s, bogus: 1 }, 'stm')),
+      classC: err(() => a.api.front({ ...s, class: 'C' }, 'stm')),
+      times,
+    };
+  });
+  assert.equal(r.method.field, 'method');
+  assert.equal(r.nfreq.field, 'nfreq');
+  assert.equal(r.dt.field, 'dt');
+  assert.equal(r.asym.field, 'asymmetric');
+  assert.equal(r.unknown.field, 'state');
+  assert.equal(r.classC.field, 'swsLimit', `class C: ${r.classC.message}`);
+  const pct = p95(r.times);
+  t.diagnostic(`wasm front(state, "stm") on the LoFi (61 x 61, 2 levels, + pick + HiFi re-check): p95 ${pct.toFixed(1)} ms over 15 SWS limits`);
+  console.log(`front(stm) wasm call p95 ${pct.toFixed(1)} ms`);
+  assert.ok(pct < 200, 'the LoFi front stays fast');
+  assertClean(log);
+  await context.close();
+});
