@@ -16,6 +16,7 @@ import { encodeHash, decodeHash } from './urlstate.js';
 import { MapView, CRITERIA } from './mapview.js';
 import { renderCriteria, feasibilityText, routeNote, renderProps, renderModes } from './readout.js';
 import { fmt, fmtInput, parseNumber } from './format.js';
+import { ObjectivePlane, SpectraPanel, TimePanel, download, mapsCsv, frontCsv, canvasPng } from './panels.js';
 
 /** LoFi map resolution (cells); the image is scaled smoothly onto the plot. */
 const GRID = { nx: 240, ny: 180 };
@@ -28,7 +29,11 @@ const CLASS_WORDS = {
 /** The input element of each state field (the engine's error `field`). */
 const FIELD_INPUT = {
   ks: 'ks-num', cs: 'cs-num', speed: 'speed', class: 'class', tracks: 'tracks', swsLimit: 'sws-limit', car: 'car',
+  tpSeed: 'tp-seed', tpBump: 'tp-bump', tpRebound: 'tp-rebound', session: 'session-load',
 };
+
+/** Frequencies of the FRF / PSD plots (log spaced, 0.1..100 Hz). */
+const NFREQ = 240;
 
 const $ = (id) => document.getElementById(id);
 
@@ -48,6 +53,16 @@ const app = {
   /** HiFi reports and the state keys they belong to (may lag the state). */
   hifi: { design: null, datum: null, key: '', datumKey: '' },
   maps: null,
+  /** The LoFi STM front study of the current scenario (`{error}` when none is feasible). */
+  front: null,
+  /** The NSGA-II study, when asked for. */
+  nsga: null,
+  /** FRFs and PSDs of the current design; the time response, when run. */
+  spectra: null,
+  time: null,
+  /** Times (performance.now) the objective plane's front was last drawn, and how often. */
+  frontDrawnAt: 0,
+  frontDraws: 0,
   views: [],
   bad: new Set(),
   /** The last custom car that was loaded: {json, ks, cs}. */
@@ -130,7 +145,14 @@ async function computeScenario(s) {
     app.engine.call('analyse', s, 'quarter'),
     app.engine.call('lofiMaps', s, GRID.nx, GRID.ny),
   ]);
-  return { desc, lofi: { datum, design }, maps };
+  let front;
+  try {
+    front = await app.engine.call('front', s, 'stm');
+  } catch (e) {
+    // Not a bad input (the state passed describe): no feasible design, or a numerical failure.
+    front = { error: e.message || String(e) };
+  }
+  return { desc, lofi: { datum, design }, maps, front, nsga: null };
 }
 
 /** All updates run one after another; each reads the state when it starts. */
@@ -249,7 +271,55 @@ function renderScenario() {
     status.className = 'status good';
   }
   $('speed-kmh').textContent = `= ${fmt(state.speed * 3.6, 3)} km/h`;
+  app.objPlane.drawBase();
+  app.frontDrawnAt = performance.now();
+  app.frontDraws++;
+  if (app.view.nsga) requestNsga();
   renderDesign();
+}
+
+/** The NSGA-II front of the current scenario, from the worker. */
+function requestNsga() {
+  const s = app.state;
+  const scen = (st) => JSON.stringify({ ...st, ks: 0, cs: 0 });
+  const key = scen(s);
+  $('op-status').textContent = 'NSGA-II running…';
+  app.pending++;
+  app.hifiEngine
+    .call('front', s, 'nsga2')
+    .catch((e) => ({ error: e.message || String(e) }))
+    .then((r) => {
+      if (key !== scen(app.state)) return; // the scenario changed meanwhile
+      app.nsga = r;
+      $('op-status').textContent = r.error
+        ? `NSGA-II: ${r.error}`
+        : `NSGA-II (population 60, 60 generations, seed 1): ${r.study.front.length} points, hypervolume ${fmt(r.study.hypervolume, 4)} vs STM ${app.front && !app.front.error ? fmt(app.front.study.hypervolume, 4) : '–'} (each against its own reference point).`;
+      app.objPlane.drawBase();
+    })
+    .finally(() => app.pending--);
+}
+
+/** FRFs and PSDs of the current design (both models, worker), debounced. */
+let spectraTimer = null;
+const spectraRun = latestOnly((s) => app.hifiEngine.call('spectra', s, NFREQ).then((r) => ({ s, r })));
+function requestSpectra() {
+  clearTimeout(spectraTimer);
+  if (!spectraTimer) app.pending++;
+  spectraTimer = setTimeout(() => {
+    spectraTimer = null;
+    const s = app.state;
+    spectraRun(s)
+      .then((out) => {
+        if (!out || out.s !== app.state) return;
+        app.spectra = out.r;
+        app.spectraPanel.draw(out.r);
+        $('sp-status').textContent = `Ks ${fmt(s.ks / 1000, 4)} kN/m, Cs ${fmt(s.cs / 1000, 4)} kNs/m`;
+      })
+      .catch((e) => {
+        $('sp-status').textContent = `Spectra failed: ${e.message || e}`;
+      })
+      .finally(() => app.pending--);
+  }, 60);
 }
 
 function renderDesign() {
@@ -262,6 +332,9 @@ function renderDesign() {
     const k = v.crit.key;
     v.setMarkers({ ks: state.ks, cs: state.cs }, d, MapView.caption(v.crit, lofi.design[k], lofi.datum[k], app.view.scale));
   }
+  app.objPlane.drawOverlay();
+  requestSpectra();
+  renderTimeStale();
   renderHifi();
   syncInputs();
   scheduleUrl();
@@ -404,7 +477,15 @@ function applyLarge() {
       v.drawBase();
       v.drawOverlay();
     }
+    redrawPanels();
   });
+}
+
+function redrawPanels() {
+  if (!app.state) return;
+  app.objPlane.drawBase();
+  if (app.spectra) app.spectraPanel.draw(app.spectra);
+  if (app.time) app.timePanel.draw(app.time);
 }
 
 function wire() {
@@ -471,13 +552,138 @@ function wire() {
     setTimeout(() => (btn.textContent = 'Copy link'), 2000);
   });
   $('banner-close').addEventListener('click', () => banner(''));
+  wirePanels();
   window.addEventListener('hashchange', () => {
     if (location.hash === lastHash) return;
     enqueue(async () => applyLoaded(await loadFromHash(location.hash)));
   });
   matchMedia(`(resolution: ${window.devicePixelRatio}dppx)`).addEventListener('change', () => {
     for (const v of app.views) v.resize();
+    redrawPanels();
   });
+  let resizeTimer = null;
+  window.addEventListener('resize', () => {
+    clearTimeout(resizeTimer);
+    resizeTimer = setTimeout(redrawPanels, 150);
+  });
+}
+
+/** A number field of the time panel: `{value}` (undefined when empty and `optional`) or null after a message. */
+function readField(id, field, { optional = false, integer = false, min = 0 } = {}) {
+  const text = $(id).value.trim();
+  if (optional && text === '') {
+    setMsg(field, '');
+    return { value: undefined };
+  }
+  const p = parseNumber(text);
+  if (p.error) {
+    setMsg(field, p.error);
+    return null;
+  }
+  if (integer && !(Number.isInteger(p.value) && p.value >= 0 && p.value <= 2 ** 32)) {
+    setMsg(field, 'must be a whole number ≥ 0');
+    return null;
+  }
+  if (!integer && !(p.value > min)) {
+    setMsg(field, `must be > ${min}`);
+    return null;
+  }
+  setMsg(field, '');
+  return p;
+}
+
+async function runTime() {
+  const seed = readField('tp-seed', 'tpSeed', { integer: true });
+  const bump = readField('tp-bump', 'tpBump', { optional: true });
+  const rebound = readField('tp-rebound', 'tpRebound', { optional: true });
+  if (!seed || !bump || !rebound) return;
+  if ((bump.value === undefined) !== (rebound.value === undefined)) {
+    setMsg(bump.value === undefined ? 'tpBump' : 'tpRebound', 'give both bump and rebound, or neither');
+    return;
+  }
+  const opts = { duration: 10, dt: 0.001, seed: seed.value, f_min: 0.1, f_max: 200, decimate: 10 };
+  if (bump.value !== undefined) opts.asymmetric = [bump.value * 1000, rebound.value * 1000];
+  const status = $('tp-status');
+  status.textContent = 'Simulating…';
+  $('tp-run').disabled = true;
+  app.pending++;
+  const t0 = performance.now();
+  try {
+    const s = app.state;
+    const r = await app.hifiEngine.call('timeResponse', s, opts);
+    app.time = r;
+    app.timeKey = JSON.stringify(s);
+    $('tp-charts').hidden = false;
+    app.timePanel.draw(r);
+    renderTimeStale();
+    $('tp-play').disabled = false;
+    status.textContent = `Done in ${fmt(performance.now() - t0, 3)} ms (${opts.asymmetric ? `asymmetric damper ${fmt(bump.value, 3)} / ${fmt(rebound.value, 3)} kNs/m` : 'linear damper'}, seed ${seed.value}).`;
+  } catch (e) {
+    status.textContent = `The time response failed: ${e.message || e}`;
+  } finally {
+    $('tp-run').disabled = false;
+    app.pending--;
+  }
+}
+
+/** Says when the time response shown belongs to an earlier design or scenario. */
+function renderTimeStale() {
+  const el = $('tp-stale');
+  if (!app.time) {
+    el.textContent = 'Press "Run time response" to simulate the current design.';
+    return;
+  }
+  el.textContent = app.timeKey === JSON.stringify(app.state)
+    ? ''
+    : 'The time response shown is for an earlier design or road; run it again for the current one.';
+}
+
+function stamp() {
+  return `${app.state.car}-${app.state.class}-${app.state.speed}ms`;
+}
+
+function wirePanels() {
+  $('op-scale').addEventListener('change', (ev) => {
+    app.objPlane.ratio = ev.target.value === 'ratio';
+    app.objPlane.drawBase();
+  });
+  $('op-nsga').addEventListener('click', () => {
+    app.view.nsga = true;
+    requestNsga();
+  });
+  $('op-png').addEventListener('click', () => canvasPng(`ridelab-objective-${stamp()}.png`, $('op-base'), $('op-overlay')));
+  const fcsv = () => download(`ridelab-front-${stamp()}.csv`, new Blob([frontCsv(app)], { type: 'text/csv' }));
+  $('front-csv').addEventListener('click', fcsv);
+  $('front-csv2').addEventListener('click', fcsv);
+  $('maps-csv').addEventListener('click', () => download(`ridelab-lofi-maps-${stamp()}.csv`, new Blob([mapsCsv(app)], { type: 'text/csv' })));
+  $('png-all').addEventListener('click', () => {
+    canvasPng(`ridelab-objective-${stamp()}.png`, $('op-base'), $('op-overlay'));
+    for (const c of document.querySelectorAll('.spectra canvas, .timep canvas')) canvasPng(`ridelab-${c.id}-${stamp()}.png`, c);
+    for (const v of app.views) canvasPng(`ridelab-map-${v.crit.key}-${stamp()}.png`, v.base, v.overlay);
+  });
+  $('session-save').addEventListener('click', () => {
+    const session = { ridelab: 'session', version: 1, state: app.state, view: { scale: app.view.scale, large: app.view.large } };
+    download(`ridelab-session-${stamp()}.json`, new Blob([JSON.stringify(session, null, 2)], { type: 'application/json' }));
+  });
+  $('session-load').addEventListener('change', async (ev) => {
+    const file = ev.target.files && ev.target.files[0];
+    if (!file) return;
+    ev.target.value = '';
+    let session;
+    try {
+      session = JSON.parse(await file.text());
+      if (!session || session.ridelab !== 'session' || typeof session.state !== 'object') throw new Error('not a RideLab session file');
+      await app.engine.call('checkState', session.state);
+    } catch (e) {
+      setMsg('session', `${file.name}: ${e.message || e}`);
+      return;
+    }
+    setMsg('session', '');
+    const view = { scale: session.view?.scale === 'rel' ? 'rel' : 'abs', large: !!session.view?.large };
+    await enqueue(async () => applyLoaded({ state: { ...session.state }, view }));
+  });
+  $('tp-run').addEventListener('click', runTime);
+  $('tp-play').addEventListener('click', () => app.timePanel.toggle());
 }
 
 function buildSelects() {
@@ -527,6 +733,9 @@ async function main() {
     return;
   }
   buildSelects();
+  app.objPlane = new ObjectivePlane(app);
+  app.spectraPanel = new SpectraPanel();
+  app.timePanel = new TimePanel(app);
   const grid = $('map-grid');
   app.views = CRITERIA.map((c) => new MapView(grid, c, (ks, cs) => {
     changeDesign(Math.round(ks / 10) * 10, Math.round(cs / 5) * 5, 'ks');

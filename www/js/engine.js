@@ -6,7 +6,7 @@
 /** The wasm API functions the page calls (also the worker's whitelist). */
 export const METHODS = [
   'version', 'defaultState', 'presets', 'roadClasses', 'parseCar', 'checkState',
-  'describe', 'evaluate', 'analyse', 'criteria', 'lofiMap', 'lofiMaps',
+  'describe', 'evaluate', 'analyse', 'criteria', 'lofiMap', 'lofiMaps', 'front', 'spectra', 'timeResponse',
 ];
 
 /** Turns anything thrown into `{message, field}`. */

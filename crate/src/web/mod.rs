@@ -9,8 +9,10 @@
 //! `{car, carJson?, ks, cs, class, speed, tracks, ksMin?, ksMax?, csMin?, csMax?, swsLimit?}`.
 
 mod state;
+mod studies;
 
 pub use state::{lofi_map, LoFiMap, Scenario, State, MAX_GRID, STATE_FIELDS};
+pub use studies::{lofi_front, spectra, time_response, FrontResult, Spectra, TimeResult};
 
 use crate::analysis::{report, ModelKind};
 use crate::car::{Car, PRESETS};
@@ -287,4 +289,36 @@ pub fn lofi_maps_js(state: JsValue, nx: usize, ny: usize) -> Result<JsValue, JsV
     )?;
     Reflect::set(&out, &"feasibleCount".into(), &(count as f64).into())?;
     Ok(out.into())
+}
+
+/// The Pareto front of BAcc and DTL on the LoFi model (`method`: "stm", a 61 x 61 grid
+/// refined twice, or "nsga2", seeded, 60 x 60), its hypervolume, the min-max pick and
+/// the pick re-checked on the HiFi model: `{study: {front, hypervolume, referencePoint,
+/// pick, evaluations, ..}, datum, datumHifi, recheck}`. With no feasible design the
+/// error names the binding objective.
+#[wasm_bindgen]
+pub fn front(state: JsValue, method: &str) -> Result<JsValue, JsValue> {
+    let s = scenario(state)?;
+    to_js(&lofi_front(&s, method).map_err(js_error)?)
+}
+
+/// |H| from road displacement and the output PSDs of the design by both models at
+/// `nfreq` log-spaced frequencies from 0.1 to 100 Hz: `{f, lofi: {frf, psd}, hifi}`,
+/// each `[bacc, dtl, sws]` (1/s^2, N/m, m/m; (m/s^2)^2/Hz, N^2/Hz, m^2/Hz).
+#[wasm_bindgen(js_name = spectra)]
+pub fn spectra_js(state: JsValue, nfreq: usize) -> Result<JsValue, JsValue> {
+    let s = scenario(state)?;
+    to_js(&spectra(&s, nfreq).map_err(js_error)?)
+}
+
+/// Seeded time responses of the design by both models: `options` is
+/// `{duration, dt, seed, f_min, f_max, asymmetric: [bump, rebound] | null, decimate}`
+/// (s, s, -, Hz, Hz, N s/m, -; missing fields take the core defaults). Returns
+/// `{lofi, hifi, a, b}` with `{t, road, outputs, positions, rms}` each.
+#[wasm_bindgen(js_name = timeResponse)]
+pub fn time_response_js(state: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
+    let s = scenario(state)?;
+    let opt: crate::time_domain::TimeOptions = serde_wasm_bindgen::from_value(options)
+        .map_err(|e| state_error(format!("time options: {e}")))?;
+    to_js(&time_response(&s, &opt).map_err(js_error)?)
 }

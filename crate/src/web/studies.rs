@@ -1,0 +1,164 @@
+//! Front, spectra and time-response exports for the page's objective plane, FRF/PSD
+//! plots and time panel. Thin wrappers over `optimize`, `criteria::Spectrum` and
+//! `time_domain`; nothing here touches the DOM (the HiFi ones run in the worker).
+
+use super::state::Scenario;
+use crate::analysis::ModelKind;
+use crate::error::{Result, RideError};
+use crate::evaluate::{Criteria, Evaluator};
+use crate::optimize::{
+    minmax::{recheck, Recheck},
+    nsga2::Nsga2Params,
+    stm::StmParams,
+    study::{run_study, Method, Study},
+    suspension::SuspensionProblem,
+};
+use crate::time_domain::{simulate, TimeOptions, TimeResponse};
+use crate::HiFi;
+use serde::Serialize;
+
+/// STM grid of the page's LoFi front (a few ms).
+pub const STM_GRID: usize = 61;
+/// STM refinement levels of the page's LoFi front.
+pub const STM_LEVELS: usize = 2;
+
+/// The page's front method: "stm" (space transformation) or "nsga2" (seeded NSGA-II).
+pub fn method(name: &str) -> Result<Method> {
+    match name {
+        "stm" => Ok(Method::Stm(StmParams {
+            grid: STM_GRID,
+            levels: STM_LEVELS,
+        })),
+        "nsga2" => Ok(Method::Nsga2(Nsga2Params {
+            population: 60,
+            generations: 60,
+            seed: 1,
+            ..Nsga2Params::default()
+        })),
+        _ => Err(RideError::field(
+            "method",
+            format!("'{name}' is not 'stm' or 'nsga2'"),
+        )),
+    }
+}
+
+/// A LoFi front with its pick re-checked on the HiFi model.
+#[derive(Debug, Clone, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct FrontResult {
+    /// The study on the LoFi model.
+    pub study: Study,
+    /// The datum car's LoFi criteria (the normalisation of the ratios).
+    pub datum: Criteria,
+    /// The datum car's HiFi criteria.
+    pub datum_hifi: Criteria,
+    /// The pick re-evaluated on the HiFi model.
+    pub recheck: Recheck,
+}
+
+/// Runs `method` on the LoFi model of `s` and re-checks the pick on the HiFi model.
+pub fn lofi_front(s: &Scenario, method_name: &str) -> Result<FrontResult> {
+    let m = method(method_name)?;
+    let ctx = s.lofi_dos_context()?;
+    let datum = ctx.datum;
+    let problem = SuspensionProblem::new(s.lofi(), s.dbox, s.objectives.clone(), ctx)?;
+    let study = run_study(&problem, &m, None)?;
+    let hifi = HiFi::new(&s.datum, &s.road)?;
+    let datum_hifi = hifi.evaluate(s.datum.front.spring, s.datum.front.damper)?;
+    let recheck = recheck(&study.pick, &hifi, &datum_hifi)?;
+    Ok(FrontResult {
+        study,
+        datum,
+        datum_hifi,
+        recheck,
+    })
+}
+
+/// FRF magnitudes and output PSDs of one model on a log frequency grid.
+#[derive(Debug, Clone, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct ModelSpectra {
+    /// |H| from road displacement (right track / correlated source) of
+    /// `[BAcc 1/s^2, DTL N/m, SWS m/m]`, one vector per output.
+    pub frf: [Vec<f64>; 3],
+    /// One-sided output PSDs `[(m/s^2)^2/Hz, N^2/Hz, m^2/Hz]`, one vector per output.
+    pub psd: [Vec<f64>; 3],
+}
+
+/// Spectra of the design by the LoFi and HiFi models at `nfreq` log-spaced frequencies.
+#[derive(Debug, Clone, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct Spectra {
+    /// Frequencies, Hz (0.1..100, log spaced).
+    pub f: Vec<f64>,
+    /// Quarter car.
+    pub lofi: ModelSpectra,
+    /// Full car.
+    pub hifi: ModelSpectra,
+}
+
+fn model_spectra(kind: ModelKind, s: &Scenario, f: &[f64]) -> Result<ModelSpectra> {
+    let model = kind.build(&s.design);
+    let sp = crate::criteria::Spectrum::new(&model, &s.road)?;
+    let mut out = ModelSpectra {
+        frf: Default::default(),
+        psd: Default::default(),
+    };
+    for &fi in f {
+        let omega = 2.0 * std::f64::consts::PI * fi;
+        let h = sp.displacement_transfer(0, omega);
+        let p = sp.psd(fi);
+        for o in 0..3 {
+            out.frf[o].push(h[o].norm());
+            out.psd[o].push(p[o]);
+        }
+    }
+    Ok(out)
+}
+
+/// Largest frequency count of [`spectra`].
+pub const MAX_NFREQ: usize = 4000;
+
+/// FRFs and PSDs of the design (0.1..100 Hz, `nfreq` log-spaced points).
+pub fn spectra(s: &Scenario, nfreq: usize) -> Result<Spectra> {
+    if !(2..=MAX_NFREQ).contains(&nfreq) {
+        return Err(RideError::field(
+            "nfreq",
+            format!("must be 2..{MAX_NFREQ} (got {nfreq})"),
+        ));
+    }
+    let f: Vec<f64> = (0..nfreq)
+        .map(|i| 0.1 * 1000f64.powf(i as f64 / (nfreq - 1) as f64))
+        .collect();
+    Ok(Spectra {
+        lofi: model_spectra(ModelKind::Quarter, s, &f)?,
+        hifi: model_spectra(ModelKind::Full, s, &f)?,
+        f,
+    })
+}
+
+/// Time responses of the design by both models on the same seeded road.
+#[derive(Debug, Clone, Serialize)]
+#[serde(rename_all = "camelCase")]
+pub struct TimeResult {
+    /// Quarter car (positions: zs, zu).
+    pub lofi: TimeResponse,
+    /// Full car (positions: z, theta, phi, zu1..zu4).
+    pub hifi: TimeResponse,
+    /// Front axle to CG, m.
+    pub a: f64,
+    /// Rear axle to CG, m.
+    pub b: f64,
+}
+
+/// Simulates the design with both models.
+pub fn time_response(s: &Scenario, opt: &TimeOptions) -> Result<TimeResult> {
+    let lofi = simulate(&ModelKind::Quarter.build(&s.design), &s.road, opt)?;
+    let hifi = simulate(&ModelKind::Full.build(&s.design), &s.road, opt)?;
+    Ok(TimeResult {
+        lofi,
+        hifi,
+        a: s.design.a,
+        b: s.design.b,
+    })
+}
