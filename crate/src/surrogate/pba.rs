@@ -51,26 +51,6 @@ impl Scaling {
             .join("-")
     }
 
-    /// Parses a name made by [`Scaling::name`] (tokens in order, at least one).
-    pub fn parse(s: &str) -> Option<Scaling> {
-        let mut flags = [false; 3];
-        let mut next = 0;
-        for token in s.split('-') {
-            let i = Scaling::TOKENS[next..]
-                .iter()
-                .position(|(t, _)| *t == token)?
-                + next;
-            flags[i] = true;
-            next = i + 1;
-        }
-        let [sprung, unsprung, tyre] = flags;
-        Some(Scaling {
-            sprung,
-            unsprung,
-            tyre,
-        })
-    }
-
     /// Every non-empty combination, for name lists and the study.
     pub fn all() -> Vec<Scaling> {
         (1..8u8)
