@@ -15,6 +15,7 @@ pub mod model;
 pub mod modes;
 pub mod optimize;
 pub mod road;
+pub mod surrogate;
 pub mod time_domain;
 #[cfg(target_arch = "wasm32")]
 pub mod web;

@@ -1,0 +1,369 @@
+//! Names of surrogates and sampling plans, as the CLI and the page write them, and the
+//! dispatch from a parsed name to the fit.
+//!
+//! Surrogates: `rba-{mul|add}-{poly1|poly2|rbf-gauss|rbf-mq|rbf-tps}`, `vba-{lts|mts|qts}`,
+//! `pba-{smts|umts|kt, joined in that order}`, `data-{quad|lin|rbf-gauss|rbf-mq|rbf-tps}`;
+//! `rbf` alone means `rbf-gauss`. A `-per-criterion` suffix asks for one tuning per
+//! criterion; without it the tuning is shared where the approach allows (VBA, PBA and the
+//! multiplicative polynomial RBA), and per criterion otherwise.
+//! Plans: `ae:N` (Audze-Eglais, N points), `grid:n` (n x n full factorial).
+
+use super::datafit::DataFitParams;
+use super::fit::LmOptions;
+use super::pba::{PbaParams, Scaling};
+use super::rba::{Form, RbaParams};
+use super::response::{Kernel, ResponseKind};
+use super::vba::{Transform, VbaParams};
+use super::{Sample, Scheme, Setting, Surrogate, SurrogateParams};
+use crate::doe::{audze_eglais, full_factorial, Plan};
+use crate::error::{Result, RideError};
+use serde::{Deserialize, Serialize};
+
+/// Suffix that selects the per-criterion scheme.
+const PER_CRITERION: &str = "-per-criterion";
+
+/// Seed of the Audze-Eglais heuristic (unused up to the tabulated 14 points).
+const AE_SEED: u64 = 1;
+
+/// The surrogate approaches (METHOD.md section 5).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Approach {
+    /// Response-based correction of the LoFi output.
+    Rba {
+        /// Multiplicative or additive.
+        form: Form,
+        /// Polynomial or RBF correction.
+        response: ResponseKind,
+    },
+    /// Variable-based: transformed design variables.
+    Vba(Transform),
+    /// Parameter-based: scaled LoFi parameters.
+    Pba(Scaling),
+    /// Data fit on the HiFi samples alone (baseline).
+    Data(ResponseKind),
+}
+
+impl Approach {
+    /// Every approach the names can express, in the study's order.
+    pub fn all() -> Vec<Approach> {
+        let responses: Vec<ResponseKind> = [ResponseKind::Poly(1), ResponseKind::Poly(2)]
+            .into_iter()
+            .chain(Kernel::ALL.iter().map(|&(k, _)| ResponseKind::Rbf(k)))
+            .collect();
+        let mut all: Vec<Approach> = [Form::Multiplicative, Form::Additive]
+            .into_iter()
+            .flat_map(|form| {
+                responses
+                    .iter()
+                    .map(move |&response| Approach::Rba { form, response })
+            })
+            .collect();
+        all.extend(Transform::ALL.iter().map(|&(t, _)| Approach::Vba(t)));
+        all.extend(Scaling::all().into_iter().map(Approach::Pba));
+        all.extend(responses.iter().map(|&r| Approach::Data(r)));
+        all
+    }
+
+    /// Whether one tuning can serve all three criteria.
+    pub fn shareable(self) -> bool {
+        match self {
+            Approach::Rba { form, response } => form.shareable(response),
+            Approach::Vba(_) | Approach::Pba(_) => true,
+            Approach::Data(_) => false,
+        }
+    }
+
+    /// The name without scheme suffix, e.g. "rba-mul-poly2", "pba-smts-umts", "data-quad".
+    pub fn name(self) -> String {
+        match self {
+            Approach::Rba { form, response } => format!("rba-{}-{}", form.name(), response.name()),
+            Approach::Vba(t) => format!("vba-{}", t.name()),
+            Approach::Pba(s) => format!("pba-{}", s.name()),
+            Approach::Data(ResponseKind::Poly(2)) => "data-quad".into(),
+            Approach::Data(ResponseKind::Poly(_)) => "data-lin".into(),
+            Approach::Data(r) => format!("data-{}", r.name()),
+        }
+    }
+
+    /// Parses a name made by [`Approach::name`]; `rbf` alone means `rbf-gauss`.
+    fn parse(s: &str) -> Option<Approach> {
+        let s = match s.strip_suffix("-rbf") {
+            Some(head) => format!("{head}-rbf-gauss"),
+            None => s.to_string(),
+        };
+        Approach::all().into_iter().find(|a| a.name() == s)
+    }
+}
+
+/// A surrogate to fit: approach and scheme.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SurrogateSpec {
+    /// The approach.
+    pub approach: Approach,
+    /// Shared or per-criterion tuning.
+    pub scheme: Scheme,
+}
+
+impl SurrogateSpec {
+    /// Parses a surrogate name (see the module doc). Unknown names give an error naming
+    /// `approach` that lists the valid names.
+    pub fn parse(name: &str) -> Result<SurrogateSpec> {
+        let lower = name.trim().to_ascii_lowercase();
+        let (base, per) = match lower.strip_suffix(PER_CRITERION) {
+            Some(b) => (b, true),
+            None => (lower.as_str(), false),
+        };
+        let approach = Approach::parse(base).ok_or_else(|| {
+            let valid: Vec<String> = Approach::all().into_iter().map(Approach::name).collect();
+            RideError::field(
+                "approach",
+                format!(
+                    "'{name}' is not a surrogate; valid: {} (optionally with '{PER_CRITERION}'; 'rbf' means 'rbf-gauss')",
+                    valid.join(", ")
+                ),
+            )
+        })?;
+        let scheme = if per || !approach.shareable() {
+            Scheme::PerCriterion
+        } else {
+            Scheme::Shared
+        };
+        Ok(SurrogateSpec { approach, scheme })
+    }
+
+    /// Canonical name: the approach, plus `-per-criterion` where the approach could be shared.
+    pub fn name(&self) -> String {
+        let suffix = if self.scheme == Scheme::PerCriterion && self.approach.shareable() {
+            PER_CRITERION
+        } else {
+            ""
+        };
+        format!("{}{suffix}", self.approach.name())
+    }
+
+    /// Every approach with every scheme it offers, in the study's order.
+    pub fn all() -> Vec<SurrogateSpec> {
+        Approach::all()
+            .into_iter()
+            .flat_map(|approach| {
+                let schemes: &[Scheme] = if approach.shareable() {
+                    &[Scheme::Shared, Scheme::PerCriterion]
+                } else {
+                    &[Scheme::PerCriterion]
+                };
+                schemes
+                    .iter()
+                    .map(move |&scheme| SurrogateSpec { approach, scheme })
+            })
+            .collect()
+    }
+
+    /// Checks the spec against `samples` without fitting (errors name the field).
+    pub fn check(&self, samples: &[Sample]) -> Result<()> {
+        let options = LmOptions::default();
+        match self.approach {
+            Approach::Rba { form, response } => RbaParams {
+                form,
+                response,
+                scheme: self.scheme,
+            }
+            .check(samples),
+            Approach::Vba(transform) => VbaParams {
+                transform,
+                scheme: self.scheme,
+                options,
+            }
+            .check(samples),
+            Approach::Pba(scaling) => PbaParams {
+                scaling,
+                scheme: self.scheme,
+                options,
+            }
+            .check(samples),
+            Approach::Data(response) if self.scheme == Scheme::PerCriterion => {
+                DataFitParams { response }.check(samples)
+            }
+            Approach::Data(_) => Err(RideError::field(
+                "scheme",
+                "a data fit has one response per criterion",
+            )),
+        }
+    }
+
+    /// Checks, then fits with `options` for the Levenberg-Marquardt fits.
+    pub fn fit(
+        &self,
+        setting: &Setting,
+        samples: &[Sample],
+        options: &LmOptions,
+    ) -> Result<Box<dyn Surrogate>> {
+        self.check(samples)?;
+        let scheme = self.scheme;
+        Ok(match self.approach {
+            Approach::Rba { form, response } => Box::new(
+                RbaParams {
+                    form,
+                    response,
+                    scheme,
+                }
+                .fit(setting, samples)?,
+            ),
+            Approach::Vba(transform) => Box::new(
+                VbaParams {
+                    transform,
+                    scheme,
+                    options: *options,
+                }
+                .fit(setting, samples)?,
+            ),
+            Approach::Pba(scaling) => Box::new(
+                PbaParams {
+                    scaling,
+                    scheme,
+                    options: *options,
+                }
+                .fit(setting, samples)?,
+            ),
+            Approach::Data(response) => Box::new(DataFitParams { response }.fit(setting, samples)?),
+        })
+    }
+}
+
+/// A named sampling plan.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(tag = "kind", content = "n", rename_all = "kebab-case")]
+pub enum PlanSpec {
+    /// Audze-Eglais Latin hypercube of `n` points (`ae:n`).
+    AudzeEglais(usize),
+    /// `n x n` full factorial grid (`grid:n`).
+    Grid(usize),
+}
+
+impl PlanSpec {
+    /// The seed's study: Audze-Eglais with 2, 3, 4, 5 and 10 points, then the grids with
+    /// the same numbers of levels.
+    pub fn study() -> Vec<PlanSpec> {
+        let n = [2, 3, 4, 5, 10];
+        n.iter()
+            .map(|&n| PlanSpec::AudzeEglais(n))
+            .chain(n.iter().map(|&n| PlanSpec::Grid(n)))
+            .collect()
+    }
+
+    /// Parses `ae:N` or `grid:n`; errors name `plan`.
+    pub fn parse(s: &str) -> Result<PlanSpec> {
+        let bad = || {
+            RideError::field(
+                "plan",
+                format!("'{s}' is not a plan; write 'ae:N' (Audze-Eglais, N points) or 'grid:n' (n x n grid)"),
+            )
+        };
+        let lower = s.trim().to_ascii_lowercase();
+        let (kind, n) = lower.split_once(':').ok_or_else(bad)?;
+        let n: usize = n.trim().parse().map_err(|_| bad())?;
+        match kind.trim() {
+            "ae" => Ok(PlanSpec::AudzeEglais(n)),
+            "grid" => Ok(PlanSpec::Grid(n)),
+            _ => Err(bad()),
+        }
+    }
+
+    /// Name: `ae:N` or `grid:n`.
+    pub fn name(&self) -> String {
+        match self {
+            PlanSpec::AudzeEglais(n) => format!("ae:{n}"),
+            PlanSpec::Grid(n) => format!("grid:{n}"),
+        }
+    }
+
+    /// The plan on the unit square; errors (naming `plan`) for sizes the DOE refuses.
+    pub fn plan(&self) -> Result<Plan> {
+        match self {
+            PlanSpec::AudzeEglais(n) => audze_eglais(*n, AE_SEED),
+            PlanSpec::Grid(n) => full_factorial(*n),
+        }
+        .map_err(|e| RideError::field("plan", format!("{}: {e}", self.name())))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_and_defaults() {
+        for spec in SurrogateSpec::all() {
+            assert_eq!(
+                SurrogateSpec::parse(&spec.name()).unwrap(),
+                spec,
+                "{}",
+                spec.name()
+            );
+        }
+        let s = SurrogateSpec::parse("vba-qts").unwrap();
+        assert_eq!(
+            (s.approach, s.scheme),
+            (Approach::Vba(Transform::Qts), Scheme::Shared)
+        );
+        let s = SurrogateSpec::parse("PBA-SMTS-UMTS-KT-per-criterion").unwrap();
+        assert_eq!(s.scheme, Scheme::PerCriterion);
+        assert_eq!(s.name(), "pba-smts-umts-kt-per-criterion");
+        // Inherently per-criterion approaches take the suffix silently.
+        let a = SurrogateSpec::parse("rba-add-poly1").unwrap();
+        assert_eq!(
+            a,
+            SurrogateSpec::parse("rba-add-poly1-per-criterion").unwrap()
+        );
+        assert_eq!(a.name(), "rba-add-poly1");
+        assert_eq!(
+            SurrogateSpec::parse("data-rbf").unwrap().name(),
+            "data-rbf-gauss"
+        );
+        for name in [
+            "rba-mul-poly2",
+            "rba-mul-rbf-gauss",
+            "vba-lts",
+            "vba-mts",
+            "pba-smts",
+            "pba-umts",
+            "pba-smts-umts",
+            "data-quad",
+        ] {
+            assert_eq!(SurrogateSpec::parse(name).unwrap().name(), name);
+        }
+    }
+
+    #[test]
+    fn bad_names_list_the_valid_ones() {
+        for bad in [
+            "vba-cts",
+            "rba-mul-poly3",
+            "pba-umts-smts",
+            "pba",
+            "",
+            "data-quad-shared",
+        ] {
+            let e = SurrogateSpec::parse(bad).unwrap_err().to_string();
+            assert!(e.starts_with("approach: "), "{e}");
+            assert!(
+                e.contains("vba-qts") && e.contains("pba-smts-umts-kt"),
+                "{e}"
+            );
+        }
+        assert_eq!(PlanSpec::parse("ae:10").unwrap(), PlanSpec::AudzeEglais(10));
+        assert_eq!(PlanSpec::parse(" GRID:5 ").unwrap().name(), "grid:5");
+        for bad in ["ae", "lhs:4", "grid:x", "ae:-1"] {
+            assert!(PlanSpec::parse(bad)
+                .unwrap_err()
+                .to_string()
+                .starts_with("plan: "));
+        }
+        let e = PlanSpec::parse("ae:1")
+            .unwrap()
+            .plan()
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("plan: ae:1"), "{e}");
+    }
+}

@@ -1,0 +1,441 @@
+//! The fidelity study (METHOD.md sections 4 and 5): every approach x scheme x plan, each
+//! surrogate fitted to HiFi samples at the plan's points and validated on one `20 x 20` HiFi
+//! grid over the design box (evaluated once and reused), and the one-surrogate report the CLI
+//! prints.
+
+use super::fit::{FitDiagnostics, LmOptions};
+use super::metrics::{metrics_by_criterion, ByCriterion, ErrorMap, Metrics};
+use super::spec::{Approach, PlanSpec, SurrogateSpec};
+use super::{sample_plan, Parameter, Sample, Scheme, Setting};
+use crate::analysis::HiFi;
+use crate::car::{Car, QuarterCar};
+use crate::design::DesignBox;
+use crate::doe::full_factorial;
+use crate::error::{Result, RideError};
+use crate::evaluate::{Criteria, Evaluator, CRITERIA_NAMES};
+use crate::optimize::Counted;
+use crate::road::Road;
+use serde::Serialize;
+use std::fmt::Write;
+
+/// Levels per axis of the default validation grid (`20 x 20` points).
+pub const VALIDATION_LEVELS: usize = 20;
+
+/// HiFi values on an `n x n` grid over the design box, the common yardstick of surrogates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ValidationSet {
+    /// Levels per axis.
+    pub levels: usize,
+    /// Grid points `(ks N/m, cs N s/m)`, Ks level outer.
+    pub points: Vec<(f64, f64)>,
+    /// HiFi criteria at the points.
+    pub hifi: Vec<Criteria>,
+}
+
+impl ValidationSet {
+    /// Evaluates `hifi` on the `levels x levels` grid over `design_box`.
+    pub fn new<E: Evaluator>(hifi: &E, design_box: &DesignBox, levels: usize) -> Result<Self> {
+        let grid = full_factorial(levels)
+            .map_err(|e| RideError::field("validation-grid", e.to_string()))?;
+        let points: Vec<(f64, f64)> = grid
+            .unit
+            .iter()
+            .map(|p| design_box.scale(p[0], p[1]))
+            .collect();
+        let hifi = points
+            .iter()
+            .map(|&(ks, cs)| hifi.evaluate(ks, cs))
+            .collect::<Result<_>>()?;
+        Ok(ValidationSet {
+            levels,
+            points,
+            hifi,
+        })
+    }
+
+    /// The predictions of `model` at the points.
+    pub fn predict<E: Evaluator + ?Sized>(&self, model: &E) -> Result<Vec<Criteria>> {
+        self.points
+            .iter()
+            .map(|&(ks, cs)| model.evaluate(ks, cs))
+            .collect()
+    }
+
+    /// R^2, RMSE, MAE and RTE of `predicted` (at the points) per criterion.
+    pub fn metrics(&self, predicted: &[Criteria]) -> Result<ByCriterion<Metrics>> {
+        metrics_by_criterion(&self.hifi, predicted)
+    }
+}
+
+/// Surrogate and HiFi values on the validation grid (the error map's points).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GridPredictions {
+    /// Surrogate predictions.
+    pub surrogate: Vec<Criteria>,
+    /// HiFi values.
+    pub hifi: Vec<Criteria>,
+}
+
+/// What `ridelab surrogate` reports about one fitted surrogate.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SurrogateReport {
+    /// Canonical surrogate name.
+    pub surrogate: String,
+    /// Approach and scheme.
+    pub spec: SurrogateSpec,
+    /// Plan name (`ae:10`, `grid:5`).
+    pub plan: String,
+    /// How the plan was made.
+    pub plan_method: String,
+    /// Car name.
+    pub car: String,
+    /// Road scenario.
+    pub road: Road,
+    /// Design box of the plan, the normalisation and the validation grid.
+    pub design_box: DesignBox,
+    /// The HiFi samples the surrogate was fitted to.
+    pub samples: Vec<Sample>,
+    /// HiFi evaluations made: samples plus validation grid.
+    pub hifi_evaluations: usize,
+    /// Tuning parameters.
+    pub tuning: Vec<Parameter>,
+    /// One entry per fit.
+    pub diagnostics: Vec<FitDiagnostics>,
+    /// VBA and PBA: the tuned quarter car behind each criterion `[bacc, dtl, sws]` at the
+    /// car's own front design (its FRFs and modes can be drawn beside the HiFi's).
+    pub tuned_quarters: Option<[QuarterCar; 3]>,
+    /// Levels per axis of the validation grid.
+    pub validation_levels: usize,
+    /// Quality on the validation grid.
+    pub metrics: ByCriterion<Metrics>,
+    /// Signed relative error at each validation point, %.
+    pub error_map: ErrorMap,
+    /// Surrogate and HiFi values at the validation points, when asked for.
+    pub predictions: Option<GridPredictions>,
+}
+
+/// Fits the surrogate `approach` (e.g. `vba-qts`) to HiFi samples of `car` on `road` at
+/// `plan` (e.g. `ae:10`) over the default design box and validates it on the default
+/// `20 x 20` HiFi grid. `predict_grid = Some(n)` validates on an `n x n` grid instead and
+/// includes the predictions there. Errors name `approach`, `plan` or `predict-grid`.
+pub fn surrogate_report(
+    approach: &str,
+    plan: &str,
+    car: &Car,
+    road: &Road,
+    predict_grid: Option<usize>,
+) -> Result<SurrogateReport> {
+    let spec = SurrogateSpec::parse(approach)?;
+    let plan_spec = PlanSpec::parse(plan)?;
+    let design_box = DesignBox::default();
+    let setting = Setting::new(car, road, &design_box)?;
+    let hifi = Counted::new(HiFi::new(car, road)?);
+    let plan = plan_spec.plan()?;
+    let samples = sample_plan(&hifi, &plan, &design_box)?;
+    let model = spec.fit(&setting, &samples, &LmOptions::default())?;
+    let levels = predict_grid.unwrap_or(VALIDATION_LEVELS);
+    let validation = ValidationSet::new(&hifi, &design_box, levels).map_err(|e| match e {
+        RideError::Field { reason, .. } => RideError::field("predict-grid", reason),
+        e => e,
+    })?;
+    let predicted = validation.predict(&*model)?;
+    Ok(SurrogateReport {
+        surrogate: spec.name(),
+        spec,
+        plan: plan_spec.name(),
+        plan_method: plan.method,
+        car: car.name.clone(),
+        road: *road,
+        design_box,
+        samples,
+        hifi_evaluations: hifi.count(),
+        tuning: model.tuning(),
+        diagnostics: model.diagnostics(),
+        tuned_quarters: model.tuned_quarters(car.front.spring, car.front.damper)?,
+        validation_levels: levels,
+        metrics: validation.metrics(&predicted)?,
+        error_map: ErrorMap::new(&validation.points, &validation.hifi, &predicted),
+        predictions: predict_grid.map(|_| GridPredictions {
+            surrogate: predicted,
+            hifi: validation.hifi.clone(),
+        }),
+    })
+}
+
+/// The validation of one fitted surrogate of the study.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FittedRow {
+    /// Quality on the validation grid.
+    pub metrics: ByCriterion<Metrics>,
+    /// Largest max RTE over the criteria, %: the ranking measure.
+    pub worst_rte_max: f64,
+    /// Least R^2 over the criteria.
+    pub min_r2: f64,
+    /// Total fit cost over the fits (half the sum of squared relative errors at the samples).
+    pub cost: f64,
+    /// Whether every fit converged.
+    pub converged: bool,
+}
+
+/// Outcome of one study combination.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "status", rename_all = "lowercase")]
+pub enum Outcome {
+    /// Fitted and validated.
+    Fitted(FittedRow),
+    /// Not fitted (too few samples for the parameter count, or a failed fit), and why.
+    Skipped {
+        /// The reason.
+        reason: String,
+    },
+}
+
+/// One approach x scheme x plan of the study.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StudyRow {
+    /// Canonical surrogate name.
+    pub surrogate: String,
+    /// Scheme.
+    pub scheme: Scheme,
+    /// Plan name.
+    pub plan: String,
+    /// Number of HiFi samples of the plan.
+    pub samples: usize,
+    /// Result.
+    pub outcome: Outcome,
+}
+
+/// The best surrogate for one sample budget.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BudgetBest {
+    /// Number of HiFi samples.
+    pub samples: usize,
+    /// Surrogate name.
+    pub surrogate: String,
+    /// Plan name.
+    pub plan: String,
+    /// Its validation.
+    pub fitted: FittedRow,
+}
+
+/// The fidelity study's results.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StudyReport {
+    /// Car name.
+    pub car: String,
+    /// Road scenario.
+    pub road: Road,
+    /// Design box.
+    pub design_box: DesignBox,
+    /// Levels per axis of the validation grid.
+    pub validation_levels: usize,
+    /// HiFi evaluations made: every plan's samples plus the validation grid once.
+    pub hifi_evaluations: usize,
+    /// The untuned LoFi on the validation grid: the fidelity gap the surrogates close.
+    pub lofi: ByCriterion<Metrics>,
+    /// How the best surrogate of a budget is chosen.
+    pub ranking: String,
+    /// Every combination, by surrogate then plan.
+    pub rows: Vec<StudyRow>,
+    /// The best fitted surrogate for each number of samples, by increasing budget.
+    pub best_per_budget: Vec<BudgetBest>,
+}
+
+/// The surrogates of the study: every RBA variant, VBA and the PBA options of METHOD.md
+/// (SMTS, UMTS, both, both plus tyre rate), each in every scheme it offers, then the
+/// quadratic and RBF data fits.
+pub fn study_specs() -> Vec<SurrogateSpec> {
+    SurrogateSpec::all()
+        .into_iter()
+        .filter(|s| match s.approach {
+            Approach::Pba(p) => !p.tyre || (p.sprung && p.unsprung),
+            Approach::Data(r) => r != super::ResponseKind::Poly(1),
+            _ => true,
+        })
+        .collect()
+}
+
+/// Runs the study on `hifi` (wrap it in [`Counted`] to count its runs): the plans are sampled
+/// once each, every spec is fitted to every plan and validated on `validation`. A
+/// combination that cannot be fitted is a skipped row, not an error.
+pub fn fidelity_study<E: Evaluator>(
+    hifi: &E,
+    setting: &Setting,
+    specs: &[SurrogateSpec],
+    plans: &[PlanSpec],
+    validation: &ValidationSet,
+    options: &LmOptions,
+) -> Result<Vec<StudyRow>> {
+    let sampled = plans
+        .iter()
+        .map(|p| Ok((p, sample_plan(hifi, &p.plan()?, &setting.design_box)?)))
+        .collect::<Result<Vec<_>>>()?;
+    let mut rows = Vec::with_capacity(specs.len() * plans.len());
+    for spec in specs {
+        for (plan, samples) in &sampled {
+            let outcome = match validate(spec, setting, samples, validation, options) {
+                Ok(f) => Outcome::Fitted(f),
+                Err(e) => Outcome::Skipped {
+                    reason: e.to_string(),
+                },
+            };
+            rows.push(StudyRow {
+                surrogate: spec.name(),
+                scheme: spec.scheme,
+                plan: plan.name(),
+                samples: samples.len(),
+                outcome,
+            });
+        }
+    }
+    Ok(rows)
+}
+
+/// Fits `spec` to `samples` and validates it.
+fn validate(
+    spec: &SurrogateSpec,
+    setting: &Setting,
+    samples: &[Sample],
+    validation: &ValidationSet,
+    options: &LmOptions,
+) -> Result<FittedRow> {
+    let model = spec.fit(setting, samples, options)?;
+    let metrics = validation.metrics(&validation.predict(&*model)?)?;
+    let diagnostics = model.diagnostics();
+    let all = metrics.to_array();
+    Ok(FittedRow {
+        worst_rte_max: all.iter().map(|m| m.rte_max).fold(0.0, f64::max),
+        min_r2: all.iter().map(|m| m.r2).fold(f64::INFINITY, f64::min),
+        cost: diagnostics.iter().map(|d| d.cost).sum(),
+        converged: diagnostics.iter().all(|d| d.converged),
+        metrics,
+    })
+}
+
+/// For each sample budget, the fitted row with the least worst-case max RTE.
+pub fn best_per_budget(rows: &[StudyRow]) -> Vec<BudgetBest> {
+    let mut budgets: Vec<usize> = rows.iter().map(|r| r.samples).collect();
+    budgets.sort_unstable();
+    budgets.dedup();
+    budgets
+        .into_iter()
+        .filter_map(|n| {
+            rows.iter()
+                .filter(|r| r.samples == n)
+                .filter_map(|r| match &r.outcome {
+                    Outcome::Fitted(f) => Some((r, f)),
+                    Outcome::Skipped { .. } => None,
+                })
+                .min_by(|a, b| a.1.worst_rte_max.total_cmp(&b.1.worst_rte_max))
+                .map(|(r, f)| BudgetBest {
+                    samples: n,
+                    surrogate: r.surrogate.clone(),
+                    plan: r.plan.clone(),
+                    fitted: f.clone(),
+                })
+        })
+        .collect()
+}
+
+/// The whole study for `car` on `road`: the default design box, [`study_specs`], the plans
+/// of [`PlanSpec::study`], the `20 x 20` validation grid, default fit options.
+pub fn study(car: &Car, road: &Road) -> Result<StudyReport> {
+    let design_box = DesignBox::default();
+    let setting = Setting::new(car, road, &design_box)?;
+    let hifi = Counted::new(HiFi::new(car, road)?);
+    let validation = ValidationSet::new(&hifi, &design_box, VALIDATION_LEVELS)?;
+    let rows = fidelity_study(
+        &hifi,
+        &setting,
+        &study_specs(),
+        &PlanSpec::study(),
+        &validation,
+        &LmOptions::default(),
+    )?;
+    let lofi = validation.metrics(&validation.predict(&setting.lofi)?)?;
+    Ok(StudyReport {
+        car: car.name.clone(),
+        road: *road,
+        design_box,
+        validation_levels: VALIDATION_LEVELS,
+        hifi_evaluations: hifi.count(),
+        lofi,
+        ranking: "least worst-case max RTE over the three criteria".into(),
+        best_per_budget: best_per_budget(&rows),
+        rows,
+    })
+}
+
+impl StudyReport {
+    /// The study as markdown: the best surrogate per budget, then every row.
+    pub fn to_markdown(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "# Fidelity study: {} ({:?} road, {} m/s)\n\nValidation: {n} x {n} HiFi grid; {} HiFi evaluations in all. Best = {}.\n",
+            self.car, self.road.class, self.road.speed, self.hifi_evaluations, self.ranking,
+            n = self.validation_levels,
+        );
+        let names = CRITERIA_NAMES.map(str::to_uppercase);
+        let head = ["R2", "max RTE %", "mean RTE %"]
+            .iter()
+            .flat_map(|m| names.iter().map(move |n| format!("{m} {n} |")))
+            .collect::<Vec<_>>()
+            .join(" ");
+        let metric_cells = |metrics: &ByCriterion<Metrics>| {
+            let m = metrics.to_array();
+            let r2: Vec<String> = m.iter().map(|m| format!("{:.4}", m.r2)).collect();
+            let rte: Vec<String> = m.iter().map(|m| format!("{:.2}", m.rte_max)).collect();
+            let mean: Vec<String> = m.iter().map(|m| format!("{:.2}", m.rte_mean)).collect();
+            format!(
+                "{} | {} | {} |",
+                r2.join(" | "),
+                rte.join(" | "),
+                mean.join(" | ")
+            )
+        };
+        let _ = writeln!(
+            s,
+            "## Best per sample budget\n\n| samples | surrogate | plan | {head}"
+        );
+        let _ = writeln!(s, "|{}", "---|".repeat(12));
+        let _ = writeln!(s, "| 0 | untuned LoFi | - | {}", metric_cells(&self.lofi));
+        for b in &self.best_per_budget {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {}",
+                b.samples,
+                b.surrogate,
+                b.plan,
+                metric_cells(&b.fitted.metrics)
+            );
+        }
+        let _ = writeln!(
+            s,
+            "\n## All combinations\n\n| surrogate | plan | samples | {head} note |"
+        );
+        let _ = writeln!(s, "|{}", "---|".repeat(13));
+        for r in &self.rows {
+            let cells = match &r.outcome {
+                Outcome::Fitted(f) => format!(
+                    "{} {} |",
+                    metric_cells(&f.metrics),
+                    if f.converged { "" } else { "not converged" }
+                ),
+                Outcome::Skipped { reason } => {
+                    format!(
+                        "{}skipped: {} |",
+                        " - |".repeat(9),
+                        reason.replace('|', "/")
+                    )
+                }
+            };
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {cells}",
+                r.surrogate, r.plan, r.samples
+            );
+        }
+        s
+    }
+}

@@ -1,0 +1,465 @@
+//! Cross-module tests of the surrogates: manufactured cases whose "HiFi" is itself a tuned
+//! LoFi (each approach must recover the tuning), the sample-count errors, and the fidelity
+//! study on the real HiFi.
+
+use super::study::{study_specs, Outcome, VALIDATION_LEVELS};
+use super::*;
+use crate::doe::{audze_eglais, full_factorial};
+use crate::model::quarter_car;
+
+/// A "HiFi" that is a quarter car made by `f(ks, cs)`: a LoFi with known tuning.
+struct Manufactured<F> {
+    road: Road,
+    f: F,
+}
+
+impl<F: Fn(f64, f64) -> QuarterCar> Evaluator for Manufactured<F> {
+    fn evaluate(&self, ks: f64, cs: f64) -> Result<Criteria> {
+        quarter_criteria(&(self.f)(ks, cs), &self.road)
+    }
+    fn name(&self) -> String {
+        "manufactured".into()
+    }
+}
+
+fn setting() -> Setting {
+    Setting::new(&Car::datum(), &Road::default(), &DesignBox::default()).unwrap()
+}
+
+fn samples_of<E: Evaluator>(hifi: &E, plan: &Plan) -> Vec<Sample> {
+    sample_plan(hifi, plan, &DesignBox::default()).unwrap()
+}
+
+/// Largest relative difference between the model and `truth` on a 7 x 7 grid.
+fn max_rel_gap<A: Evaluator + ?Sized, B: Evaluator>(model: &A, truth: &B) -> f64 {
+    let b = DesignBox::default();
+    full_factorial(7)
+        .unwrap()
+        .unit
+        .iter()
+        .map(|p| {
+            let (ks, cs) = b.scale(p[0], p[1]);
+            let (m, t) = (
+                model.evaluate(ks, cs).unwrap(),
+                truth.evaluate(ks, cs).unwrap(),
+            );
+            (0..3)
+                .map(|k| (m.to_array()[k] / t.to_array()[k] - 1.0).abs())
+                .fold(0.0, f64::max)
+        })
+        .fold(0.0, f64::max)
+}
+
+fn value(tuning: &[Parameter], name: &str) -> f64 {
+    tuning.iter().find(|p| p.name == name).unwrap().value
+}
+
+/// Checks each named parameter to `1e-6` relative (absolute below magnitude 1).
+fn assert_params(tuning: &[Parameter], expected: &[(&str, f64)]) {
+    for &(name, want) in expected {
+        let got = value(tuning, name);
+        assert!(
+            (got - want).abs() <= 1e-6 * want.abs().max(1.0),
+            "{name}: {got} vs {want}"
+        );
+    }
+}
+
+#[test]
+fn vba_recovers_manufactured_transforms() {
+    let s = setting();
+    let base = s.lofi.car.quarter();
+    let b = s.design_box;
+    // ks' from u' = 0.05 + 0.9 u + 0.1 u^2, cs' from v' = -0.03 + 1.1 v - 0.08 v^2.
+    let (k, c) = ([0.05, 0.9, 0.1], [-0.03, 1.1, -0.08]);
+    let truth = Manufactured {
+        road: s.lofi.road,
+        f: |ks: f64, cs: f64| {
+            let (u, v) = b.normalize(ks, cs);
+            let (ks, cs) = b.scale(k[0] + (k[1] + k[2] * u) * u, c[0] + (c[1] + c[2] * v) * v);
+            QuarterCar { ks, cs, ..base }
+        },
+    };
+    let samples = samples_of(&truth, &audze_eglais(10, 1).unwrap());
+    for scheme in [Scheme::Shared, Scheme::PerCriterion] {
+        let params = VbaParams {
+            transform: Transform::Qts,
+            scheme,
+            options: LmOptions::default(),
+        };
+        let model = params.fit(&s, &samples).unwrap();
+        let gap = max_rel_gap(&model, &truth);
+        assert!(gap < 1e-8, "{scheme:?}: predictions off by {gap:e}");
+        // SWS depends on Cs alone, so its own fit cannot see the Ks transform.
+        let prefixes: &[&str] = match scheme {
+            Scheme::Shared => &[""],
+            Scheme::PerCriterion => &["bacc.", "dtl."],
+        };
+        for p in prefixes {
+            let names: Vec<String> = ["ks.a0", "ks.a1", "ks.a2", "cs.a0", "cs.a1", "cs.a2"]
+                .iter()
+                .map(|n| format!("{p}{n}"))
+                .collect();
+            let want = [k, c].concat();
+            let expected: Vec<(&str, f64)> = names.iter().map(String::as_str).zip(want).collect();
+            assert_params(&model.tuning(), &expected);
+        }
+        assert!(model
+            .diagnostics()
+            .iter()
+            .all(|d| d.converged && d.cost < 1e-20));
+    }
+
+    // LTS and MTS, shared scheme.
+    for (transform, k, c) in [
+        (Transform::Lts, vec![0.04, 0.92], vec![-0.02, 1.07]),
+        (Transform::Mts, vec![0.93], vec![1.08]),
+    ] {
+        let (kk, cc) = (k.clone(), c.clone());
+        let map = move |coef: &[f64], x: f64| match coef {
+            [a1] => a1 * x,
+            [a0, a1] => a0 + a1 * x,
+            _ => unreachable!(),
+        };
+        let truth = Manufactured {
+            road: s.lofi.road,
+            f: move |ks: f64, cs: f64| {
+                let (u, v) = b.normalize(ks, cs);
+                let (ks, cs) = b.scale(map(&kk, u), map(&cc, v));
+                QuarterCar { ks, cs, ..base }
+            },
+        };
+        let samples = samples_of(&truth, &audze_eglais(5, 1).unwrap());
+        let model = VbaParams {
+            transform,
+            scheme: Scheme::Shared,
+            options: LmOptions::default(),
+        }
+        .fit(&s, &samples)
+        .unwrap();
+        let names: &[&str] = match transform {
+            Transform::Mts => &["ks.a1", "cs.a1"],
+            _ => &["ks.a0", "ks.a1", "cs.a0", "cs.a1"],
+        };
+        let expected: Vec<(&str, f64)> = names.iter().copied().zip([k, c].concat()).collect();
+        assert_params(&model.tuning(), &expected);
+        assert!(max_rel_gap(&model, &truth) < 1e-8, "{transform:?}");
+    }
+}
+
+#[test]
+fn pba_recovers_scaled_masses_and_tyre() {
+    let s = setting();
+    let base = s.lofi.car.quarter();
+    let truth = Manufactured {
+        road: s.lofi.road,
+        f: |ks, cs| QuarterCar {
+            ks,
+            cs,
+            ms: 1.13 * base.ms,
+            mu: 0.9 * base.mu,
+            ..base
+        },
+    };
+    let samples = samples_of(&truth, &audze_eglais(4, 1).unwrap());
+    let fit = |scaling: Scaling, scheme| {
+        PbaParams {
+            scaling,
+            scheme,
+            options: LmOptions::default(),
+        }
+        .fit(&s, &samples)
+        .unwrap()
+    };
+    let both = Scaling {
+        sprung: true,
+        unsprung: true,
+        tyre: false,
+    };
+    let model = fit(both, Scheme::Shared);
+    assert_params(&model.tuning(), &[("ms_scale", 1.13), ("mu_scale", 0.9)]);
+    assert!(max_rel_gap(&model, &truth) < 1e-8);
+    // The tuned quarter car is a real car: its masses are the manufactured ones.
+    let q = model.tuned_quarters(20_000.0, 1_500.0).unwrap().unwrap();
+    assert!((q[0].ms / base.ms - 1.13).abs() < 1e-6 && q[0] == q[2]);
+    assert!(quarter_car(&q[1]).modes().unwrap().len() == 2);
+
+    // Per criterion: BAcc and DTL each determine both masses; SWS sees only ms + mu.
+    let model = fit(both, Scheme::PerCriterion);
+    assert_params(
+        &model.tuning(),
+        &[("bacc.ms_scale", 1.13), ("dtl.mu_scale", 0.9)],
+    );
+    assert!(max_rel_gap(&model, &truth) < 1e-8);
+
+    // With the tyre rate as a third parameter the truth is kt scale 1.
+    let model = fit(Scaling { tyre: true, ..both }, Scheme::Shared);
+    assert_params(
+        &model.tuning(),
+        &[("ms_scale", 1.13), ("mu_scale", 0.9), ("kt_scale", 1.0)],
+    );
+}
+
+#[test]
+fn rba_and_data_fits_recover_manufactured_corrections() {
+    let s = setting();
+    let b = s.design_box;
+    let lofi = s.lofi.clone();
+    // HiFi = LoFi * tau with tau = 1 + 0.1 u - 0.05 v + 0.02 u v (shared gain).
+    let tau = move |ks: f64, cs: f64| {
+        let (u, v) = b.normalize(ks, cs);
+        1.0 + 0.1 * u - 0.05 * v + 0.02 * u * v
+    };
+    struct Scaled<F>(LoFi, F);
+    impl<F: Fn(f64, f64) -> [f64; 3]> Evaluator for Scaled<F> {
+        fn evaluate(&self, ks: f64, cs: f64) -> Result<Criteria> {
+            let f = self.0.evaluate(ks, cs)?.to_array();
+            let g = (self.1)(ks, cs);
+            Ok(Criteria::from_array(std::array::from_fn(|k| f[k] * g[k])))
+        }
+        fn name(&self) -> String {
+            "scaled".into()
+        }
+    }
+    let truth = Scaled(lofi.clone(), |ks: f64, cs: f64| [tau(ks, cs); 3]);
+    let samples = samples_of(&truth, &audze_eglais(7, 1).unwrap());
+    for scheme in [Scheme::Shared, Scheme::PerCriterion] {
+        let model = RbaParams {
+            form: Form::Multiplicative,
+            response: ResponseKind::Poly(2),
+            scheme,
+        }
+        .fit(&s, &samples)
+        .unwrap();
+        let p = scheme.prefix(2);
+        assert_params(
+            &model.tuning(),
+            &[
+                (&format!("{p}c_1"), 1.0),
+                (&format!("{p}c_uv"), 0.02),
+                (&format!("{p}c_vv"), 0.0),
+            ],
+        );
+        assert!(max_rel_gap(&model, &truth) < 1e-10);
+    }
+
+    // Additive: HiFi = LoFi + d_k with d_k linear in (u, v), per criterion.
+    let scale = [0.1, 20.0, 1e-4];
+    let d = move |ks: f64, cs: f64| {
+        let (u, v) = b.normalize(ks, cs);
+        std::array::from_fn(|k| scale[k] * (0.5 + u - 0.3 * v))
+    };
+    let lofi2 = lofi.clone();
+    let truth = Scaled(lofi.clone(), move |ks: f64, cs: f64| {
+        let f = lofi2.evaluate(ks, cs).unwrap().to_array();
+        let d: [f64; 3] = d(ks, cs);
+        std::array::from_fn(|k| 1.0 + d[k] / f[k])
+    });
+    let samples = samples_of(&truth, &audze_eglais(5, 1).unwrap());
+    let model = RbaParams {
+        form: Form::Additive,
+        response: ResponseKind::Poly(1),
+        scheme: Scheme::PerCriterion,
+    }
+    .fit(&s, &samples)
+    .unwrap();
+    assert_params(&model.tuning(), &[("dtl.c_u", 20.0), ("sws.c_v", -0.3e-4)]);
+    assert!(max_rel_gap(&model, &truth) < 1e-10);
+    assert!(model.tuned_quarters(2e4, 1e3).unwrap().is_none());
+
+    // RBF corrections and data fits interpolate the samples.
+    for spec in ["rba-mul-rbf-gauss", "rba-add-rbf-tps", "data-rbf-mq"] {
+        let spec = SurrogateSpec::parse(spec).unwrap();
+        let model = spec.fit(&s, &samples, &LmOptions::default()).unwrap();
+        for smp in &samples {
+            let p = model.evaluate(smp.ks, smp.cs).unwrap().to_array();
+            let f = smp.hifi.to_array();
+            assert!(
+                (0..3).all(|k| (p[k] / f[k] - 1.0).abs() < 1e-8),
+                "{}",
+                spec.name()
+            );
+        }
+    }
+
+    // A quadratic response surface recovers a quadratic "HiFi" exactly.
+    let quad = move |ks: f64, cs: f64| {
+        let (u, v) = b.normalize(ks, cs);
+        let q = 2.0 + u - v + 0.5 * u * u + 0.25 * u * v + v * v;
+        let f = lofi.evaluate(ks, cs).unwrap().to_array();
+        [q / f[0], 100.0 * q / f[1], 1e-3 * q / f[2]]
+    };
+    let truth = Scaled(s.lofi.clone(), quad);
+    let samples = samples_of(&truth, &full_factorial(3).unwrap());
+    let model = DataFitParams {
+        response: ResponseKind::Poly(2),
+    }
+    .fit(&s, &samples)
+    .unwrap();
+    assert_params(&model.tuning(), &[("bacc.c_uv", 0.25), ("dtl.c_vv", 100.0)]);
+    assert!(max_rel_gap(&model, &truth) < 1e-10);
+}
+
+#[test]
+fn too_few_samples_and_bad_inputs_are_field_errors() {
+    let s = setting();
+    let hifi = s.lofi.clone();
+    let two = samples_of(&hifi, &audze_eglais(2, 1).unwrap());
+    let five = samples_of(&hifi, &audze_eglais(5, 1).unwrap());
+    let fit = |name: &str, samples: &[Sample]| {
+        SurrogateSpec::parse(name)
+            .unwrap()
+            .fit(&s, samples, &LmOptions::default())
+            .err()
+            .map(|e| e.to_string())
+    };
+    // QTS: 3 coefficients per variable need 3 levels of each.
+    let e = fit("vba-qts", &two).unwrap();
+    assert!(e.starts_with("plan: ") && e.contains("levels"), "{e}");
+    // Per criterion, 6 parameters need 6 samples.
+    let e = fit("vba-qts-per-criterion", &five).unwrap();
+    assert!(
+        e.starts_with("plan: ") && e.contains("at least 6 samples"),
+        "{e}"
+    );
+    assert!(fit("vba-qts", &five).is_none());
+    let e = fit("rba-mul-poly2", &five).unwrap();
+    assert!(e.starts_with("plan: ") && e.contains("at least 6"), "{e}");
+    let e = fit("pba-smts-umts-kt-per-criterion", &two).unwrap();
+    assert!(e.starts_with("plan: "), "{e}");
+    let e = fit("data-rbf-tps", &two[..1]).unwrap();
+    assert!(e.starts_with("plan: "), "{e}");
+    assert!(fit("pba-smts-umts-kt", &two).is_none());
+
+    // A shared additive correction is not offered; zero starts are refused.
+    let e = RbaParams {
+        form: Form::Additive,
+        response: ResponseKind::Poly(1),
+        scheme: Scheme::Shared,
+    }
+    .check(&five)
+    .unwrap_err();
+    assert!(e.to_string().starts_with("scheme: "));
+    let e = VbaParams {
+        transform: Transform::Lts,
+        scheme: Scheme::Shared,
+        options: LmOptions {
+            starts: 0,
+            ..Default::default()
+        },
+    }
+    .check(&five)
+    .unwrap_err();
+    assert!(e.to_string().starts_with("starts: "));
+    let mut bad = five.clone();
+    bad[3].hifi.dtl = f64::NAN;
+    assert!(fit("vba-lts", &bad).unwrap().starts_with("samples[3]: "));
+
+    let car = Car::datum();
+    let road = Road::default();
+    for (a, p, field) in [
+        ("vba-xyz", "ae:10", "approach"),
+        ("vba-qts", "lhs:10", "plan"),
+        ("vba-qts", "ae:0", "plan"),
+    ] {
+        let e = surrogate_report(a, p, &car, &road, None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with(&format!("{field}: ")), "{e}");
+    }
+    let e = surrogate_report("vba-lts", "ae:3", &car, &road, Some(1)).unwrap_err();
+    assert!(e.to_string().starts_with("predict-grid: "), "{e}");
+}
+
+#[test]
+fn vba_guard_keeps_transformed_design_positive() {
+    let s = setting();
+    let t = vba::VariableTuning::new(Transform::Qts, s.design_box, s.lofi.car.quarter());
+    // u' = -0.2 + 0.1 u: ks' = 10 kN/m + 30 kN/m * u' >= 4 kN/m > 0: admissible.
+    assert!(t.admissible(&[-0.2, 0.1, 0.0, 0.0, 1.0, 0.0]));
+    // u' = -0.4 at u = 0: ks' = -2 kN/m.
+    assert!(!t.admissible(&[-0.4, 1.0, 0.0, 0.0, 1.0, 0.0]));
+    // A vertex inside [0, 1]: v' = 0.3 - 2 v + 2 v^2 has its least value -0.2 at v = 0.5,
+    // cs' = 500 - 0.2 * 3500 = -200 N s/m.
+    assert!(!t.admissible(&[0.0, 1.0, 0.0, 0.3, -2.0, 2.0]));
+    let e = t.quarter(&[-0.4, 1.0, 0.0, 0.0, 1.0, 0.0], 10_000.0, 1_000.0);
+    assert!(e.unwrap_err().to_string().contains("must be > 0"));
+}
+
+#[test]
+fn surrogate_report_is_serialisable_and_attachable() {
+    let car = Car::datum();
+    let road = Road::default();
+    let r = surrogate_report("vba-qts", "ae:10", &car, &road, Some(4)).unwrap();
+    assert_eq!(r.hifi_evaluations, 10 + 16);
+    assert_eq!(r.samples.len(), 10);
+    assert_eq!(r.tuning.len(), 6);
+    let q = r.tuned_quarters.unwrap();
+    assert!(q[0] == q[1] && q[0].ks > 0.0 && q[0].ms == car.quarter().ms);
+    assert_eq!(r.error_map.ks.len(), 16);
+    assert_eq!(r.predictions.as_ref().unwrap().surrogate.len(), 16);
+    let json = serde_json::to_string(&r).unwrap();
+    assert!(json.contains("\"surrogate\":\"vba-qts\"") && !json.contains("NaN"));
+
+    // A fitted surrogate goes wherever an evaluator goes, e.g. the optimiser's counter.
+    let s = setting();
+    let hifi = crate::analysis::HiFi::new(&Car::datum(), &Road::default()).unwrap();
+    let samples = samples_of(&hifi, &audze_eglais(5, 1).unwrap());
+    let model = SurrogateSpec::parse("pba-smts-umts")
+        .unwrap()
+        .fit(&s, &samples, &LmOptions::default())
+        .unwrap();
+    let counted = crate::optimize::Counted::new(model);
+    counted.evaluate(25_000.0, 2_000.0).unwrap();
+    assert_eq!(
+        (counted.count(), counted.name()),
+        (1, "pba-smts-umts".to_string())
+    );
+}
+
+#[test]
+fn fidelity_study_on_the_real_hifi() {
+    let report = study(&Car::datum(), &Road::default()).unwrap();
+    let n_rows = study_specs().len() * PlanSpec::study().len();
+    assert_eq!(report.rows.len(), n_rows);
+    // HiFi runs: the validation grid once plus every plan's samples once.
+    let plan_samples: usize = [2, 3, 4, 5, 10].iter().map(|n| n + n * n).sum();
+    assert_eq!(
+        report.hifi_evaluations,
+        VALIDATION_LEVELS.pow(2) + plan_samples
+    );
+    for row in &report.rows {
+        match &row.outcome {
+            Outcome::Fitted(f) => {
+                let all = f.metrics.to_array();
+                assert!(all
+                    .iter()
+                    .all(|m| m.r2.is_finite() && m.rte_max.is_finite()));
+            }
+            Outcome::Skipped { reason } => {
+                assert!(reason.starts_with("plan: "), "{}: {reason}", row.surrogate)
+            }
+        }
+    }
+    let md = report.to_markdown();
+    assert!(md.contains("| 10 | ") && md.contains("skipped: plan: "));
+    let best = report
+        .best_per_budget
+        .iter()
+        .find(|b| b.samples == 10)
+        .unwrap();
+    for (name, m) in CRITERIA_NAMES.iter().zip(best.fitted.metrics.to_array()) {
+        eprintln!(
+            "best at 10 samples: {} on {}: {name} R2 {:.5} max RTE {:.3} % mean RTE {:.3} %",
+            best.surrogate, best.plan, m.r2, m.rte_max, m.rte_mean
+        );
+        assert!(m.r2 >= 0.99, "{name}: R2 {}", m.r2);
+        assert!(m.rte_max <= 2.0, "{name}: max RTE {} %", m.rte_max);
+    }
+    for b in &report.best_per_budget {
+        eprintln!(
+            "budget {:>3}: {:<28} {:<8} worst max RTE {:7.3} %  min R2 {:.5}",
+            b.samples, b.surrogate, b.plan, b.fitted.worst_rte_max, b.fitted.min_r2
+        );
+    }
+}

@@ -1,0 +1,99 @@
+//! The tuned LoFi model shared by VBA and PBA: a real quarter car whose design variables
+//! ([`super::vba`]) or parameters ([`super::pba`]) follow the fitted tuning, one tuning for
+//! all criteria or one per criterion.
+
+use super::fit::{fit_scheme, tuned_criteria, FitDiagnostics, LmOptions, Tuning};
+use super::{Parameter, Sample, Scheme, Surrogate, SurrogateSpec};
+use crate::car::QuarterCar;
+use crate::error::Result;
+use crate::evaluate::{Criteria, Evaluator};
+use crate::road::Road;
+
+/// A fitted tuned LoFi: `S_k(x) = f~_k(x; tuning a_k)`, `a_k` shared or per criterion.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tuned<T> {
+    spec: SurrogateSpec,
+    tuning: T,
+    road: Road,
+    scheme: Scheme,
+    /// One parameter vector (shared) or three (per criterion).
+    params: Vec<Vec<f64>>,
+    diagnostics: Vec<FitDiagnostics>,
+}
+
+impl<T: Tuning> Tuned<T> {
+    /// Fits `tuning` to `samples` on `road` (the caller has checked the samples).
+    pub(crate) fn fit(
+        spec: SurrogateSpec,
+        tuning: T,
+        road: &Road,
+        samples: &[Sample],
+        scheme: Scheme,
+        options: &LmOptions,
+    ) -> Result<Self> {
+        let fits = fit_scheme(&tuning, road, samples, scheme, options)?;
+        let (params, diagnostics): (Vec<_>, Vec<_>) =
+            fits.into_iter().map(|f| (f.params, f.diagnostics)).unzip();
+        Ok(Tuned {
+            spec,
+            tuning,
+            road: *road,
+            scheme,
+            params,
+            diagnostics,
+        })
+    }
+
+    /// Parameters of the fit serving criterion `k`.
+    fn params_for(&self, k: usize) -> &[f64] {
+        &self.params[k.min(self.params.len() - 1)]
+    }
+}
+
+impl<T: Tuning> Evaluator for Tuned<T> {
+    fn evaluate(&self, ks: f64, cs: f64) -> Result<Criteria> {
+        if let [a] = self.params.as_slice() {
+            return tuned_criteria(&self.tuning, &self.road, a, ks, cs);
+        }
+        let mut out = [0.0; 3];
+        for (k, o) in out.iter_mut().enumerate() {
+            *o =
+                tuned_criteria(&self.tuning, &self.road, self.params_for(k), ks, cs)?.to_array()[k];
+        }
+        Ok(Criteria::from_array(out))
+    }
+
+    fn name(&self) -> String {
+        self.spec.name()
+    }
+}
+
+impl<T: Tuning> Surrogate for Tuned<T> {
+    fn spec(&self) -> SurrogateSpec {
+        self.spec
+    }
+
+    fn tuning(&self) -> Vec<Parameter> {
+        let names = self.tuning.names();
+        self.params
+            .iter()
+            .enumerate()
+            .flat_map(|(g, a)| {
+                let prefix = self.scheme.prefix(g);
+                names.iter().zip(a).map(move |(n, &value)| Parameter {
+                    name: format!("{prefix}{n}"),
+                    value,
+                })
+            })
+            .collect()
+    }
+
+    fn diagnostics(&self) -> Vec<FitDiagnostics> {
+        self.diagnostics.clone()
+    }
+
+    fn tuned_quarters(&self, ks: f64, cs: f64) -> Result<Option<[QuarterCar; 3]>> {
+        let q = |k| self.tuning.quarter(self.params_for(k), ks, cs);
+        Ok(Some([q(0)?, q(1)?, q(2)?]))
+    }
+}
