@@ -1,7 +1,7 @@
 //! The LoFi and HiFi evaluators over the design variables, and the full analysis
 //! report of one design (criteria by both routes, modes, ride properties).
 
-use crate::car::Car;
+use crate::car::{Car, QuarterCar};
 use crate::criteria::{criteria_exact, criteria_fast_exact, criteria_spectral, quarter_car_rms};
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
@@ -52,17 +52,23 @@ pub struct LoFi {
     pub road: Road,
 }
 
+/// LoFi criteria of any quarter car on `road`: the closed forms for an undamped tyre,
+/// the exact Lyapunov route otherwise.
+pub fn quarter_criteria(q: &QuarterCar, road: &Road) -> Result<Criteria> {
+    q.validate()?;
+    if q.ct == 0.0 {
+        Ok(quarter_car_rms(q, road.intensity()))
+    } else {
+        criteria_exact(&quarter_car(q), road)
+    }
+}
+
 impl Evaluator for LoFi {
     fn evaluate(&self, ks: f64, cs: f64) -> Result<Criteria> {
         let mut q = self.car.quarter();
         q.ks = ks;
         q.cs = cs;
-        q.validate()?;
-        if q.ct == 0.0 {
-            Ok(quarter_car_rms(&q, self.road.intensity()))
-        } else {
-            criteria_exact(&quarter_car(&q), &self.road)
-        }
+        quarter_criteria(&q, &self.road)
     }
     fn name(&self) -> String {
         "quarter".into()

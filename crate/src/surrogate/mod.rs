@@ -44,12 +44,10 @@ pub use vba::{Transform, VbaParams};
 
 use crate::analysis::LoFi;
 use crate::car::{Car, QuarterCar};
-use crate::criteria::{criteria_exact, quarter_car_rms};
 use crate::design::DesignBox;
 use crate::doe::Plan;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator, CRITERIA_NAMES};
-use crate::model::quarter_car;
 use crate::road::Road;
 use serde::{Deserialize, Serialize};
 
@@ -188,16 +186,7 @@ pub trait SurrogateParams {
     fn fit(&self, setting: &Setting, samples: &[Sample]) -> Result<Self::Model>;
 }
 
-/// LoFi criteria of any quarter car on `road`: the closed forms for an undamped tyre, the
-/// exact Lyapunov route otherwise (as [`LoFi`] does for the car's own quarter car).
-pub(crate) fn quarter_criteria(q: &QuarterCar, road: &Road) -> Result<Criteria> {
-    q.validate()?;
-    if q.ct == 0.0 {
-        Ok(quarter_car_rms(q, road.intensity()))
-    } else {
-        criteria_exact(&quarter_car(q), road)
-    }
-}
+pub(crate) use crate::analysis::quarter_criteria;
 
 /// Rejects empty sample sets and non-finite or non-positive values (relative errors divide
 /// by the HiFi criteria).
