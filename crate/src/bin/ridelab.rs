@@ -11,7 +11,9 @@ use ridelab::doe::doe_report;
 use ridelab::dos::{DesignObjectives, DosContext};
 use ridelab::error::{Result, RideError};
 use ridelab::optimize::{recheck, run_study, Method, Nsga2Params, StmParams, SuspensionProblem};
+use ridelab::maps::{map_csv, map_report, Grid, MapSettings, Scale};
 use ridelab::road::{Road, RoadClass, Tracks};
+use ridelab::surrogate::{sample_plan, study, surrogate_report, LmOptions, PlanSpec, Setting, SurrogateSpec};
 use ridelab::time_domain::{simulate, TimeOptions};
 use ridelab::{Evaluator, HiFi, LoFi};
 use std::collections::HashMap;
@@ -21,8 +23,14 @@ commands:
   eval      --model quarter|full [--car FILE|PRESET] [--class B] [--speed 20] [--tracks correlated|independent]
             [--ks N/m] [--cs Ns/m] [--json]
   doe       --points N [--seed S] [--json]
-  optimize  --evaluator quarter|full --method stm|nsga2 [car/road options] [--ks N/m --cs Ns/m for the datum]
-            [--sws-limit m] [--grid 201] [--population 100] [--generations 100] [--seed 1] [--json]
+  optimize  --evaluator quarter|full|SURROGATE [--plan ae:10] --method stm|nsga2 [car/road options]
+            [--ks N/m --cs Ns/m for the datum] [--sws-limit m] [--grid 201] [--population 100]
+            [--generations 100] [--seed 1] [--json]
+  map       --model quarter|full [car/road options] [--ks-range 10000:40000:41] [--cs-range 500:4000:41]
+            [--relative] --json|--csv
+  surrogate --approach rba-mul-poly2|vba-qts|pba-smts|... --plan ae:10|grid:5 [car/road options]
+            [--predict grid:20] [--json]
+  study     [car/road options] --json|--markdown
   simulate  --model quarter|full [car/road options] [--ks] [--cs] [--duration 20] [--dt 0.001] [--seed 1]
             [--bump Ns/m --rebound Ns/m] [--decimate 10] [--json|--csv]
   presets   [--json]
@@ -164,11 +172,14 @@ fn run(args: &[String]) -> Result<String> {
         "doe" => doe(rest),
         "optimize" => optimize(rest),
         "simulate" => simulate_cmd(rest),
+        "map" => map_cmd(rest),
+        "surrogate" => surrogate_cmd(rest),
+        "study" => study_cmd(rest),
         "presets" => presets(rest),
         "help" | "--help" | "-h" => Ok(format!("{USAGE}\n")),
         other => Err(RideError::field(
             "command",
-            format!("unknown command '{other}' (eval, doe, optimize, simulate, presets)"),
+            format!("unknown command '{other}' (eval, doe, optimize, map, surrogate, study, simulate, presets)"),
         )),
     }
 }
@@ -316,7 +327,7 @@ fn optimize(args: &[String]) -> Result<String> {
             ))
         }
     };
-    let problem = SuspensionProblem::new(evaluator, DesignBox::default(), objectives, ctx)?;
+    let problem = SuspensionProblem::new(evaluator, design_box, objectives, ctx)?;
     let study = run_study(&problem, &method, None)?;
     let check = recheck(&study.pick, &hifi, &datum)?;
     #[derive(serde::Serialize)]
@@ -425,4 +436,56 @@ fn presets(args: &[String]) -> Result<String> {
         .zip(&cars)
         .map(|((n, _), c)| format!("{n:<8} {}\n         source: {}\n", c.name, c.source))
         .collect())
+}
+
+fn map_cmd(args: &[String]) -> Result<String> {
+    let mut values = vec!["model", "ks-range", "cs-range"];
+    values.extend(CAR_ROAD);
+    let o = Opts::parse(args, &["json", "csv", "relative"], &values)?;
+    let kind = model_kind(&o)?;
+    let (car, road) = car_and_road(&o)?;
+    let settings = MapSettings {
+        grid: Grid::parse(
+            o.str("ks-range").unwrap_or("10000:40000:41"),
+            o.str("cs-range").unwrap_or("500:4000:41"),
+        )?,
+        scale: if o.flag("relative") { Scale::Relative } else { Scale::Absolute },
+        ..MapSettings::default()
+    };
+    let r = map_report(kind, &car, &road, &settings)?;
+    if o.flag("csv") {
+        Ok(map_csv(&r))
+    } else {
+        json(&r)
+    }
+}
+
+fn surrogate_cmd(args: &[String]) -> Result<String> {
+    let mut values = vec!["approach", "plan", "predict"];
+    values.extend(CAR_ROAD);
+    let o = Opts::parse(args, &["json"], &values)?;
+    let (car, road) = car_and_road(&o)?;
+    let approach = o.str("approach").ok_or_else(|| RideError::field("approach", "missing"))?;
+    let plan = o.str("plan").unwrap_or("ae:10");
+    let predict = match o.str("predict") {
+        None => None,
+        Some(p) => Some(
+            p.strip_prefix("grid:")
+                .and_then(|n| n.parse::<usize>().ok())
+                .ok_or_else(|| RideError::field("predict", format!("'{p}' is not grid:N")))?,
+        ),
+    };
+    let r = surrogate_report(approach, plan, &car, &road, predict)?;
+    json(&r)
+}
+
+fn study_cmd(args: &[String]) -> Result<String> {
+    let o = Opts::parse(args, &["json", "markdown"], &CAR_ROAD)?;
+    let (car, road) = car_and_road(&o)?;
+    let r = study(&car, &road)?;
+    if o.flag("markdown") {
+        Ok(r.to_markdown())
+    } else {
+        json(&r)
+    }
 }
