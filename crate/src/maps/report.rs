@@ -1,0 +1,434 @@
+//! The map report behind `ridelab map`: criteria fields, datum point, feasibility mask
+//! and contour lines at automatic levels, as JSON (serde) or CSV.
+
+use super::contour::{auto_levels, contour, contours, Contour};
+use super::dcs::{DatumPoint, Dcs, Scale};
+use super::dos_mask::{
+    objective_bit, objective_name, objectives_in, DosMap, DosSummary, FeasiblePoint,
+};
+use super::grid::Grid;
+use crate::analysis::{HiFi, LoFi, ModelKind};
+use crate::car::Car;
+use crate::dos::{DesignObjectives, DosContext, Objective};
+use crate::error::{Result, RideError};
+use crate::evaluate::{Criteria, Evaluator};
+use crate::road::Road;
+use serde::{Deserialize, Serialize};
+
+/// The layout sentence every report carries.
+pub const LAYOUT: &str =
+    "row-major: Cs rows, Ks columns; the value at Ks index i, Cs index j is at j * ks.n + i";
+
+/// Most automatic contour levels per criterion.
+pub const MAX_CONTOUR_LEVELS: usize = 50;
+
+/// What to map besides the model, car and road.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MapSettings {
+    /// The Ks x Cs grid (default 41 x 41 over the default design box).
+    pub grid: Grid,
+    /// Absolute values or ratios to the datum car (default absolute).
+    pub scale: Scale,
+    /// Design objectives of the feasibility mask (default: SWS <= 7 mm).
+    pub objectives: DesignObjectives,
+    /// Automatic contour levels per criterion, at most (default 10, 0 for none).
+    pub contour_levels: usize,
+}
+
+impl Default for MapSettings {
+    fn default() -> Self {
+        MapSettings {
+            grid: Grid::default(),
+            scale: Scale::Absolute,
+            objectives: DesignObjectives::default(),
+            contour_levels: 10,
+        }
+    }
+}
+
+impl MapSettings {
+    /// Checks the grid, the objectives and the level count.
+    pub fn validate(&self) -> Result<()> {
+        self.grid.validate()?;
+        self.objectives.validate()?;
+        if self.contour_levels > MAX_CONTOUR_LEVELS {
+            return Err(RideError::field(
+                "contour_levels",
+                format!("at most {MAX_CONTOUR_LEVELS}, got {}", self.contour_levels),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Units of the report's quantities.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Units {
+    /// Front spring rate.
+    pub ks: &'static str,
+    /// Front damper rate.
+    pub cs: &'static str,
+    /// BAcc field.
+    pub bacc: &'static str,
+    /// DTL field.
+    pub dtl: &'static str,
+    /// SWS field.
+    pub sws: &'static str,
+}
+
+/// One bit of the feasibility mask.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct MaskBit {
+    /// The objective (serialised as its name, e.g. `sws_limit`).
+    pub objective: Objective,
+    /// Its bit in `mask`.
+    pub bit: u8,
+    /// Human-readable label.
+    pub label: &'static str,
+}
+
+/// The feasibility part of a map report.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Feasibility {
+    /// The objectives as given.
+    pub objectives: DesignObjectives,
+    /// The bits of the active objectives.
+    pub legend: Vec<MaskBit>,
+    /// Per point, the OR of the bits of the objectives it breaks (0 = feasible); map layout.
+    pub mask: Vec<u8>,
+    /// Counts per objective, and why nothing is feasible when that is so.
+    pub summary: DosSummary,
+    /// The feasible points in the BAcc-DTL plane, absolute criteria.
+    pub feasible_set: Vec<FeasiblePoint>,
+    /// Outline of the feasible region: the 0.5 contour of the 1/0 feasibility field.
+    pub outline: Contour,
+}
+
+/// Contour lines per criterion, at automatic levels in the map's scale.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CriteriaContours {
+    /// BAcc contours.
+    pub bacc: Vec<Contour>,
+    /// DTL contours.
+    pub dtl: Vec<Contour>,
+    /// SWS contours.
+    pub sws: Vec<Contour>,
+}
+
+/// Everything `ridelab map` prints.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MapReport {
+    /// Evaluator name ("quarter", "full", ...).
+    pub evaluator: String,
+    /// Car name.
+    pub car: String,
+    /// Road scenario.
+    pub road: Road,
+    /// Absolute or relative to the datum.
+    pub scale: Scale,
+    /// The grid.
+    pub grid: Grid,
+    /// Ks values of the columns, N/m.
+    pub ks_values: Vec<f64>,
+    /// Cs values of the rows, N s/m.
+    pub cs_values: Vec<f64>,
+    /// How the fields are laid out ([`LAYOUT`]).
+    pub layout: &'static str,
+    /// Units.
+    pub units: Units,
+    /// The datum design and its absolute criteria.
+    pub datum: DatumPoint,
+    /// BAcc field.
+    pub bacc: Vec<f64>,
+    /// DTL field.
+    pub dtl: Vec<f64>,
+    /// SWS field.
+    pub sws: Vec<f64>,
+    /// Feasibility mask and feasible set.
+    pub feasibility: Feasibility,
+    /// Contour lines.
+    pub contours: CriteriaContours,
+}
+
+/// The DOS context of `car` with `datum` criteria: quarter-car sprung mass and front tyre rate.
+pub fn dos_context(car: &Car, datum: Criteria) -> DosContext {
+    let q = car.quarter();
+    DosContext {
+        sprung_mass: q.ms,
+        tire_stiffness: q.kt,
+        datum,
+    }
+}
+
+/// The map of `car` on `road` by the LoFi (`quarter`) or HiFi (`full`) model; the datum
+/// design is the car's front spring and damper.
+pub fn map_report(
+    model: ModelKind,
+    car: &Car,
+    road: &Road,
+    settings: &MapSettings,
+) -> Result<MapReport> {
+    car.validate()?;
+    road.validate()?;
+    match model {
+        ModelKind::Quarter => map_report_with(
+            &LoFi {
+                car: car.clone(),
+                road: *road,
+            },
+            car,
+            road,
+            settings,
+        ),
+        ModelKind::Full => map_report_with(&HiFi::new(car, road)?, car, road, settings),
+    }
+}
+
+/// The map report on any evaluator (a surrogate, say) that models `car` on `road`; `car`
+/// gives the datum design and the DOS context, `road` is recorded.
+pub fn map_report_with<E: Evaluator + Sync + ?Sized>(
+    evaluator: &E,
+    car: &Car,
+    road: &Road,
+    settings: &MapSettings,
+) -> Result<MapReport> {
+    settings.validate()?;
+    let grid = settings.grid;
+    let abs = Dcs::compute(
+        evaluator,
+        &grid,
+        (car.front.spring, car.front.damper),
+        Scale::Absolute,
+    )?;
+    let ctx = dos_context(car, abs.datum.criteria);
+    let dos = DosMap::new(&abs, &settings.objectives, &ctx)?;
+    let map = abs.to_scale(settings.scale);
+    let lines = |k: usize| -> Result<Vec<Contour>> {
+        let f = map.field(k);
+        contours(&grid, f, &auto_levels(f, settings.contour_levels))
+    };
+    let units = match settings.scale {
+        Scale::Absolute => Units {
+            ks: "N/m",
+            cs: "N s/m",
+            bacc: "m/s^2",
+            dtl: "N",
+            sws: "m",
+        },
+        Scale::Relative => Units {
+            ks: "N/m",
+            cs: "N s/m",
+            bacc: "-",
+            dtl: "-",
+            sws: "-",
+        },
+    };
+    let contours = CriteriaContours {
+        bacc: lines(0)?,
+        dtl: lines(1)?,
+        sws: lines(2)?,
+    };
+    let outline = contour(&grid, &dos.feasible_field(), 0.5)?;
+    let legend = dos
+        .active
+        .iter()
+        .map(|&o| MaskBit {
+            objective: o,
+            bit: objective_bit(o),
+            label: o.label(),
+        })
+        .collect();
+    Ok(MapReport {
+        evaluator: map.evaluator.clone(),
+        car: car.name.clone(),
+        road: *road,
+        scale: settings.scale,
+        grid,
+        ks_values: grid.ks.values(),
+        cs_values: grid.cs.values(),
+        layout: LAYOUT,
+        units,
+        datum: map.datum,
+        feasibility: Feasibility {
+            objectives: dos.objectives,
+            legend,
+            mask: dos.mask,
+            summary: dos.summary,
+            feasible_set: dos.feasible_set,
+            outline,
+        },
+        contours,
+        bacc: map.bacc,
+        dtl: map.dtl,
+        sws: map.sws,
+    })
+}
+
+/// The report as CSV, one row per grid point in map order (Cs rows, Ks columns):
+/// `ks_n_per_m,cs_ns_per_m,bacc_m_per_s2,dtl_n,sws_m,feasible,broken`, where `broken`
+/// lists the broken objectives' names separated by `;`. A relative report names its
+/// criteria columns `bacc_ratio,dtl_ratio,sws_ratio`.
+pub fn map_csv(report: &MapReport) -> String {
+    let mut out = String::with_capacity(64 * (report.bacc.len() + 1));
+    out.push_str(match report.scale {
+        Scale::Absolute => "ks_n_per_m,cs_ns_per_m,bacc_m_per_s2,dtl_n,sws_m,feasible,broken\n",
+        Scale::Relative => {
+            "ks_n_per_m,cs_ns_per_m,bacc_ratio,dtl_ratio,sws_ratio,feasible,broken\n"
+        }
+    });
+    let g = report.grid;
+    for k in 0..g.len() {
+        let (i, j) = g.indices(k);
+        let mask = report.feasibility.mask[k];
+        let broken: Vec<&str> = objectives_in(mask)
+            .into_iter()
+            .map(objective_name)
+            .collect();
+        out.push_str(&format!(
+            "{},{},{},{},{},{},{}\n",
+            report.ks_values[i],
+            report.cs_values[j],
+            report.bacc[k],
+            report.dtl[k],
+            report.sws[k],
+            mask == 0,
+            broken.join(";")
+        ));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::road::RoadClass;
+
+    fn settings(n_ks: usize, n_cs: usize) -> MapSettings {
+        MapSettings {
+            grid: Grid::over_box(&crate::design::DesignBox::default(), n_ks, n_cs).unwrap(),
+            ..MapSettings::default()
+        }
+    }
+
+    #[test]
+    fn quarter_report_json_and_csv() {
+        let car = Car::datum();
+        let road = Road::default();
+        let s = settings(21, 15);
+        let r = map_report(ModelKind::Quarter, &car, &road, &s).unwrap();
+        assert_eq!(r.evaluator, "quarter");
+        assert_eq!(r.bacc.len(), 21 * 15);
+        assert_eq!(r.datum.ks, car.front.spring);
+        let lofi = LoFi {
+            car: car.clone(),
+            road,
+        };
+        assert_eq!(
+            r.datum.criteria,
+            lofi.evaluate(car.front.spring, car.front.damper).unwrap()
+        );
+        // Class B: the 7 mm SWS limit splits the default box.
+        let f = &r.feasibility;
+        assert_eq!(f.legend.len(), 1);
+        assert!(f.summary.feasible > 0 && f.summary.feasible < r.bacc.len());
+        assert!(!f.outline.polylines.is_empty());
+        for (k, &m) in f.mask.iter().enumerate() {
+            assert_eq!(m == 0, r.sws[k] <= 0.007, "{k}");
+        }
+        for c in [&r.contours.bacc, &r.contours.dtl, &r.contours.sws] {
+            assert!(!c.is_empty() && c.len() <= 10);
+            assert!(c.iter().all(|l| !l.polylines.is_empty()));
+        }
+        let json = serde_json::to_value(&r).unwrap();
+        for key in [
+            "grid",
+            "ks_values",
+            "cs_values",
+            "units",
+            "datum",
+            "bacc",
+            "dtl",
+            "sws",
+            "layout",
+        ] {
+            assert!(json.get(key).is_some(), "{key}");
+        }
+        assert_eq!(json["feasibility"]["legend"][0]["objective"], "sws_limit");
+        assert_eq!(json["units"]["bacc"], "m/s^2");
+        assert!(json["contours"]["bacc"][0]["polylines"][0]["points"][0][0].is_f64());
+
+        let csv = map_csv(&r);
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines.len(), 1 + 21 * 15);
+        assert_eq!(
+            lines[0],
+            "ks_n_per_m,cs_ns_per_m,bacc_m_per_s2,dtl_n,sws_m,feasible,broken"
+        );
+        // Row 1 of the CSV is the lowest Cs at the lowest Ks; row 2 the next Ks.
+        let first: Vec<&str> = lines[1].split(',').collect();
+        assert_eq!(first[0].parse::<f64>().unwrap(), 10_000.0);
+        assert_eq!(first[1].parse::<f64>().unwrap(), 500.0);
+        assert_eq!(first[2].parse::<f64>().unwrap(), r.bacc[0]);
+        assert_eq!(
+            lines[2].split(',').next().unwrap().parse::<f64>().unwrap(),
+            11_500.0
+        );
+        for (k, line) in lines[1..].iter().enumerate() {
+            let cols: Vec<&str> = line.split(',').collect();
+            assert_eq!(cols.len(), 7);
+            assert_eq!(cols[5] == "true", r.feasibility.mask[k] == 0);
+            assert_eq!(cols[6] == "sws_limit", r.feasibility.mask[k] != 0);
+        }
+    }
+
+    #[test]
+    fn relative_and_full_reports() {
+        let car = Car::datum();
+        let road = Road {
+            class: RoadClass::C,
+            ..Road::default()
+        };
+        let mut s = settings(5, 4);
+        s.scale = Scale::Relative;
+        let r = map_report(ModelKind::Full, &car, &road, &s).unwrap();
+        assert_eq!(r.evaluator, "full");
+        assert_eq!(r.units.dtl, "-");
+        let hifi = HiFi::new(&car, &road).unwrap();
+        let d = r.datum.criteria.to_array();
+        for k in 0..r.grid.len() {
+            let (i, j) = r.grid.indices(k);
+            let c = hifi
+                .evaluate(r.ks_values[i], r.cs_values[j])
+                .unwrap()
+                .to_array();
+            assert_eq!(
+                [r.bacc[k], r.dtl[k], r.sws[k]],
+                [c[0] / d[0], c[1] / d[1], c[2] / d[2]]
+            );
+        }
+        // Class C: nothing meets 7 mm, and the report says so.
+        let m = r.feasibility.summary.message.clone().unwrap();
+        assert!(m.contains("SWS limit broken at every point"), "{m}");
+        assert!(r.feasibility.outline.polylines.is_empty());
+        assert!(map_csv(&r).starts_with("ks_n_per_m,cs_ns_per_m,bacc_ratio,"));
+    }
+
+    #[test]
+    fn bad_settings_name_the_field() {
+        let car = Car::datum();
+        let mut s = MapSettings::default();
+        s.grid.cs.n = 1;
+        let e = map_report(ModelKind::Quarter, &car, &Road::default(), &s).unwrap_err();
+        assert!(e.to_string().starts_with("cs-range: "), "{e}");
+        let s = MapSettings {
+            contour_levels: 51,
+            ..MapSettings::default()
+        };
+        let e = map_report(ModelKind::Quarter, &car, &Road::default(), &s).unwrap_err();
+        assert!(e.to_string().starts_with("contour_levels: "), "{e}");
+        let s: MapSettings = serde_json::from_str(r#"{"scale": "relative"}"#).unwrap();
+        assert_eq!(s.grid, Grid::default());
+        assert!(serde_json::from_str::<MapSettings>(r#"{"scal": "relative"}"#).is_err());
+    }
+}
