@@ -10,10 +10,12 @@ use ridelab::design::DesignBox;
 use ridelab::doe::doe_report;
 use ridelab::dos::{DesignObjectives, DosContext};
 use ridelab::error::{Result, RideError};
-use ridelab::optimize::{recheck, run_study, Method, Nsga2Params, StmParams, SuspensionProblem};
 use ridelab::maps::{map_csv, map_report, Grid, MapSettings, Scale};
+use ridelab::optimize::{recheck, run_study, Method, Nsga2Params, StmParams, SuspensionProblem};
 use ridelab::road::{Road, RoadClass, Tracks};
-use ridelab::surrogate::{sample_plan, study, surrogate_report, LmOptions, PlanSpec, Setting, SurrogateSpec};
+use ridelab::surrogate::{
+    sample_plan, study, surrogate_report, LmOptions, PlanSpec, Setting, SurrogateSpec,
+};
 use ridelab::time_domain::{simulate, TimeOptions};
 use ridelab::{Evaluator, HiFi, LoFi};
 use std::collections::HashMap;
@@ -273,6 +275,7 @@ fn doe(args: &[String]) -> Result<String> {
 fn optimize(args: &[String]) -> Result<String> {
     let mut values = vec![
         "evaluator",
+        "plan",
         "method",
         "sws-limit",
         "grid",
@@ -314,17 +317,22 @@ fn optimize(args: &[String]) -> Result<String> {
         tire_stiffness: q.kt,
         datum,
     };
+    let design_box = DesignBox::default();
     let evaluator: Box<dyn Evaluator> = match o.str("evaluator").unwrap_or("full") {
         "full" | "hifi" => Box::new(hifi.clone()),
         "quarter" | "lofi" => Box::new(LoFi {
             car: car.clone(),
             road,
         }),
-        other => {
-            return Err(RideError::field(
-                "evaluator",
-                format!("'{other}' is not quarter or full"),
-            ))
+        name => {
+            let spec = SurrogateSpec::parse(name).map_err(|e| match e {
+                RideError::Field { reason, .. } => RideError::field("evaluator", reason),
+                other => other,
+            })?;
+            let plan = PlanSpec::parse(o.str("plan").unwrap_or("ae:10"))?.plan()?;
+            let samples = sample_plan(&hifi, &plan, &design_box)?;
+            let setting = Setting::new(&car, &road, &design_box)?;
+            Box::new(spec.fit(&setting, &samples, &LmOptions::default())?)
         }
     };
     let problem = SuspensionProblem::new(evaluator, design_box, objectives, ctx)?;
@@ -449,7 +457,11 @@ fn map_cmd(args: &[String]) -> Result<String> {
             o.str("ks-range").unwrap_or("10000:40000:41"),
             o.str("cs-range").unwrap_or("500:4000:41"),
         )?,
-        scale: if o.flag("relative") { Scale::Relative } else { Scale::Absolute },
+        scale: if o.flag("relative") {
+            Scale::Relative
+        } else {
+            Scale::Absolute
+        },
         ..MapSettings::default()
     };
     let r = map_report(kind, &car, &road, &settings)?;
@@ -465,7 +477,9 @@ fn surrogate_cmd(args: &[String]) -> Result<String> {
     values.extend(CAR_ROAD);
     let o = Opts::parse(args, &["json"], &values)?;
     let (car, road) = car_and_road(&o)?;
-    let approach = o.str("approach").ok_or_else(|| RideError::field("approach", "missing"))?;
+    let approach = o
+        .str("approach")
+        .ok_or_else(|| RideError::field("approach", "missing"))?;
     let plan = o.str("plan").unwrap_or("ae:10");
     let predict = match o.str("predict") {
         None => None,
