@@ -1,0 +1,149 @@
+//! The `ridelab` command line as users and scripts meet it: JSON fields, numbers equal
+//! to the library's, one-line errors naming the option, exit code 2, never a panic.
+
+use ridelab::analysis::{report, ModelKind};
+use ridelab::road::Road;
+use ridelab::Car;
+use std::process::Command;
+
+fn ridelab(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_ridelab"))
+        .args(args)
+        .output()
+        .expect("runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let (code, out, err) = ridelab(args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    serde_json::from_str(&out).expect("valid JSON")
+}
+
+#[test]
+fn eval_json_equals_the_library() {
+    for (model, kind) in [("quarter", ModelKind::Quarter), ("full", ModelKind::Full)] {
+        let v = json(&[
+            "eval",
+            "--model",
+            model,
+            "--car",
+            "../assets/cars/sedan.json",
+            "--json",
+        ]);
+        let r = report(kind, &Car::datum(), &Road::default()).unwrap();
+        for (k, x) in [("bacc", r.bacc), ("dtl", r.dtl), ("sws", r.sws)] {
+            assert_eq!(v[k].as_f64().unwrap(), x, "{model} {k}");
+        }
+        assert!(!v["modes"].as_array().unwrap().is_empty());
+    }
+    // --ks/--cs override the front corner.
+    let v = json(&[
+        "eval", "--model", "full", "--ks", "25000", "--cs", "2000", "--class", "c", "--json",
+    ]);
+    let car = Car::datum().with_front(25_000.0, 2_000.0).unwrap();
+    let road = Road {
+        class: ridelab::RoadClass::C,
+        ..Road::default()
+    };
+    let r = report(ModelKind::Full, &car, &road).unwrap();
+    assert_eq!(v["bacc"].as_f64().unwrap(), r.bacc);
+    assert_eq!(v["ks"].as_f64().unwrap(), 25_000.0);
+}
+
+#[test]
+fn doe_map_and_optimize_print_their_fields() {
+    let v = json(&["doe", "--points", "5", "--json"]);
+    assert!((v["energy"].as_f64().unwrap() - 1.298_202_614_379_085).abs() < 1e-12);
+    assert_eq!(v["samples"].as_array().unwrap().len(), 5);
+
+    let v = json(&[
+        "map",
+        "--model",
+        "quarter",
+        "--ks-range",
+        "10000:40000:5",
+        "--cs-range",
+        "500:4000:4",
+        "--json",
+    ]);
+    assert_eq!(v["bacc"].as_array().unwrap().len(), 20);
+    let (_, csv, _) = ridelab(&[
+        "map",
+        "--model",
+        "quarter",
+        "--ks-range",
+        "10000:40000:3",
+        "--cs-range",
+        "500:4000:2",
+        "--csv",
+    ]);
+    assert!(csv.starts_with("ks_n_per_m,cs_ns_per_m,bacc_m_per_s2,dtl_n,sws_m,feasible,broken"));
+    assert_eq!(csv.lines().count(), 1 + 6);
+
+    let v = json(&[
+        "optimize",
+        "--evaluator",
+        "quarter",
+        "--method",
+        "nsga2",
+        "--population",
+        "20",
+        "--generations",
+        "10",
+        "--json",
+    ]);
+    assert!(!v["front"].as_array().unwrap().is_empty());
+    assert!(v["pick"]["ks"].as_f64().unwrap() >= 10_000.0);
+    assert!(v["hifi_recheck"]["rechecked"]["bacc"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn bad_input_is_one_line_naming_the_option_with_exit_code_2() {
+    let cases: [(&[&str], &str); 12] = [
+        (&["eval", "--model", "full", "--speed", "-5"], "speed"),
+        (&["eval", "--model", "full", "--speed", "fast"], "speed"),
+        (&["eval", "--model", "hexa"], "model"),
+        (&["eval"], "model"),
+        (&["eval", "--model", "full", "--class", "Z"], "class"),
+        (&["eval", "--model", "full", "--cs", "0"], "cs"),
+        (&["eval", "--model", "full", "--ks", "-1"], "ks"),
+        (&["eval", "--model", "full", "--car", "missing.json"], "car"),
+        (&["eval", "--model", "full", "--wat"], "--wat"),
+        (
+            &["map", "--model", "quarter", "--ks-range", "4:1:3"],
+            "ks-range",
+        ),
+        (&["doe", "--points", "1"], "points"),
+        (
+            &["optimize", "--evaluator", "quarter", "--class", "C"],
+            "sws_limit",
+        ),
+    ];
+    for (args, field) in cases {
+        let (code, out, err) = ridelab(args);
+        assert_eq!(code, 2, "{args:?}");
+        assert!(out.is_empty(), "{args:?}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(
+            err.starts_with(&format!("error: {field}")),
+            "{args:?}: {err}"
+        );
+        assert!(!err.contains("panicked"));
+    }
+    // A car file with a misspelt key.
+    let dir = std::env::temp_dir().join("ridelab-cli-test");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bad.json");
+    let text = ridelab::car::PRESETS[0]
+        .1
+        .replace("\"sprung_mass\"", "\"sprung_mas\"");
+    std::fs::write(&path, text).unwrap();
+    let (code, _, err) = ridelab(&["eval", "--model", "full", "--car", path.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("sprung_mas"), "{err}");
+}
