@@ -129,7 +129,10 @@ impl HiFi {
 
 impl Evaluator for HiFi {
     fn evaluate(&self, ks: f64, cs: f64) -> Result<Criteria> {
-        self.car.with_front(ks, cs)?;
+        let mut front = self.car.front;
+        front.spring = ks;
+        front.damper = cs;
+        front.validate("front")?;
         let mut m = self.base.clone();
         m.k += ks * &self.dk;
         m.c += cs * &self.dc;

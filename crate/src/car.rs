@@ -170,7 +170,8 @@ impl Car {
 }
 
 impl Axle {
-    fn validate(&self, prefix: &str) -> Result<()> {
+    /// Checks every field; messages name `prefix.field`.
+    pub fn validate(&self, prefix: &str) -> Result<()> {
         check_positive(&format!("{prefix}.unsprung_mass"), self.unsprung_mass)?;
         check_positive(&format!("{prefix}.spring"), self.spring)?;
         check_positive(&format!("{prefix}.tire_stiffness"), self.tire_stiffness)?;

@@ -52,7 +52,9 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
     road.validate()?;
     let n = model.n();
     for (name, mat) in [("M", &model.m), ("C", &model.c), ("K", &model.k)] {
-        if (mat - mat.transpose()).amax() > 1e-12 * mat.amax() {
+        let tol = 1e-12 * mat.amax();
+        let asymmetric = (0..n).any(|i| (0..i).any(|j| (mat[(i, j)] - mat[(j, i)]).abs() > tol));
+        if asymmetric {
             return Err(RideError::Numerical(format!(
                 "modal: {name} is not symmetric"
             )));
@@ -139,6 +141,10 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
         .iter()
         .map(|&l| std::array::from_fn(|o| row(o, l)))
         .collect();
+    // 1 / -(lambda_k + lambda_m), shared by every output and wheel-group pair.
+    let inv_sum: Vec<C64> = (0..ns * ns)
+        .map(|km| -(lam[km / ns] + lam[km % ns]).inv())
+        .collect();
     let mut var = [0.0; N_OUT];
     for src in &exc.sources {
         let groups = groups(model, &kinv, &minv, &src.channels)?;
@@ -186,13 +192,12 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
                 let e: Vec<C64> = lam.iter().map(|&lm| (lm * dt).exp()).collect();
                 for (o, vo) in var.iter_mut().enumerate() {
                     let (rg, rl) = (&rho[gi][o], &rho[li][o]);
+                    let rle: Vec<C64> = (0..ns).map(|m| rl[m] * e[m]).collect();
                     let mut t = ZERO;
                     for k in 0..ns {
-                        let mut inner = ZERO;
-                        for m in 0..ns {
-                            inner += rl[m] * e[m] / (lam[k] + lam[m]);
-                        }
-                        t -= rg[k] * inner;
+                        let row = &inv_sum[k * ns..(k + 1) * ns];
+                        let inner: C64 = (0..ns).map(|m| rle[m] * row[m]).sum();
+                        t += rg[k] * inner;
                     }
                     let mut t = t.re;
                     if gi != li {
