@@ -86,17 +86,7 @@ impl WhiteForm {
                 }
             }
             groups.sort_by(|x, y| x.tau.total_cmp(&y.tau));
-            for i in 0..N_OUT {
-                let sum: f64 = groups.iter().map(|gr| gr.g[i]).sum();
-                let size: f64 = groups.iter().map(|gr| gr.g[i].abs()).sum();
-                if size > 1e-12 * scale && sum.abs() > 1e-9 * size {
-                    return Err(RideError::Numerical(
-                        "road warp: with independent tracks and unequal front and rear track widths the \
-                         suspension deflections follow a random walk and their RMS is unbounded"
-                            .into(),
-                    ));
-                }
-            }
+            check_stationary(groups.iter().map(|gr| gr.g), scale)?;
             sources.push(groups);
         }
         Ok(WhiteForm {
@@ -122,6 +112,26 @@ impl WhiteForm {
         }
         var
     }
+}
+
+/// Refuses a source whose static gains do not sum to zero: the output then follows the
+/// road displacement itself (a random walk: road warp) and its RMS is unbounded.
+pub(super) fn check_stationary(
+    gains: impl Iterator<Item = [f64; N_OUT]> + Clone,
+    scale: f64,
+) -> Result<()> {
+    for i in 0..N_OUT {
+        let sum: f64 = gains.clone().map(|g| g[i]).sum();
+        let size: f64 = gains.clone().map(|g| g[i].abs()).sum();
+        if size > 1e-12 * scale && sum.abs() > 1e-9 * size {
+            return Err(RideError::Numerical(
+                "road warp: with independent tracks and unequal front and rear track widths the \
+                 suspension deflections follow a random walk and their RMS is unbounded"
+                    .into(),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Square roots of the variances, refusing anything not finite and non-negative.

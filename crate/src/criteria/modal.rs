@@ -27,6 +27,7 @@
 //! The expansion is checked against a direct solve at one frequency; if it disagrees
 //! (nearly repeated eigenvalues) the route declines and the caller uses the Kronecker route.
 
+use super::exact::{check_stationary, rms_of};
 use super::hqr;
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
@@ -217,12 +218,7 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
             }
         }
     }
-    if var.iter().any(|v| !v.is_finite() || *v < 0.0) {
-        return Err(RideError::Numerical(
-            "variance is not finite: is the model stable?".into(),
-        ));
-    }
-    Ok(Criteria::from_array(var.map(f64::sqrt)))
+    rms_of(var)
 }
 
 /// Wheel groups of one source with their static gains; refuses unbounded responses.
@@ -275,17 +271,7 @@ fn groups(
             }
         }
     }
-    for o in 0..N_OUT {
-        let sum: f64 = groups.iter().map(|g| g.g[o]).sum();
-        let size: f64 = groups.iter().map(|g| g.g[o].abs()).sum();
-        if size > 1e-12 * scale && sum.abs() > 1e-9 * size {
-            return Err(RideError::Numerical(
-                "road warp: with independent tracks and unequal front and rear track widths the \
-                 suspension deflections follow a random walk and their RMS is unbounded"
-                    .into(),
-            ));
-        }
-    }
+    check_stationary(groups.iter().map(|g| g.g), scale)?;
     Ok(groups)
 }
 
