@@ -3,31 +3,28 @@
 //! Run: `cargo bench -p ridelab --bench optimize`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use ridelab::criteria::quarter_car_rms;
 use ridelab::dos::{DesignObjectives, DosContext};
 use ridelab::optimize::{nsga2, stm, Nsga2Params, StmParams, SuspensionProblem};
+use ridelab::road::Road;
 use ridelab::{Criteria, DesignBox, Evaluator, Result};
 use std::hint::black_box;
 
-/// Closed-form quarter car on white-noise road velocity, `W = 2 pi^2 Gd n0^2 v` with
-/// `Gd = 64e-6 m^3`, `n0 = 0.1 1/m`, `v = 20 m/s`; `ms = 467.7 kg`, `mu = 40 kg`,
-/// `kt = 175500 N/m`, `M = ms + mu`: `var(BAcc) = W (ks^2 M + cs^2 kt) / (2 cs ms^2)`,
-/// `var(SWS) = W M / (2 cs)`,
-/// `var(DTL) = W / (2 cs) [kt^2 mu + (M/ms)^2 (ks^2 M + cs^2 kt) - 2 ks kt mu M / ms]`.
+/// The closed-form quarter car of the core (`criteria::quarter_car_rms`) with
+/// `ms = 467.7 kg`, `mu = 40 kg`, `kt = 175500 N/m` on class B at 20 m/s.
 struct QuarterCar;
 
 impl Evaluator for QuarterCar {
     fn evaluate(&self, ks: f64, cs: f64) -> Result<Criteria> {
-        let (ms, mu, kt) = (467.7, 40.0, 175_500.0);
-        let w = 2.0 * std::f64::consts::PI.powi(2) * 64e-6 * 0.1f64.powi(2) * 20.0;
-        let m = ms + mu;
-        let q = ks * ks * m + cs * cs * kt;
-        let dtl =
-            w / (2.0 * cs) * (kt * kt * mu + (m / ms).powi(2) * q - 2.0 * ks * kt * mu * m / ms);
-        Ok(Criteria {
-            bacc: (w * q / (2.0 * cs * ms * ms)).sqrt(),
-            dtl: dtl.sqrt(),
-            sws: (w * m / (2.0 * cs)).sqrt(),
-        })
+        let q = ridelab::QuarterCar {
+            ms: 467.7,
+            mu: 40.0,
+            ks,
+            cs,
+            kt: 175_500.0,
+            ct: 0.0,
+        };
+        Ok(quarter_car_rms(&q, Road::default().intensity()))
     }
     fn name(&self) -> String {
         "quarter-closed-form".into()

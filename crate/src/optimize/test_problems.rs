@@ -111,16 +111,15 @@ impl QuarterCar {
 
 impl Evaluator for QuarterCar {
     fn evaluate(&self, ks: f64, cs: f64) -> Result<Criteria> {
-        let (ms, mu, kt, w) = (Self::MS, Self::MU, Self::KT, Self::w());
-        let m = ms + mu;
-        let q = ks * ks * m + cs * cs * kt;
-        let dtl =
-            w / (2.0 * cs) * (kt * kt * mu + (m / ms).powi(2) * q - 2.0 * ks * kt * mu * m / ms);
-        Ok(Criteria {
-            bacc: (w * q / (2.0 * cs * ms * ms)).sqrt(),
-            dtl: dtl.sqrt(),
-            sws: (w * m / (2.0 * cs)).sqrt(),
-        })
+        let q = crate::car::QuarterCar {
+            ms: Self::MS,
+            mu: Self::MU,
+            ks,
+            cs,
+            kt: Self::KT,
+            ct: 0.0,
+        };
+        Ok(crate::criteria::quarter_car_rms(&q, Self::w()))
     }
     fn name(&self) -> String {
         "quarter-closed-form".into()
