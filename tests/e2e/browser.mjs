@@ -18,3 +18,30 @@ export const FLAGS = [
 export function launch() {
   return chromium.launch({ executablePath: CHROMIUM, headless: true, args: FLAGS });
 }
+
+/**
+ * Opens `url` in a fresh browser context and records console errors, page errors and
+ * requests to any host other than the local server; resolves when the page reports ready.
+ */
+export async function openPage(browser, url, { width = 1400, height = 1000, dpr = 1, downloads = false } = {}) {
+  const context = await browser.newContext({ viewport: { width, height }, deviceScaleFactor: dpr, acceptDownloads: downloads });
+  const page = await context.newPage();
+  const log = { errors: [], foreign: [] };
+  page.on('console', (m) => {
+    if (m.type() === 'error') log.errors.push(m.text());
+  });
+  page.on('pageerror', (e) => log.errors.push(`pageerror: ${e.message}`));
+  page.on('request', (r) => {
+    const u = new URL(r.url());
+    if (!['data:', 'blob:'].includes(u.protocol) && u.hostname !== '127.0.0.1') log.foreign.push(r.url());
+  });
+  await page.goto(url);
+  await page.waitForFunction(() => window.__ridelab && window.__ridelab.ready, null, { timeout: 30_000 });
+  return { page, context, log };
+}
+
+/** Waits until every view shows the current state, then `extraMs` more. */
+export async function settled(page, extraMs) {
+  await page.waitForFunction(() => window.__ridelab.isSettled(), null, { timeout: 30_000 });
+  await page.waitForTimeout(extraMs);
+}

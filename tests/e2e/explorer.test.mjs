@@ -16,7 +16,7 @@ import zlib from 'node:zlib';
 import { execFileSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { startServer } from './server.mjs';
-import { launch } from './browser.mjs';
+import { launch, openPage, settled } from './browser.mjs';
 
 const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
 const DIST = process.env.RIDELAB_DIST || path.join(ROOT, 'dist');
@@ -48,27 +48,13 @@ after(async () => {
 // ------------------------------------------------------------------ helpers
 
 /** Opens the page at `hash` (and `query`), waits until every view is ready. */
-async function open(hash = '', { query = '', dpr = 1, width = 1400, height = 1000 } = {}) {
-  const context = await browser.newContext({ viewport: { width, height }, deviceScaleFactor: dpr });
-  const page = await context.newPage();
-  const log = { errors: [], foreign: [] };
-  page.on('console', (m) => {
-    if (m.type() === 'error') log.errors.push(m.text());
-  });
-  page.on('pageerror', (e) => log.errors.push(`pageerror: ${e.message}`));
-  page.on('request', (r) => {
-    const u = new URL(r.url());
-    if (!['data:', 'blob:'].includes(u.protocol) && u.hostname !== '127.0.0.1') log.foreign.push(r.url());
-  });
-  await page.goto(srv.url + query + hash);
-  await page.waitForFunction(() => window.__ridelab && window.__ridelab.ready, null, { timeout: 30_000 });
-  return { page, context, log };
+function open(hash = '', { query = '', dpr = 1, width = 1400, height = 1000 } = {}) {
+  return openPage(browser, srv.url + query + hash, { width, height, dpr });
 }
 
 /** Waits until every view shows the current state and the URL has been written. */
-async function settle(page) {
-  await page.waitForFunction(() => window.__ridelab.isSettled(), null, { timeout: 30_000 });
-  await page.waitForTimeout(200); // the URL is written 120 ms after the last change
+function settle(page) {
+  return settled(page, 200); // the URL is written 120 ms after the last change
 }
 
 /** The criteria table as `{"bacc.lofi": value, ...}` (full-precision SI values). */

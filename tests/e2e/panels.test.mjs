@@ -10,7 +10,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { startServer } from './server.mjs';
-import { launch } from './browser.mjs';
+import { launch, openPage, settled } from './browser.mjs';
 
 const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
 const DIST = process.env.RIDELAB_DIST || path.join(ROOT, 'dist');
@@ -34,27 +34,15 @@ after(async () => {
   if (srv) await srv.close();
 });
 
-async function open(hash = '', { width = 1400, height = 1000, dpr = 1 } = {}) {
-  const context = await browser.newContext({ viewport: { width, height }, deviceScaleFactor: dpr, acceptDownloads: true });
-  const page = await context.newPage();
-  const log = { errors: [], foreign: [] };
-  page.on('console', (m) => {
-    if (m.type() === 'error') log.errors.push(m.text());
+function open(hash = '', { width = 1400, height = 1000, dpr = 1 } = {}) {
+  return openPage(browser, srv.url + hash, { width, height, dpr, downloads: true }).then(async (r) => {
+    await settle(r.page);
+    return r;
   });
-  page.on('pageerror', (e) => log.errors.push(`pageerror: ${e.message}`));
-  page.on('request', (r) => {
-    const u = new URL(r.url());
-    if (!['data:', 'blob:'].includes(u.protocol) && u.hostname !== '127.0.0.1') log.foreign.push(r.url());
-  });
-  await page.goto(srv.url + hash);
-  await page.waitForFunction(() => window.__ridelab && window.__ridelab.ready, null, { timeout: 30_000 });
-  await settle(page);
-  return { page, context, log };
 }
 
-async function settle(page) {
-  await page.waitForFunction(() => window.__ridelab.isSettled(), null, { timeout: 30_000 });
-  await page.waitForTimeout(150);
+function settle(page) {
+  return settled(page, 150);
 }
 
 function assertClean(log) {
