@@ -11,6 +11,7 @@ pub mod doe;
 pub mod dos;
 pub mod error;
 pub mod evaluate;
+pub mod explorer;
 pub mod maps;
 pub mod model;
 pub mod modes;

@@ -127,14 +127,33 @@ pub fn surrogate_report(
 ) -> Result<SurrogateReport> {
     let spec = SurrogateSpec::parse(approach)?;
     let plan_spec = PlanSpec::parse(plan)?;
-    let design_box = DesignBox::default();
-    let setting = Setting::new(car, road, &design_box)?;
+    surrogate_report_in(
+        spec,
+        plan_spec,
+        car,
+        road,
+        &DesignBox::default(),
+        predict_grid,
+    )
+}
+
+/// [`surrogate_report`] over any design box (the plan, the normalisation and the
+/// validation grid all span `design_box`).
+pub fn surrogate_report_in(
+    spec: SurrogateSpec,
+    plan_spec: PlanSpec,
+    car: &Car,
+    road: &Road,
+    design_box: &DesignBox,
+    predict_grid: Option<usize>,
+) -> Result<SurrogateReport> {
+    let setting = Setting::new(car, road, design_box)?;
     let hifi = Counted::new(HiFi::new(car, road)?);
     let plan = plan_spec.plan()?;
-    let samples = sample_plan(&hifi, &plan, &design_box)?;
+    let samples = sample_plan(&hifi, &plan, design_box)?;
     let model = spec.fit(&setting, &samples, &LmOptions::default())?;
     let levels = predict_grid.unwrap_or(VALIDATION_LEVELS);
-    let validation = ValidationSet::new(&hifi, &design_box, levels).map_err(|e| match e {
+    let validation = ValidationSet::new(&hifi, design_box, levels).map_err(|e| match e {
         RideError::Field { reason, .. } => RideError::field("predict-grid", reason),
         e => e,
     })?;
@@ -146,7 +165,7 @@ pub fn surrogate_report(
         plan_method: plan.method,
         car: car.name.clone(),
         road: *road,
-        design_box,
+        design_box: *design_box,
         samples,
         hifi_evaluations: hifi.count(),
         tuning: model.tuning(),

@@ -6,18 +6,18 @@
 //! the same module runs in a Web Worker.
 //!
 //! State objects (see [`State`]) are plain JS objects in SI units:
-//! `{car, carJson?, ks, cs, class, speed, tracks, ksMin?, ksMax?, csMin?, csMax?, swsLimit?}`.
-
-mod state;
-mod studies;
-
-pub use state::{lofi_map, LoFiMap, Scenario, State, MAX_GRID, STATE_FIELDS};
-pub use studies::{lofi_front, spectra, time_response, FrontResult, Spectra, TimeResult};
+//! `{car, carJson?, ks, cs, class, speed, tracks, ksMin?, ksMax?, csMin?, csMax?, swsLimit?,
+//! bounceBand?, dampingBand?, noWorse?, surrogate?, plan?}`. The logic behind every entry
+//! is in [`crate::explorer`].
 
 use crate::analysis::{report, ModelKind};
 use crate::car::{Car, PRESETS};
 use crate::error::RideError;
 use crate::evaluate::Evaluator;
+use crate::explorer::{
+    fit_report, fitted, front as model_front, lofi_map, map_of, spectra, time_response, FrontModel,
+    MapModel, ModelMap, Scenario, State, STATE_FIELDS,
+};
 use crate::road::RoadClass;
 use js_sys::{Float64Array, Object, Reflect, Uint8Array};
 use serde::Serialize;
@@ -60,6 +60,9 @@ fn ui_field(core: &str) -> String {
         "front.damper" | "cs" => "cs".into(),
         "ks-range" | "cs-range" => "box".into(),
         "sws_limit" => "swsLimit".into(),
+        "bounce_band" => "bounceBand".into(),
+        "damping_band" => "dampingBand".into(),
+        "approach" | "scheme" => "surrogate".into(),
         f if CAR_FIELDS.contains(&f)
             || f.starts_with("front.")
             || f.starts_with("rear.")
@@ -242,15 +245,19 @@ pub fn evaluate(state: JsValue) -> Result<JsValue, JsValue> {
 }
 
 /// The criteria `{bacc, dtl, sws}` of the state's design by the fast evaluators the
-/// maps and optimisers use (`model`: "quarter" or "full").
+/// maps and optimisers use (`model`: "quarter", "full" or "surrogate", the state's
+/// surrogate).
 #[wasm_bindgen]
 pub fn criteria(state: JsValue, model: &str) -> Result<JsValue, JsValue> {
-    let kind = ModelKind::parse(model).map_err(js_error)?;
     let s = scenario(state)?;
     let (ks, cs) = (s.design.front.spring, s.design.front.damper);
-    let c = match kind {
-        ModelKind::Quarter => s.lofi().evaluate(ks, cs),
-        ModelKind::Full => crate::HiFi::new(&s.datum, &s.road).and_then(|h| h.evaluate(ks, cs)),
+    let c = if model == "surrogate" {
+        fitted(&s).and_then(|f| f.model.evaluate(ks, cs))
+    } else {
+        match ModelKind::parse(model).map_err(js_error)? {
+            ModelKind::Quarter => s.lofi().evaluate(ks, cs),
+            ModelKind::Full => s.hifi().and_then(|h| h.evaluate(ks, cs)),
+        }
     }
     .map_err(js_error)?;
     to_js(&c)
@@ -267,16 +274,15 @@ pub fn lofi_map_js(state: JsValue, nx: usize, ny: usize) -> Result<Float64Array,
     Ok(Float64Array::from(m.values.as_slice()))
 }
 
-/// [`lofi_map_js`] plus the feasibility mask of the design objectives:
-/// `{nx, ny, values: Float64Array, feasible: Uint8Array, feasibleCount}`.
-#[wasm_bindgen(js_name = lofiMaps)]
-pub fn lofi_maps_js(state: JsValue, nx: usize, ny: usize) -> Result<JsValue, JsValue> {
-    let s = scenario(state)?;
-    let m = lofi_map(&s, nx, ny).map_err(js_error)?;
-    let count = m.feasible.iter().filter(|&&f| f == 1).count();
+/// A map as `{nx, ny, values: Float64Array, feasible: Uint8Array, broken: Uint8Array,
+/// feasibleCount}` (`broken`: the objectives each cell breaks as a bitmask, bit 0 SWS
+/// limit, 1 bounce band, 2 damping band, 3..5 BAcc/DTL/SWS no worse than datum).
+fn map_js(m: &ModelMap) -> Result<JsValue, JsValue> {
+    let feasible = m.feasible();
+    let count = feasible.iter().filter(|&&f| f == 1).count();
     let out = Object::new();
-    Reflect::set(&out, &"nx".into(), &(nx as f64).into())?;
-    Reflect::set(&out, &"ny".into(), &(ny as f64).into())?;
+    Reflect::set(&out, &"nx".into(), &(m.nx as f64).into())?;
+    Reflect::set(&out, &"ny".into(), &(m.ny as f64).into())?;
     Reflect::set(
         &out,
         &"values".into(),
@@ -285,21 +291,69 @@ pub fn lofi_maps_js(state: JsValue, nx: usize, ny: usize) -> Result<JsValue, JsV
     Reflect::set(
         &out,
         &"feasible".into(),
-        &Uint8Array::from(m.feasible.as_slice()).into(),
+        &Uint8Array::from(feasible.as_slice()).into(),
+    )?;
+    Reflect::set(
+        &out,
+        &"broken".into(),
+        &Uint8Array::from(m.broken.as_slice()).into(),
     )?;
     Reflect::set(&out, &"feasibleCount".into(), &(count as f64).into())?;
     Ok(out.into())
 }
 
-/// The Pareto front of BAcc and DTL on the LoFi model (`method`: "stm", a 61 x 61 grid
-/// refined twice, or "nsga2", seeded, 60 x 60), its hypervolume, the min-max pick and
-/// the pick re-checked on the HiFi model: `{study: {front, hypervolume, referencePoint,
-/// pick, evaluations, ..}, datum, datumHifi, recheck}`. With no feasible design the
-/// error names the binding objective.
-#[wasm_bindgen]
-pub fn front(state: JsValue, method: &str) -> Result<JsValue, JsValue> {
+/// [`lofi_map_js`] plus the design objectives (see [`map_js`]).
+#[wasm_bindgen(js_name = lofiMaps)]
+pub fn lofi_maps_js(state: JsValue, nx: usize, ny: usize) -> Result<JsValue, JsValue> {
     let s = scenario(state)?;
-    to_js(&lofi_front(&s, method).map_err(js_error)?)
+    map_js(&lofi_map(&s, nx, ny).map_err(js_error)?)
+}
+
+/// The map of one model (same layout as [`lofi_maps_js`]): `model` is "lofi", "hifi",
+/// "surrogate" (the state's surrogate) or "error" (the surrogate's signed relative error
+/// against the HiFi, `100 (S / HiFi - 1)` %, with the HiFi's objectives). The HiFi and
+/// error maps cost about 60 us a cell: the page asks the worker for them.
+#[wasm_bindgen(js_name = modelMaps)]
+pub fn model_maps_js(
+    state: JsValue,
+    model: &str,
+    nx: usize,
+    ny: usize,
+) -> Result<JsValue, JsValue> {
+    let s = scenario(state)?;
+    let m = MapModel::parse(model).map_err(js_error)?;
+    map_js(&map_of(&s, m, nx, ny).map_err(js_error)?)
+}
+
+/// The state's surrogate fitted to HiFi samples over its design box and validated on
+/// a `levels x levels` HiFi grid: the `ridelab surrogate` report (samples, tuning,
+/// diagnostics, metrics, error map, predictions).
+#[wasm_bindgen(js_name = surrogateFit)]
+pub fn surrogate_fit_js(state: JsValue, levels: usize) -> Result<JsValue, JsValue> {
+    let s = scenario(state)?;
+    to_js(&fit_report(&s, levels).map_err(js_error)?)
+}
+
+/// The surrogate names the state's `surrogate` field takes (`ridelab surrogate` names).
+#[wasm_bindgen]
+pub fn surrogates() -> Result<JsValue, JsValue> {
+    let names: Vec<String> = crate::surrogate::SurrogateSpec::all()
+        .iter()
+        .map(|s| s.name())
+        .collect();
+    to_js(&names)
+}
+
+/// The Pareto front of BAcc and DTL on `model` ("lofi", the default, or "surrogate")
+/// by `method` ("stm", a 61 x 61 grid refined twice, or "nsga2", seeded, 60 x 60), its
+/// hypervolume, the min-max pick and the pick re-checked on the HiFi model:
+/// `{study: {front, hypervolume, referencePoint, pick, evaluations, ..}, datum,
+/// datumHifi, recheck}`. With no feasible design the error names the binding objective.
+#[wasm_bindgen]
+pub fn front(state: JsValue, method: &str, model: Option<String>) -> Result<JsValue, JsValue> {
+    let s = scenario(state)?;
+    let on = FrontModel::parse(model.as_deref().unwrap_or("lofi")).map_err(js_error)?;
+    to_js(&model_front(&s, method, on).map_err(js_error)?)
 }
 
 /// |H| from road displacement and the output PSDs of the design by both models at

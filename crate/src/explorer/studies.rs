@@ -1,8 +1,8 @@
-//! Front, spectra and time-response exports for the page's objective plane, FRF/PSD
-//! plots and time panel. Thin wrappers over `optimize`, `criteria::Spectrum` and
-//! `time_domain`; nothing here touches the DOM (the HiFi ones run in the worker).
+//! Fronts, spectra and time responses for the page's objective plane, FRF/PSD plots and
+//! time panel: thin layers over `optimize`, `criteria::Spectrum` and `time_domain`.
 
-use super::state::Scenario;
+use super::state::{dos_context, Scenario};
+use super::surrogate::fitted;
 use crate::analysis::ModelKind;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
@@ -14,7 +14,6 @@ use crate::optimize::{
     suspension::SuspensionProblem,
 };
 use crate::time_domain::{simulate, TimeOptions, TimeResponse};
-use crate::HiFi;
 use serde::Serialize;
 
 /// STM grid of the page's LoFi front (a few ms).
@@ -42,13 +41,36 @@ pub fn method(name: &str) -> Result<Method> {
     }
 }
 
-/// A LoFi front with its pick re-checked on the HiFi model.
+/// The model a front is found on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FrontModel {
+    /// The quarter car.
+    LoFi,
+    /// The scenario's fitted surrogate.
+    Surrogate,
+}
+
+impl FrontModel {
+    /// Parses "lofi" or "surrogate" (errors name `frontModel`).
+    pub fn parse(s: &str) -> Result<FrontModel> {
+        match s {
+            "lofi" => Ok(FrontModel::LoFi),
+            "surrogate" => Ok(FrontModel::Surrogate),
+            _ => Err(RideError::field(
+                "frontModel",
+                format!("'{s}' is not 'lofi' or 'surrogate'"),
+            )),
+        }
+    }
+}
+
+/// A front with its pick re-checked on the HiFi model.
 #[derive(Debug, Clone, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct FrontResult {
-    /// The study on the LoFi model.
+    /// The study on the front's model.
     pub study: Study,
-    /// The datum car's LoFi criteria (the normalisation of the ratios).
+    /// The datum car's criteria by the front's model (the normalisation of the ratios).
     pub datum: Criteria,
     /// The datum car's HiFi criteria.
     pub datum_hifi: Criteria,
@@ -56,14 +78,21 @@ pub struct FrontResult {
     pub recheck: Recheck,
 }
 
-/// Runs `method` on the LoFi model of `s` and re-checks the pick on the HiFi model.
-pub fn lofi_front(s: &Scenario, method_name: &str) -> Result<FrontResult> {
+/// Runs `method` on `model` for scenario `s` and re-checks the pick on the HiFi model.
+pub fn front(s: &Scenario, method_name: &str, model: FrontModel) -> Result<FrontResult> {
     let m = method(method_name)?;
-    let ctx = s.lofi_dos_context()?;
+    match model {
+        FrontModel::LoFi => front_on(s, &m, s.lofi()),
+        FrontModel::Surrogate => front_on(s, &m, &*fitted(s)?.model),
+    }
+}
+
+fn front_on<E: Evaluator>(s: &Scenario, m: &Method, model: E) -> Result<FrontResult> {
+    let ctx = dos_context(&s.datum, &model)?;
     let datum = ctx.datum;
-    let problem = SuspensionProblem::new(s.lofi(), s.dbox, s.objectives.clone(), ctx)?;
-    let study = run_study(&problem, &m, None)?;
-    let hifi = HiFi::new(&s.datum, &s.road)?;
+    let problem = SuspensionProblem::new(model, s.dbox, s.objectives.clone(), ctx)?;
+    let study = run_study(&problem, m, None)?;
+    let hifi = s.hifi()?;
     let datum_hifi = hifi.evaluate(s.datum.front.spring, s.datum.front.damper)?;
     let recheck = recheck(&study.pick, &hifi, &datum_hifi)?;
     Ok(FrontResult {

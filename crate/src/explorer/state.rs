@@ -1,22 +1,48 @@
-//! The page's state as the JS side sends it, and its conversion into core types.
+//! The explorer's state (what the page sends, field names camelCase), and its conversion
+//! into core types.
 //!
-//! Units follow the core (SI): `ks` N/m, `cs` N s/m, `speed` m/s, `swsLimit` m.
-//! The UI converts to kN/m, kNs/m and mm for display only.
+//! Units follow the core (SI): `ks` N/m, `cs` N s/m, `speed` m/s, `swsLimit` m,
+//! `bounceBand` Hz. The UI converts to kN/m, kNs/m and mm for display only.
 
 use crate::car::Car;
 use crate::design::DesignBox;
 use crate::dos::{DesignObjectives, DosContext};
 use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
+use crate::maps::dos_mask::objective_bit;
 use crate::road::{Road, RoadClass, Tracks};
+use crate::surrogate::{PlanSpec, SurrogateSpec};
 use crate::LoFi;
 use serde::{Deserialize, Serialize};
 
 /// The JS names of the [`State`] fields.
-pub const STATE_FIELDS: [&str; 12] = [
-    "car", "carJson", "ks", "cs", "class", "speed", "tracks", "ksMin", "ksMax", "csMin", "csMax",
+pub const STATE_FIELDS: [&str; 17] = [
+    "car",
+    "carJson",
+    "ks",
+    "cs",
+    "class",
+    "speed",
+    "tracks",
+    "ksMin",
+    "ksMax",
+    "csMin",
+    "csMax",
     "swsLimit",
+    "bounceBand",
+    "dampingBand",
+    "noWorse",
+    "surrogate",
+    "plan",
 ];
+
+/// The explorer's surrogate unless the state names one: the best of the fidelity study
+/// at 10 samples (max RTE under 0.7 % on the datum car).
+pub const DEFAULT_SURROGATE: &str = "rba-mul-rbf-mq";
+/// The explorer's sampling plan unless the state names one.
+pub const DEFAULT_PLAN: &str = "ae:10";
+/// Most HiFi samples a plan may ask for in the explorer (a fit stays a few ms).
+pub const MAX_PLAN_POINTS: usize = 100;
 
 /// Everything the page needs to define one view: car, design point, road, design box
 /// and the SWS objective. Field names are camelCase on the JS side.
@@ -53,6 +79,21 @@ pub struct State {
     /// RMS SWS limit, m (default 0.007).
     #[serde(default)]
     pub sws_limit: Option<f64>,
+    /// Allowed body-bounce frequency band `[lo, hi]`, Hz (off when absent).
+    #[serde(default)]
+    pub bounce_band: Option<[f64; 2]>,
+    /// Allowed body damping-ratio band `[lo, hi]`, - (off when absent).
+    #[serde(default)]
+    pub damping_band: Option<[f64; 2]>,
+    /// "No worse than the datum car" for `[BAcc, DTL, SWS]` (all off when absent).
+    #[serde(default)]
+    pub no_worse: Option<[bool; 3]>,
+    /// The surrogate, a `ridelab surrogate` name (default [`DEFAULT_SURROGATE`]).
+    #[serde(default)]
+    pub surrogate: Option<String>,
+    /// Its sampling plan, `ae:N` or `grid:n` (default [`DEFAULT_PLAN`]).
+    #[serde(default)]
+    pub plan: Option<String>,
 }
 
 impl Default for State {
@@ -74,6 +115,11 @@ impl Default for State {
             cs_min: Some(b.cs_min),
             cs_max: Some(b.cs_max),
             sws_limit: DesignObjectives::default().sws_limit,
+            bounce_band: None,
+            damping_band: None,
+            no_worse: None,
+            surrogate: Some(DEFAULT_SURROGATE.into()),
+            plan: Some(DEFAULT_PLAN.into()),
         }
     }
 }
@@ -89,8 +135,12 @@ pub struct Scenario {
     pub road: Road,
     /// The design box.
     pub dbox: DesignBox,
-    /// The design objectives (SWS limit only, for now).
+    /// The design objectives.
     pub objectives: DesignObjectives,
+    /// The surrogate to fit.
+    pub surrogate: SurrogateSpec,
+    /// Its sampling plan.
+    pub plan: PlanSpec,
 }
 
 impl State {
@@ -135,10 +185,38 @@ impl State {
     pub fn objectives(&self) -> Result<DesignObjectives> {
         let o = DesignObjectives {
             sws_limit: self.sws_limit,
-            ..DesignObjectives::default()
+            bounce_band: self.bounce_band.map(|[lo, hi]| (lo, hi)),
+            damping_band: self.damping_band.map(|[lo, hi]| (lo, hi)),
+            no_worse_than_datum: self.no_worse.unwrap_or_default(),
         };
         o.validate()?;
         Ok(o)
+    }
+
+    /// The surrogate and its plan, validated (errors name `approach` or `plan`).
+    pub fn surrogate(&self) -> Result<(SurrogateSpec, PlanSpec)> {
+        let spec = SurrogateSpec::parse(self.surrogate.as_deref().unwrap_or(DEFAULT_SURROGATE))?;
+        let plan = PlanSpec::parse(self.plan.as_deref().unwrap_or(DEFAULT_PLAN))?;
+        let points = match plan {
+            PlanSpec::AudzeEglais(n) => n,
+            PlanSpec::Grid(n) => n.saturating_mul(n),
+        };
+        if points < 2 {
+            return Err(RideError::field(
+                "plan",
+                format!("{} has fewer than 2 points", plan.name()),
+            ));
+        }
+        if points > MAX_PLAN_POINTS {
+            return Err(RideError::field(
+                "plan",
+                format!(
+                    "{} asks for {points} HiFi samples; the explorer takes at most {MAX_PLAN_POINTS}",
+                    plan.name()
+                ),
+            ));
+        }
+        Ok((spec, plan))
     }
 
     /// Everything at once; the first error names its field.
@@ -146,12 +224,15 @@ impl State {
         let datum = self.datum_car()?;
         let road = self.road()?;
         let design = datum.with_front(self.ks, self.cs)?;
+        let (surrogate, plan) = self.surrogate()?;
         Ok(Scenario {
             datum,
             design,
             road,
             dbox: self.design_box()?,
             objectives: self.objectives()?,
+            surrogate,
+            plan,
         })
     }
 }
@@ -167,19 +248,31 @@ impl Scenario {
 
     /// What the design objectives need besides the criteria (datum by the LoFi model).
     pub fn lofi_dos_context(&self) -> Result<DosContext> {
-        let q = self.datum.quarter();
-        Ok(DosContext {
-            sprung_mass: q.ms,
-            tire_stiffness: q.kt,
-            datum: self.lofi().evaluate(q.ks, q.cs)?,
-        })
+        dos_context(&self.datum, &self.lofi())
+    }
+
+    /// The HiFi evaluator of the datum car on the road.
+    pub fn hifi(&self) -> Result<crate::HiFi> {
+        crate::HiFi::new(&self.datum, &self.road)
     }
 }
 
-/// A LoFi design map: the three criteria and feasibility over an `nx` x `ny` grid of
-/// cell centres, `ks_i = ks_min + (i + 1/2) (ks_max - ks_min) / nx` (likewise `cs_j`).
+/// What the design objectives need besides the criteria, with the datum's criteria
+/// taken from `model` (each map and front compares a model with its own datum).
+pub fn dos_context<E: Evaluator + ?Sized>(datum: &Car, model: &E) -> Result<DosContext> {
+    let q = datum.quarter();
+    Ok(DosContext {
+        sprung_mass: q.ms,
+        tire_stiffness: q.kt,
+        datum: model.evaluate(q.ks, q.cs)?,
+    })
+}
+
+/// A design map of one model: the three criteria and the broken design objectives over
+/// an `nx` x `ny` grid of cell centres,
+/// `ks_i = ks_min + (i + 1/2) (ks_max - ks_min) / nx` (likewise `cs_j`).
 #[derive(Debug, Clone, PartialEq)]
-pub struct LoFiMap {
+pub struct ModelMap {
     /// Cells along Ks.
     pub nx: usize,
     /// Cells along Cs.
@@ -187,15 +280,28 @@ pub struct LoFiMap {
     /// `[bacc plane, dtl plane, sws plane]`, each row-major with `j` (Cs) slow and
     /// `i` (Ks) fast, j = 0 at the lowest Cs: index `c nx ny + j nx + i`.
     pub values: Vec<f64>,
-    /// 1 where the design meets every active objective, 0 where not; index `j nx + i`.
-    pub feasible: Vec<u8>,
+    /// The objectives each cell breaks as a bitmask
+    /// ([`crate::maps::dos_mask::OBJECTIVE_BITS`]); 0 where the design is feasible.
+    pub broken: Vec<u8>,
+}
+
+impl ModelMap {
+    /// 1 where the cell meets every active objective, 0 where not; index `j nx + i`.
+    pub fn feasible(&self) -> Vec<u8> {
+        self.broken.iter().map(|&b| u8::from(b == 0)).collect()
+    }
+
+    /// The `(ks, cs)` of cell `(i, j)`.
+    pub fn point(dbox: &DesignBox, nx: usize, ny: usize, i: usize, j: usize) -> (f64, f64) {
+        dbox.scale((i as f64 + 0.5) / nx as f64, (j as f64 + 0.5) / ny as f64)
+    }
 }
 
 /// Largest grid side accepted from the page (a 1024 x 1024 map is 1 M LoFi evaluations).
 pub const MAX_GRID: usize = 1024;
 
-/// Computes the LoFi map of `scenario` on an `nx` x `ny` grid.
-pub fn lofi_map(scenario: &Scenario, nx: usize, ny: usize) -> Result<LoFiMap> {
+/// Checks a map's grid size (errors name `nx` or `ny`).
+pub fn check_grid(nx: usize, ny: usize) -> Result<()> {
     for (name, n) in [("nx", nx), ("ny", ny)] {
         if n == 0 || n > MAX_GRID {
             return Err(RideError::field(
@@ -204,28 +310,46 @@ pub fn lofi_map(scenario: &Scenario, nx: usize, ny: usize) -> Result<LoFiMap> {
             ));
         }
     }
-    let ev = scenario.lofi();
-    let ctx = scenario.lofi_dos_context()?;
+    Ok(())
+}
+
+/// Evaluates `model` over the `nx` x `ny` grid of `scenario`'s design box, with the
+/// objectives judged against `model`'s own datum.
+pub fn model_map<E: Evaluator + ?Sized>(
+    scenario: &Scenario,
+    model: &E,
+    nx: usize,
+    ny: usize,
+) -> Result<ModelMap> {
+    check_grid(nx, ny)?;
+    let ctx = dos_context(&scenario.datum, model)?;
     let cells = nx * ny;
     let mut values = vec![0.0; 3 * cells];
-    let mut feasible = vec![0u8; cells];
+    let mut broken = vec![0u8; cells];
     for j in 0..ny {
         for i in 0..nx {
-            let (ks, cs) = scenario
-                .dbox
-                .scale((i as f64 + 0.5) / nx as f64, (j as f64 + 0.5) / ny as f64);
-            let c = ev.evaluate(ks, cs)?;
+            let (ks, cs) = ModelMap::point(&scenario.dbox, nx, ny, i, j);
+            let c = model.evaluate(ks, cs)?;
             let k = j * nx + i;
             values[k] = c.bacc;
             values[cells + k] = c.dtl;
             values[2 * cells + k] = c.sws;
-            feasible[k] = u8::from(scenario.objectives.broken(&ctx, ks, cs, &c).is_empty());
+            broken[k] = scenario
+                .objectives
+                .broken(&ctx, ks, cs, &c)
+                .into_iter()
+                .fold(0, |m, o| m | objective_bit(o));
         }
     }
-    Ok(LoFiMap {
+    Ok(ModelMap {
         nx,
         ny,
         values,
-        feasible,
+        broken,
     })
+}
+
+/// The LoFi map of `scenario` on an `nx` x `ny` grid.
+pub fn lofi_map(scenario: &Scenario, nx: usize, ny: usize) -> Result<ModelMap> {
+    model_map(scenario, &scenario.lofi(), nx, ny)
 }
