@@ -301,7 +301,7 @@ test('exports: maps CSV, front CSV, PNG, session round trip', { timeout: TIMEOUT
   };
   const maps = fs.readFileSync(await grab('#maps-csv'), 'utf8').trim().split('\n');
   assert.equal(maps[0], 'ks_N_per_m,cs_Ns_per_m,bacc_m_per_s2,dtl_N,sws_m,feasible');
-  assert.equal(maps.length, 1 + 240 * 180, 'one row per map cell');
+  assert.equal(maps.length, 1 + 160 * 120, 'one row per map cell');
   const front = fs.readFileSync(await grab('#front-csv'), 'utf8').trim().split('\n');
   assert.equal(front[0], 'method,ks_N_per_m,cs_Ns_per_m,bacc_m_per_s2,dtl_N,sws_m,pick');
   assert.equal(front.filter((l) => l.endsWith(',1')).length, 1, 'one pick row');

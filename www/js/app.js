@@ -17,9 +17,26 @@ import { MapView, CRITERIA } from './mapview.js';
 import { renderCriteria, feasibilityText, routeNote, renderProps, renderModes } from './readout.js';
 import { fmt, fmtInput, parseNumber } from './format.js';
 import { ObjectivePlane, SpectraPanel, TimePanel, download, mapsCsv, frontCsv, canvasPng } from './panels.js';
+import { buildPickers, renderMetrics, tuningText } from './surrogatepanel.js';
+import { Guide } from './guide.js';
 
-/** LoFi map resolution (cells); the image is scaled smoothly onto the plot. */
-const GRID = { nx: 240, ny: 180 };
+/** LoFi and surrogate map resolution (cells); the image is scaled smoothly onto the plot. */
+const GRID = { nx: 160, ny: 120 };
+/** HiFi and surrogate-error map resolution (worker). */
+const HIFI_GRID = { nx: 41, ny: 41 };
+/** The surrogate's feasible set on the objective plane (every other cell of the map). */
+const CLOUD_GRID = { nx: 120, ny: 90 };
+/** Side of the HiFi grid the surrogate panel validates the fit on. */
+const VALIDATION_LEVELS = 20;
+
+/** What each map model is called on the page. */
+const MODEL_NAMES = { lofi: 'LoFi', hifi: 'HiFi', surrogate: 'surrogate', error: 'surrogate error' };
+
+/** The objectives of a map mask, by bit (see the wasm `modelMaps`). */
+const OBJECTIVE_BITS = [
+  [1, 'SWS limit'], [2, 'bounce band'], [4, 'damping band'],
+  [8, 'BAcc ≤ datum'], [16, 'DTL ≤ datum'], [32, 'SWS ≤ datum'],
+];
 
 /** ISO 8608 wording of the classes. */
 const CLASS_WORDS = {
@@ -30,6 +47,7 @@ const CLASS_WORDS = {
 const FIELD_INPUT = {
   ks: 'ks-num', cs: 'cs-num', speed: 'speed', class: 'class', tracks: 'tracks', swsLimit: 'sws-limit', car: 'car',
   tpSeed: 'tp-seed', tpBump: 'tp-bump', tpRebound: 'tp-rebound', session: 'session-load',
+  box: 'ks-min', bounceBand: 'bb-lo', dampingBand: 'db-lo', surrogate: 'sur-approach', plan: 'sur-plan',
 };
 
 /** Frequencies of the FRF / PSD plots (log spaced, 0.1..100 Hz). */
@@ -46,10 +64,20 @@ const app = {
   defaults: null,
   presets: [],
   state: null,
-  view: { scale: 'abs', large: false },
+  view: { scale: 'abs', large: false, model: 'lofi', plan: true },
   desc: null,
   /** LoFi reports of the design and the datum, always for the current state. */
   lofi: { design: null, datum: null },
+  /** The surrogate's criteria of the design and the datum (`{bacc, dtl, sws, dtl_relative}`). */
+  surrogate: { design: null, datum: null },
+  /** The surrogate's map at the page's grid (when the maps show it) and its feasible set. */
+  surMaps: null,
+  cloud: null,
+  /** The map shown when it is not the LoFi's: `{model, key, maps, datum, ms}`. */
+  modelMaps: null,
+  /** The surrogate's fit report (worker) and the key of what it was fitted to. */
+  fit: null,
+  fitKey: '',
   /** HiFi reports and the state keys they belong to (may lag the state). */
   hifi: { design: null, datum: null, key: '', datumKey: '' },
   maps: null,
@@ -68,11 +96,13 @@ const app = {
   /** The last custom car that was loaded: {json, ks, cs}. */
   custom: null,
   /** ms from an input to the LoFi views (design), to the HiFi views too (full). */
-  metrics: { design: [], full: [], scenario: [] },
+  metrics: { design: [], full: [], scenario: [], maps: [] },
   pending: 0,
   interactiveAt: null,
   /** True when every view shows the current state and nothing is queued. */
   isSettled: () => app.pending === 0 && pendingDesign === null && hifiCurrent(),
+  /** ms of each HiFi or error map computed in the worker, request to data. */
+  mapTimes: [],
 };
 window.__ridelab = app;
 
@@ -96,6 +126,10 @@ function explain(failure, field) {
   if (field === 'ks') return msg.replace(/^front\.spring: /, 'Ks (front spring, N/m): ');
   if (field === 'cs') return msg.replace(/^front\.damper: /, 'Cs (front damper, N s/m): ');
   if (field === 'swsLimit') return msg.replace(/^sws_limit: must be a finite number > 0 \(m\)/, 'SWS limit: must be a number > 0 (mm)');
+  if (field === 'bounceBand') return msg.replace(/^bounce_band: /, 'Bounce band (Hz): ');
+  if (field === 'dampingBand') return msg.replace(/^damping_band: /, 'Damping band: ');
+  if (field === 'surrogate') return msg.replace(/^(approach|scheme): /, 'Surrogate: ');
+  if (field === 'box') return msg.replace(/^(ks|cs)-range: /, 'Design box: ');
   return msg;
 }
 
@@ -137,22 +171,41 @@ function hifiCurrent() {
   return app.state !== null && app.hifi.key === keyOf(app.state) && app.hifi.datumKey === keyOf(datumStateOf(app.state, app.desc));
 }
 
-/** Everything LoFi that depends on car, road and objectives, plus the design. */
+/** The surrogate's criteria as a report-like row of the readout. */
+function surrogateRow(c, desc) {
+  return { ...c, dtl_relative: c.dtl / desc.staticWheelLoad };
+}
+
+/**
+ * Everything on the main thread that depends on car, road, objectives, box and
+ * surrogate, plus the design, except the maps (see `refreshMaps`): LoFi reports, the
+ * surrogate (fitted once, then kept by the core), its feasible set and the front on it.
+ */
 async function computeScenario(s) {
   const desc = await app.engine.call('describe', s);
-  const [datum, design, maps] = await Promise.all([
-    app.engine.call('analyse', datumStateOf(s, desc), 'quarter'),
+  const ds = datumStateOf(s, desc);
+  const [datum, design, sDatum, sDesign, cloud] = await Promise.all([
+    app.engine.call('analyse', ds, 'quarter'),
     app.engine.call('analyse', s, 'quarter'),
-    app.engine.call('lofiMaps', s, GRID.nx, GRID.ny),
+    app.engine.call('criteria', ds, 'surrogate'),
+    app.engine.call('criteria', s, 'surrogate'),
+    app.engine.call('modelMaps', s, 'surrogate', CLOUD_GRID.nx, CLOUD_GRID.ny),
   ]);
   let front;
   try {
-    front = await app.engine.call('front', s, 'stm');
+    front = await app.engine.call('front', s, 'stm', 'surrogate');
   } catch (e) {
     // Not a bad input (the state passed describe): no feasible design, or a numerical failure.
     front = { error: e.message || String(e) };
   }
-  return { desc, lofi: { datum, design }, maps, front, nsga: null };
+  return {
+    desc,
+    lofi: { datum, design },
+    surrogate: { datum: surrogateRow(sDatum, desc), design: surrogateRow(sDesign, desc) },
+    cloud,
+    front,
+    nsga: null,
+  };
 }
 
 /** All updates run one after another; each reads the state when it starts. */
@@ -181,7 +234,7 @@ function changeScenario(patch, source) {
     Object.assign(app, r, { state: s });
     renderScenario();
     app.metrics.scenario.push(performance.now() - t0);
-    requestHifi(t0);
+    if (!hifiCurrent()) requestHifi(t0);
     return true;
   });
 }
@@ -197,8 +250,10 @@ function changeDesign(ks, cs, source, t0 = performance.now()) {
     pendingDesign = null;
     const s = { ...app.state, ks: k, cs: c };
     let design;
+    let sur;
     try {
       design = await app.engine.call('analyse', s, 'quarter');
+      sur = await app.engine.call('criteria', s, 'surrogate');
     } catch (e) {
       showFailure(e, src);
       syncInputs();
@@ -208,6 +263,7 @@ function changeDesign(ks, cs, source, t0 = performance.now()) {
     setMsg('cs', '');
     app.state = s;
     app.lofi.design = design;
+    app.surrogate.design = surrogateRow(sur, app.desc);
     renderDesign();
     app.metrics.design.push(performance.now() - start);
     requestHifi(start);
@@ -247,35 +303,192 @@ function requestHifi(t0) {
 
 // ---------------------------------------------------------------- rendering
 
-function renderScenario() {
-  const { state, desc, maps, lofi } = app;
-  const box = desc.designBox;
-  for (const v of app.views) {
-    v.setData({ maps, box, swsLimit: desc.swsLimit, scale: app.view.scale, datum: lofi.datum });
-  }
-  const status = $('map-status');
-  const limit = desc.swsLimit;
+/** The key of everything but the design point (maps, fronts and fits depend on it). */
+function scenarioKey(st) {
+  return JSON.stringify({ ...st, ks: 0, cs: 0 });
+}
+
+/** The key of everything the surrogate's fit depends on. */
+function fitKeyOf(st) {
+  return JSON.stringify([st.car, st.carJson, st.class, st.speed, st.tracks, st.ksMin, st.ksMax, st.csMin, st.csMax, st.surrogate, st.plan]);
+}
+
+/** The map data the maps show for the chosen model: `{maps, datum, kind}` or null while computing. */
+function shownMaps() {
+  const m = app.view.model;
+  const key = scenarioKey(app.state);
+  if (m === 'lofi' && app.maps && app.maps.key === key) return { maps: app.maps, datum: app.lofi.datum, kind: 'value' };
+  if (m === 'surrogate' && app.surMaps && app.surMaps.key === key) return { maps: app.surMaps, datum: app.surrogate.datum, kind: 'value' };
+  const mm = app.modelMaps;
+  if (mm && mm.model === m && mm.key === scenarioKey(app.state)) return { maps: mm.maps, datum: mm.datum, kind: m === 'error' ? 'error' : 'value' };
+  return null;
+}
+
+/** "x % of the box breaks the SWS limit, y % the bounce band" from a map mask. */
+function brokenText(maps) {
   const n = maps.nx * maps.ny;
+  const parts = [];
+  for (const [bit, name] of OBJECTIVE_BITS) {
+    let c = 0;
+    for (let k = 0; k < n; k++) if (maps.broken[k] & bit) c++;
+    if (c) parts.push(`${fmt((100 * c) / n, 3)} % break the ${name}`);
+  }
+  return parts.join(', ');
+}
+
+function renderMaps() {
+  const { state, desc } = app;
+  const shown = shownMaps();
+  const model = app.view.model;
+  $('maps-model').textContent = MODEL_NAMES[model];
+  const status = $('map-status');
   const road = `class ${state.class} at ${fmtInput(state.speed, 3)} m/s, ${state.tracks} tracks`;
-  if (limit == null) {
-    status.textContent = 'No SWS limit set: every design in the box is feasible.';
+  if (!shown) {
     status.className = 'status';
+    if (model !== 'hifi' && model !== 'error') {
+      status.textContent = `Computing the ${MODEL_NAMES[model]} maps…`;
+      refreshMaps();
+      return;
+    }
+    status.textContent = `Computing the ${MODEL_NAMES[model]} maps (${HIFI_GRID.nx} × ${HIFI_GRID.ny}) in the worker…`;
+    requestModelMaps();
+    return;
+  }
+  for (const v of app.views) {
+    v.setData({ maps: shown.maps, box: desc.designBox, swsLimit: desc.swsLimit, scale: app.view.scale, datum: shown.datum, kind: shown.kind });
+  }
+  const maps = shown.maps;
+  const n = maps.nx * maps.ny;
+  const who = `(${MODEL_NAMES[model === 'error' ? 'hifi' : model]}${maps.nx !== GRID.nx ? `, ${maps.nx} × ${maps.ny} grid` : ''})`;
+  const timing = app.modelMaps && shown.maps === app.modelMaps.maps ? ` Computed in ${fmt(app.modelMaps.ms, 3)} ms in the worker.` : '';
+  if (maps.feasibleCount === n) {
+    status.textContent = `Every design in the box meets the design objectives on ${road} ${who}.${timing}`;
+    status.className = 'status good';
   } else if (maps.feasibleCount === 0) {
     status.textContent =
-      `No design in the box meets SWS ≤ ${fmtInput(limit * 1000, 4)} mm on ${road} (LoFi): the whole map is hatched. ` +
-      'Try a smoother road, a lower speed or a larger limit.';
+      `No design in the box meets the design objectives on ${road} ${who}: the whole map is hatched (${brokenText(maps)}). ` +
+      'Try a smoother road, a lower speed or a looser objective.';
     status.className = 'status bad';
   } else {
     status.textContent =
-      `${fmt((100 * maps.feasibleCount) / n, 3)} % of the design box meets SWS ≤ ${fmtInput(limit * 1000, 4)} mm on ${road} (LoFi).`;
+      `${fmt((100 * maps.feasibleCount) / n, 3)} % of the design box meets the design objectives on ${road} ${who}; ${brokenText(maps)}.${timing}`;
     status.className = 'status good';
   }
+  renderMarkers();
+}
+
+/** A promise that resolves after the next frame has been painted. */
+function afterPaint() {
+  return new Promise((r) => requestAnimationFrame(() => setTimeout(r, 0)));
+}
+
+/**
+ * The LoFi (or surrogate) maps of the current scenario, computed and drawn after the
+ * next paint, so an edit shows its front and readout first and its maps one frame
+ * later. Queued like every update; it reads the state when it runs.
+ */
+let mapsQueued = false;
+function refreshMaps() {
+  if (mapsQueued) return;
+  mapsQueued = true;
+  enqueue(async () => {
+    await afterPaint();
+    mapsQueued = false;
+    const s = app.state;
+    const key = scenarioKey(s);
+    const t0 = performance.now();
+    if (!app.maps || app.maps.key !== key) {
+      app.maps = { ...(await app.engine.call('lofiMaps', s, GRID.nx, GRID.ny)), key };
+    }
+    if (app.view.model === 'surrogate' && (!app.surMaps || app.surMaps.key !== key)) {
+      app.surMaps = { ...(await app.engine.call('modelMaps', s, 'surrogate', GRID.nx, GRID.ny)), key };
+    }
+    if (s !== app.state) return; // a newer edit queued its own refresh
+    renderMaps();
+    app.metrics.maps.push(performance.now() - t0);
+  });
+}
+
+function renderScenario() {
+  const { state } = app;
   $('speed-kmh').textContent = `= ${fmt(state.speed * 3.6, 3)} km/h`;
   app.objPlane.drawBase();
   app.frontDrawnAt = performance.now();
   app.frontDraws++;
+  renderMaps();
   if (app.view.nsga) requestNsga();
+  requestFit();
   renderDesign();
+}
+
+/** The HiFi or surrogate-error maps of the current scenario, from the worker. */
+const modelMapsRun = latestOnly(async ({ s, model }) => {
+  const t0 = performance.now();
+  const [maps, datum] = await Promise.all([
+    app.hifiEngine.call('modelMaps', s, model, HIFI_GRID.nx, HIFI_GRID.ny),
+    model === 'hifi' ? app.hifiEngine.call('criteria', { ...s, ks: app.desc.datumKs, cs: app.desc.datumCs }, 'full') : null,
+  ]);
+  return { s, model, maps, datum, ms: performance.now() - t0 };
+});
+function requestModelMaps() {
+  const s = app.state;
+  const model = app.view.model;
+  app.pending++;
+  modelMapsRun({ s, model })
+    .then((r) => {
+      if (!r) return;
+      app.mapTimes.push(r.ms);
+      app.modelMaps = { model: r.model, key: scenarioKey(r.s), maps: r.maps, datum: r.datum, ms: r.ms };
+      if (r.model === app.view.model && scenarioKey(r.s) === scenarioKey(app.state)) renderMaps();
+    })
+    .catch((e) => {
+      $('map-status').textContent = `The ${MODEL_NAMES[model]} maps failed: ${e.message || e}`;
+      $('map-status').className = 'status bad';
+    })
+    .finally(() => app.pending--);
+}
+
+/** The surrogate's fit report (samples, tuning, metrics on the HiFi grid), from the worker. */
+const fitRun = latestOnly((s) => app.hifiEngine.call('surrogateFit', s, VALIDATION_LEVELS).then((r) => ({ s, r })));
+function requestFit() {
+  const s = app.state;
+  const key = fitKeyOf(s);
+  if (key === app.fitKey) return;
+  $('sur-status').textContent = 'Fitting and validating on the HiFi…';
+  app.pending++;
+  const t0 = performance.now();
+  fitRun(s)
+    .then((out) => {
+      if (!out || fitKeyOf(out.s) !== fitKeyOf(app.state)) return;
+      app.fit = out.r;
+      app.fitKey = fitKeyOf(out.s);
+      renderMetrics($('sur-metrics'), out.r);
+      $('sur-tuning').textContent = tuningText(out.r);
+      $('sur-status').textContent = `${out.r.surrogate} on ${out.r.plan}: fitted and validated in ${fmt(performance.now() - t0, 3)} ms (worker).`;
+      renderMarkers();
+    })
+    .catch((e) => {
+      $('sur-status').textContent = `The surrogate fit failed: ${e.message || e}`;
+    })
+    .finally(() => app.pending--);
+}
+
+/** Design, datum, pick and sample markers on every map. */
+function renderMarkers() {
+  const { state, desc, lofi } = app;
+  const shown = shownMaps();
+  const d = { ks: desc.datumKs, cs: desc.datumCs };
+  const samples = app.view.plan && app.fit && app.fitKey === fitKeyOf(state) ? app.fit.samples : null;
+  const pick = app.front && !app.front.error ? app.front.study.pick : null;
+  const design = app.view.model === 'surrogate' ? app.surrogate.design : lofi.design;
+  const datum = app.view.model === 'surrogate' ? app.surrogate.datum : lofi.datum;
+  for (const v of app.views) {
+    const k = v.crit.key;
+    const caption = shown && (app.view.model === 'lofi' || app.view.model === 'surrogate')
+      ? MapView.caption(v.crit, design[k], datum[k], app.view.scale)
+      : '';
+    v.setMarkers({ ks: state.ks, cs: state.cs }, d, caption, { samples, pick });
+  }
 }
 
 /** The NSGA-II front of the current scenario, from the worker. */
@@ -286,7 +499,7 @@ function requestNsga() {
   $('op-status').textContent = 'NSGA-II running…';
   app.pending++;
   app.hifiEngine
-    .call('front', s, 'nsga2')
+    .call('front', s, 'nsga2', 'surrogate')
     .catch((e) => ({ error: e.message || String(e) }))
     .then((r) => {
       if (key !== scen(app.state)) return; // the scenario changed meanwhile
@@ -303,6 +516,10 @@ function requestNsga() {
 let spectraTimer = null;
 const spectraRun = latestOnly((s) => app.hifiEngine.call('spectra', s, NFREQ).then((r) => ({ s, r })));
 function requestSpectra() {
+  // Spectra depend on the car, road and design only, not on objectives or the surrogate.
+  const key = keyOf(app.state);
+  if (key === app.spectraKey) return;
+  app.spectraKey = key;
   clearTimeout(spectraTimer);
   if (!spectraTimer) app.pending++;
   spectraTimer = setTimeout(() => {
@@ -310,12 +527,13 @@ function requestSpectra() {
     const s = app.state;
     spectraRun(s)
       .then((out) => {
-        if (!out || out.s !== app.state) return;
+        if (!out || keyOf(out.s) !== keyOf(app.state)) return;
         app.spectra = out.r;
         app.spectraPanel.draw(out.r);
         $('sp-status').textContent = `Ks ${fmt(s.ks / 1000, 4)} kN/m, Cs ${fmt(s.cs / 1000, 4)} kNs/m`;
       })
       .catch((e) => {
+        app.spectraKey = '';
         $('sp-status').textContent = `Spectra failed: ${e.message || e}`;
       })
       .finally(() => app.pending--);
@@ -323,15 +541,12 @@ function requestSpectra() {
 }
 
 function renderDesign() {
-  const { state, desc, lofi } = app;
+  const { desc, lofi } = app;
   renderCriteria($('criteria'), 'lofi', lofi.design, lofi.datum, desc.swsLimit);
+  renderCriteria($('criteria'), 'sur', app.surrogate.design, app.surrogate.datum, desc.swsLimit);
   renderProps($('ride-props'), lofi.design);
   renderModes($('modes-lofi'), lofi.design.modes);
-  const d = { ks: desc.datumKs, cs: desc.datumCs };
-  for (const v of app.views) {
-    const k = v.crit.key;
-    v.setMarkers({ ks: state.ks, cs: state.cs }, d, MapView.caption(v.crit, lofi.design[k], lofi.datum[k], app.view.scale));
-  }
+  renderMarkers();
   app.objPlane.drawOverlay();
   requestSpectra();
   renderTimeStale();
@@ -360,18 +575,52 @@ function syncInputs() {
   const put = (field, id, value) => {
     if (!app.bad.has(field)) $(id).value = value;
   };
-  $('ks-range').value = String(s.ks / 1000);
-  $('cs-range').value = String(s.cs / 1000);
   put('ks', 'ks-num', fmtInput(s.ks / 1000, 3));
   put('cs', 'cs-num', fmtInput(s.cs / 1000, 3));
   put('speed', 'speed', fmtInput(s.speed, 3));
   put('class', 'class', s.class);
   put('tracks', 'tracks', s.tracks);
   put('swsLimit', 'sws-limit', s.swsLimit == null ? '' : fmtInput(s.swsLimit * 1000, 4));
+  const box = app.desc.designBox;
+  if (!app.bad.has('box')) {
+    $('ks-min').value = fmtInput(box.ks_min / 1000, 4);
+    $('ks-max').value = fmtInput(box.ks_max / 1000, 4);
+    $('cs-min').value = fmtInput(box.cs_min / 1000, 4);
+    $('cs-max').value = fmtInput(box.cs_max / 1000, 4);
+  }
+  // The sliders span the design box (and the design, if it lies outside).
+  $('ks-range').min = String(Math.min(box.ks_min, s.ks) / 1000);
+  $('ks-range').max = String(Math.max(box.ks_max, s.ks) / 1000);
+  $('cs-range').min = String(Math.min(box.cs_min, s.cs) / 1000);
+  $('cs-range').max = String(Math.max(box.cs_max, s.cs) / 1000);
+  $('ks-range').value = String(s.ks / 1000);
+  $('cs-range').value = String(s.cs / 1000);
+  for (const [field, lo, hi, band] of [['bounceBand', 'bb-lo', 'bb-hi', s.bounceBand], ['dampingBand', 'db-lo', 'db-hi', s.dampingBand]]) {
+    put(field, lo, band ? fmtInput(band[0], 4) : '');
+    put(field, hi, band ? fmtInput(band[1], 4) : '');
+  }
+  const nw = s.noWorse || [false, false, false];
+  ['nw-bacc', 'nw-dtl', 'nw-sws'].forEach((id, i) => ($(id).checked = !!nw[i]));
+  ensureOption($('sur-approach'), s.surrogate);
+  ensureOption($('sur-plan'), s.plan);
+  put('surrogate', 'sur-approach', s.surrogate);
+  put('plan', 'sur-plan', s.plan);
   ensureCustomOption();
   put('car', 'car', s.car);
   $('map-scale').value = app.view.scale;
+  $('map-model').value = app.view.model;
+  $('show-plan').checked = app.view.plan;
   $('large').checked = app.view.large;
+}
+
+/** Adds `value` to a select's options when a link or session names one not listed. */
+function ensureOption(select, value) {
+  if (value && ![...select.options].some((o) => o.value === value)) {
+    const o = document.createElement('option');
+    o.value = value;
+    o.textContent = value;
+    select.append(o);
+  }
 }
 
 function ensureCustomOption() {
@@ -390,6 +639,9 @@ function ensureCustomOption() {
 }
 
 // ---------------------------------------------------------------- URL
+
+/** The page-only settings of a fresh view. */
+const DEFAULT_VIEW = { scale: 'abs', large: false, model: 'lofi', plan: true };
 
 let urlTimer = null;
 let lastHash = '';
@@ -411,7 +663,7 @@ async function loadFromHash(hash) {
   const d = decodeHash(hash);
   const fallback = (why) => {
     banner(`This link's view could not be restored (${why}); showing the default view instead.`);
-    return { state: { ...app.defaults }, view: { scale: 'abs', large: false } };
+    return { state: { ...app.defaults }, view: { ...DEFAULT_VIEW } };
   };
   if (d.problems.length) return fallback(d.problems.join('; '));
   const s = { ...app.defaults, ...d.state };
@@ -427,11 +679,12 @@ async function loadFromHash(hash) {
   } catch (e) {
     return fallback(e.message);
   }
-  return { state: s, view: { scale: 'abs', large: false, ...d.view } };
+  return { state: s, view: { ...DEFAULT_VIEW, ...d.view } };
 }
 
 async function applyLoaded({ state, view }) {
   let r;
+  view = { ...app.view, ...view };
   try {
     r = await computeScenario(state);
   } catch (e) {
@@ -442,7 +695,7 @@ async function applyLoaded({ state, view }) {
   }
   if (state.car === 'custom') app.custom = { json: state.carJson, ks: r.desc.datumKs, cs: r.desc.datumCs };
   Object.assign(app, r, { state });
-  app.view = { ...app.view, ...view };
+  app.view = view;
   for (const f of Object.keys(FIELD_INPUT)) setMsg(f, '');
   applyLarge();
   renderScenario();
@@ -533,8 +786,64 @@ function wire() {
   $('reset-datum').addEventListener('click', () => changeDesign(app.desc.datumKs, app.desc.datumCs, 'ks'));
   $('map-scale').addEventListener('change', (ev) => {
     app.view.scale = ev.target.value;
-    renderScenario();
+    renderMaps();
+    scheduleUrl();
   });
+  $('map-model').addEventListener('change', (ev) => {
+    app.view.model = ev.target.value;
+    scheduleUrl();
+    renderMaps();
+  });
+  $('show-plan').addEventListener('change', (ev) => {
+    app.view.plan = ev.target.checked;
+    renderMarkers();
+    scheduleUrl();
+  });
+  $('sur-approach').addEventListener('change', (ev) => changeScenario({ surrogate: ev.target.value }, 'surrogate'));
+  $('sur-plan').addEventListener('change', (ev) => changeScenario({ plan: ev.target.value }, 'plan'));
+  const boxEdit = () => {
+    const v = {};
+    for (const [id, key] of [['ks-min', 'ksMin'], ['ks-max', 'ksMax'], ['cs-min', 'csMin'], ['cs-max', 'csMax']]) {
+      const p = parseNumber($(id).value);
+      if (p.error) {
+        setMsg('box', `${$(id).getAttribute('aria-label')}: ${p.error}`);
+        return;
+      }
+      v[key] = Math.round(p.value * 1e6) / 1e3;
+    }
+    changeScenario(v, 'box');
+  };
+  for (const id of ['ks-min', 'ks-max', 'cs-min', 'cs-max']) $(id).addEventListener('change', boxEdit);
+  for (const [field, lo, hi] of [['bounceBand', 'bb-lo', 'bb-hi'], ['dampingBand', 'db-lo', 'db-hi']]) {
+    const edit = () => {
+      const a = $(lo).value.trim();
+      const b = $(hi).value.trim();
+      if (a === '' && b === '') {
+        changeScenario({ [field]: null }, field);
+        return;
+      }
+      if (a === '' || b === '') {
+        setMsg(field, 'give both ends of the band, or leave both empty to switch it off');
+        return;
+      }
+      const pa = parseNumber(a);
+      const pb = parseNumber(b);
+      if (pa.error || pb.error) {
+        setMsg(field, pa.error || pb.error);
+        return;
+      }
+      changeScenario({ [field]: [pa.value, pb.value] }, field);
+    };
+    $(lo).addEventListener('change', edit);
+    $(hi).addEventListener('change', edit);
+  }
+  for (const id of ['nw-bacc', 'nw-dtl', 'nw-sws']) {
+    $(id).addEventListener('change', () => {
+      const nw = ['nw-bacc', 'nw-dtl', 'nw-sws'].map((x) => $(x).checked);
+      changeScenario({ noWorse: nw.some((x) => x) ? nw : null }, 'noWorse');
+    });
+  }
+  $('tour').addEventListener('click', () => app.guide.open());
   $('large').addEventListener('change', (ev) => {
     app.view.large = ev.target.checked;
     applyLarge();
@@ -655,14 +964,19 @@ function wirePanels() {
   const fcsv = () => download(`ridelab-front-${stamp()}.csv`, new Blob([frontCsv(app)], { type: 'text/csv' }));
   $('front-csv').addEventListener('click', fcsv);
   $('front-csv2').addEventListener('click', fcsv);
-  $('maps-csv').addEventListener('click', () => download(`ridelab-lofi-maps-${stamp()}.csv`, new Blob([mapsCsv(app)], { type: 'text/csv' })));
+  $('maps-csv').addEventListener('click', () => {
+    const shown = shownMaps();
+    if (!shown) return;
+    const m = app.view.model;
+    download(`ridelab-${m}-maps-${stamp()}.csv`, new Blob([mapsCsv(app, m, shown.maps)], { type: 'text/csv' }));
+  });
   $('png-all').addEventListener('click', () => {
     canvasPng(`ridelab-objective-${stamp()}.png`, $('op-base'), $('op-overlay'));
     for (const c of document.querySelectorAll('.spectra canvas, .timep canvas')) canvasPng(`ridelab-${c.id}-${stamp()}.png`, c);
     for (const v of app.views) canvasPng(`ridelab-map-${v.crit.key}-${stamp()}.png`, v.base, v.overlay);
   });
   $('session-save').addEventListener('click', () => {
-    const session = { ridelab: 'session', version: 1, state: app.state, view: { scale: app.view.scale, large: app.view.large } };
+    const session = { ridelab: 'session', version: 1, state: app.state, view: { scale: app.view.scale, large: app.view.large, model: app.view.model, plan: app.view.plan } };
     download(`ridelab-session-${stamp()}.json`, new Blob([JSON.stringify(session, null, 2)], { type: 'application/json' }));
   });
   $('session-load').addEventListener('change', async (ev) => {
@@ -679,7 +993,13 @@ function wirePanels() {
       return;
     }
     setMsg('session', '');
-    const view = { scale: session.view?.scale === 'rel' ? 'rel' : 'abs', large: !!session.view?.large };
+    const view = {
+      ...DEFAULT_VIEW,
+      scale: session.view?.scale === 'rel' ? 'rel' : 'abs',
+      large: !!session.view?.large,
+      model: MODEL_NAMES[session.view?.model] ? session.view.model : 'lofi',
+      plan: session.view?.plan !== false,
+    };
     await enqueue(async () => applyLoaded({ state: { ...session.state }, view }));
   });
   $('tp-run').addEventListener('click', runTime);
@@ -687,6 +1007,7 @@ function wirePanels() {
 }
 
 function buildSelects() {
+  buildPickers($('sur-approach'), $('sur-plan'), app.surrogateNames);
   const car = $('car');
   for (const p of app.presets) {
     const o = document.createElement('option');
@@ -724,6 +1045,7 @@ async function main() {
     app.defaults = await app.engine.call('defaultState');
     app.presets = await app.engine.call('presets');
     app.classes = await app.engine.call('roadClasses');
+    app.surrogateNames = await app.engine.call('surrogates');
     const version = await app.engine.call('version');
     Promise.resolve(app.hifiEngine.ready).then(() => {
       $('version').textContent = `RideLab ${version}; HiFi model on the ${app.hifiEngine.kind === 'worker' ? 'worker' : 'main'} thread.`;
@@ -740,6 +1062,7 @@ async function main() {
   app.views = CRITERIA.map((c) => new MapView(grid, c, (ks, cs) => {
     changeDesign(Math.round(ks / 10) * 10, Math.round(cs / 5) * 5, 'ks');
   }));
+  app.guide = new Guide($('guide'));
   wire();
   $('loading').hidden = true;
   $('app').removeAttribute('aria-busy');
@@ -750,6 +1073,7 @@ async function main() {
   while (!app.isSettled()) await new Promise((r) => setTimeout(r, 5));
   app.ready = true;
   app.readyAt = performance.now();
+  app.guide.showIfNew();
   document.documentElement.dataset.ready = '1';
 }
 

@@ -6,7 +6,8 @@
 /** The wasm API functions the page calls (also the worker's whitelist). */
 export const METHODS = [
   'version', 'defaultState', 'presets', 'roadClasses', 'parseCar', 'checkState',
-  'describe', 'evaluate', 'analyse', 'criteria', 'lofiMap', 'lofiMaps', 'front', 'spectra', 'timeResponse',
+  'describe', 'evaluate', 'analyse', 'criteria', 'lofiMap', 'lofiMaps', 'modelMaps', 'front', 'spectra', 'timeResponse',
+  'surrogateFit', 'surrogates',
 ];
 
 /** Turns anything thrown into `{message, field}`. */

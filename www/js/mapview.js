@@ -109,18 +109,22 @@ export class MapView {
   /**
    * New map data. `maps`: {nx, ny, values, feasible, feasibleCount} from the engine;
    * `box`: design box (N/m, N s/m); `swsLimit`: m or null; `scale`: "abs" or "rel";
-   * `datum`: the datum's LoFi criteria {bacc, dtl, sws} (for "rel").
+   * `datum`: the datum's criteria {bacc, dtl, sws} by the map's model (for "rel");
+   * `kind`: "value" (criteria) or "error" (the planes hold the surrogate's signed error
+   * against the HiFi, %, and `scale` is ignored).
    */
-  setData({ maps, box, swsLimit, scale, datum }) {
+  setData({ maps, box, swsLimit, scale, datum, kind = 'value' }) {
     const { nx, ny, values } = maps;
     const n = nx * ny;
     const off = this.crit.plane * n;
     const f = this.crit.factor;
-    const ref = datum[this.crit.key];
+    const error = kind === 'error';
+    if (error) scale = 'rel';
+    const ref = datum ? datum[this.crit.key] : 1;
     const shown = new Float64Array(n);
     for (let k = 0; k < n; k++) {
       const v = values[off + k];
-      shown[k] = scale === 'rel' ? (v / ref - 1) * 100 : v * f;
+      shown[k] = error ? v : scale === 'rel' ? (v / ref - 1) * 100 : v * f;
     }
     // The colour range spans the feasible designs (those the designer can choose), so
     // their differences show; values beyond it (in the hatched area) take the end
@@ -177,12 +181,13 @@ export class MapView {
     const { ticks, step } = niceTicks(lo, hi, 5);
     const levels = ticks.filter((t) => t > lo + 1e-9 * (hi - lo) && t < hi - 1e-9 * (hi - lo));
     const contours = levels.map((lv) => contourSegments(shown, 0, nx, ny, lv));
-    const limitLine = swsLimit ? contourSegments(values, 2 * n, nx, ny, swsLimit) : [];
+    const limitLine = swsLimit && !error ? contourSegments(values, 2 * n, nx, ny, swsLimit) : [];
 
     this.data = {
       nx, ny, box, lo, hi, ticks, step, table, colour, maskCanvas, contours, limitLine, scale, over, under,
-      infeasible: maps.feasibleCount < n, unit: scale === 'rel' ? '% vs datum' : this.crit.unit,
-      shown,
+      infeasible: maps.feasibleCount < n,
+      unit: error ? '% error vs HiFi' : scale === 'rel' ? '% vs datum' : this.crit.unit,
+      shown, kind,
     };
     this.base.setAttribute(
       'aria-label',
@@ -193,9 +198,12 @@ export class MapView {
     this.drawBase();
   }
 
-  /** The design and datum points (N/m, N s/m) and the design's value for the caption. */
-  setMarkers(design, datum, valueText) {
-    this.markers = { design, datum };
+  /**
+   * The design and datum points (N/m, N s/m), the design's value for the caption, and
+   * optionally the surrogate's sample points and the min-max pick ({ks, cs}).
+   */
+  setMarkers(design, datum, valueText, { samples = null, pick = null } = {}) {
+    this.markers = { design, datum, samples, pick };
     this.atEl.textContent = valueText;
     this.drawOverlay();
   }
@@ -373,9 +381,43 @@ export class MapView {
     g.clearRect(0, 0, this.size.w, this.size.h);
     if (!this.data || !this.markers) return;
     const { fs, plot } = this.layout();
-    const { design, datum } = this.markers;
+    const { design, datum, samples, pick } = this.markers;
     const inside = (p) => p[0] >= plot.x - 0.5 && p[0] <= plot.x + plot.w + 0.5 && p[1] >= plot.y - 0.5 && p[1] <= plot.y + plot.h + 0.5;
     const r = Math.max(4, fs * 0.45);
+
+    // The surrogate's HiFi sample points: small white-ringed crosses.
+    if (samples) {
+      g.lineWidth = 1.5;
+      for (const smp of samples) {
+        const q = this.toPlot(smp.ks, smp.cs, plot);
+        if (!inside(q)) continue;
+        const a = r * 0.75;
+        g.strokeStyle = '#fff';
+        g.lineWidth = 3.5;
+        g.beginPath();
+        g.moveTo(q[0] - a, q[1] - a);
+        g.lineTo(q[0] + a, q[1] + a);
+        g.moveTo(q[0] - a, q[1] + a);
+        g.lineTo(q[0] + a, q[1] - a);
+        g.stroke();
+        g.strokeStyle = '#7c2d12';
+        g.lineWidth = 1.6;
+        g.stroke();
+      }
+    }
+    // The min-max pick: a yellow square.
+    if (pick) {
+      const q = this.toPlot(pick.ks, pick.cs, plot);
+      if (inside(q)) {
+        g.fillStyle = '#facc15';
+        g.strokeStyle = '#000';
+        g.lineWidth = 1.6;
+        g.beginPath();
+        g.rect(q[0] - r, q[1] - r, 2 * r, 2 * r);
+        g.fill();
+        g.stroke();
+      }
+    }
 
     const pd = this.toPlot(datum.ks, datum.cs, plot);
     if (inside(pd)) {
@@ -454,6 +496,7 @@ export class MapView {
 
   /** The value under a design point, for captions: absolute or relative. */
   static caption(crit, value, datumValue, scale) {
+    if (value == null) return '';
     if (scale === 'rel') return `design: ${fmtPct(value / datumValue - 1)}`;
     return `design: ${fmt(value * crit.factor)} ${crit.unit}`;
   }

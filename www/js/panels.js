@@ -1,4 +1,4 @@
-// The analysis panels below the maps: the objective plane (LoFi feasible set, Pareto
+// The analysis panels below the maps: the objective plane (surrogate feasible set, Pareto
 // fronts, min-max pick, datum and design), the FRF and PSD plots, the time panel with
 // its animated side view, and the exports. Each panel draws from `app` (js/app.js);
 // computing goes through the engines over the wasm exports `front`, `spectra` and
@@ -37,18 +37,19 @@ export class ObjectivePlane {
 
   labels() {
     return this.ratio
-      ? ['BAcc / datum BAcc (LoFi)  [–]', 'DTL / datum DTL  [–]']
+      ? ['BAcc / datum BAcc (surrogate)  [–]', 'DTL / datum DTL  [–]']
       : ['BAcc RMS  [m/s²]', 'DTL RMS  [N]'];
   }
 
-  /** The feasible cells of the LoFi map as [bacc[], dtl[]] (every other cell each way). */
+  /** The feasible cells of the surrogate's map as [bacc[], dtl[]] (at most 120 x 90 of them). */
   cloud() {
-    const m = this.app.maps;
+    const m = this.app.cloud;
     const n = m.nx * m.ny;
+    const step = m.nx > 120 ? 2 : 1;
     const xs = [];
     const ys = [];
-    for (let j = 0; j < m.ny; j += 2) {
-      for (let i = 0; i < m.nx; i += 2) {
+    for (let j = 0; j < m.ny; j += step) {
+      for (let i = 0; i < m.nx; i += step) {
         const k = j * m.nx + i;
         if (!m.feasible[k]) continue;
         const [x, y] = this.xy(m.values[k], m.values[n + k]);
@@ -101,7 +102,7 @@ export class ObjectivePlane {
     this.base.dots(cx, cy, COL.cloud, 1.4);
     this.base.line(fx, fy, COL.stm, 2.5);
     const legend = [
-      { label: 'feasible designs (LoFi map)', colour: 'rgb(120,160,210)', kind: 'dot' },
+      { label: 'feasible designs (surrogate)', colour: 'rgb(120,160,210)', kind: 'dot' },
       { label: `Pareto front, STM (${fr.study.front.length} pts)`, colour: COL.stm, kind: 'line' },
     ];
     if (app.nsga && !app.nsga.error) {
@@ -111,14 +112,15 @@ export class ObjectivePlane {
     }
     const pk = fr.study.pick.criteria;
     const pp = this.xy(pk.bacc, pk.dtl);
-    this.base.marker(pp[0], pp[1], 'diamond', COL.pick, '#000', 6);
     const rc = fr.recheck.rechecked;
     const dh = fr.datumHifi;
-    // The HiFi re-check of the pick, on the same datum-relative scale as its model.
+    // The HiFi re-check of the pick, on the same datum-relative scale as its model: a
+    // larger diamond underneath, so a close re-check rings the pick instead of hiding it.
     const hp = this.ratio ? [rc.bacc / dh.bacc, rc.dtl / dh.dtl] : [rc.bacc, rc.dtl];
-    this.base.marker(hp[0], hp[1], 'diamond', '#fff', COL.hifi, 5);
+    this.base.marker(hp[0], hp[1], 'diamond', '#fff', COL.hifi, 9);
+    this.base.marker(pp[0], pp[1], 'diamond', COL.pick, '#000', 6);
     this.base.marker(d[0], d[1], 'square', COL.datum, '#000', 8);
-    legend.push({ label: 'min-max pick (LoFi)', colour: COL.pick, kind: 'marker', shape: 'diamond', stroke: '#000' });
+    legend.push({ label: 'min-max pick (surrogate)', colour: COL.pick, kind: 'marker', shape: 'diamond', stroke: '#000' });
     legend.push({ label: 'pick re-checked (HiFi)', colour: '#fff', kind: 'marker', shape: 'diamond', stroke: COL.hifi });
     legend.push({ label: 'datum', colour: '#fff', kind: 'marker', shape: 'square', stroke: '#000' });
     legend.push({ label: 'current design', colour: '#000', kind: 'marker', stroke: '#fff' });
@@ -142,7 +144,7 @@ export class ObjectivePlane {
     g.rect(plot.x, plot.y, plot.w, plot.h);
     g.clip();
     this.over.g = g;
-    const [x, y] = this.xy(app.lofi.design.bacc, app.lofi.design.dtl);
+    const [x, y] = this.xy(app.surrogate.design.bacc, app.surrogate.design.dtl);
     this.designAt = this.over.marker(x, y, 'circle', '#000', '#fff', 4.5);
     g.restore();
   }
@@ -165,10 +167,10 @@ export class ObjectivePlane {
     $('op-pick').innerHTML = `
       <caption>Min-max pick: Ks = <b data-value="${p.ks}">${fmt(p.ks / 1000, 4)} kN/m</b>,
         Cs = <b data-value="${p.cs}">${fmt(p.cs / 1000, 4)} kNs/m</b>;
-        hypervolume ${fmt(fr.study.hypervolume, 4)} (m/s²)·N, ${fr.study.evaluations} LoFi runs</caption>
-      <thead><tr><th scope="col">Criterion</th><th scope="col" class="num">LoFi</th><th scope="col" class="num">vs datum</th>
+        hypervolume ${fmt(fr.study.hypervolume, 4)} (m/s²)·N, ${fr.study.evaluations} runs of ${fr.study.evaluator}</caption>
+      <thead><tr><th scope="col">Criterion</th><th scope="col" class="num">Surrogate</th><th scope="col" class="num">vs datum</th>
         <th scope="col" class="num">HiFi re-check</th><th scope="col" class="num">vs datum</th>
-        <th scope="col" class="num">LoFi − HiFi</th></tr></thead>
+        <th scope="col" class="num">Surrogate − HiFi</th></tr></thead>
       <tbody>${row('BAcc', 'm/s²', 'bacc', 1, 4)}${row('DTL', 'N', 'dtl', 1, 4)}${row('SWS', 'mm', 'sws', 1000, 4)}</tbody>`;
   }
 }
@@ -399,12 +401,18 @@ export function download(name, blob) {
   setTimeout(() => URL.revokeObjectURL(url), 1000);
 }
 
-/** CSV of the LoFi maps: one row per cell. */
-export function mapsCsv(app) {
-  const m = app.maps;
+/**
+ * CSV of the maps shown (`model`: lofi, hifi, surrogate; or error, whose columns are the
+ * surrogate's signed error against the HiFi in %): one row per cell.
+ */
+export function mapsCsv(app, model, m) {
   const box = app.desc.designBox;
   const n = m.nx * m.ny;
-  const lines = ['ks_N_per_m,cs_Ns_per_m,bacc_m_per_s2,dtl_N,sws_m,feasible'];
+  const lines = [
+    model === 'error'
+      ? 'ks_N_per_m,cs_Ns_per_m,bacc_error_percent,dtl_error_percent,sws_error_percent,feasible'
+      : 'ks_N_per_m,cs_Ns_per_m,bacc_m_per_s2,dtl_N,sws_m,feasible',
+  ];
   for (let j = 0; j < m.ny; j++) {
     const cs = box.cs_min + ((j + 0.5) * (box.cs_max - box.cs_min)) / m.ny;
     for (let i = 0; i < m.nx; i++) {

@@ -1,6 +1,10 @@
 // The view state in the URL hash, so that a link reproduces the view:
-//   #car=sedan&ks=19960&cs=1290&class=B&speed=20&tracks=correlated&sws=7&scale=abs&large=1
-// ks in N/m, cs in N s/m, speed in m/s (SI, as the CLI), sws (the SWS limit) in mm.
+//   #car=sedan&ks=19960&cs=1290&class=B&speed=20&tracks=correlated&sws=7
+//    &box=10000,40000,500,4000&bb=0.8,1.5&db=0.2,0.5&nw=0,1,0&sur=rba-mul-rbf-mq&plan=ae:10
+//    &model=hifi&samples=0&scale=rel&large=1
+// ks in N/m, cs in N s/m, speed in m/s (SI, as the CLI), sws (the SWS limit) in mm,
+// box (Ks from, to, Cs from, to) in N/m and N s/m, bb (bounce band) in Hz, db (damping
+// band) dimensionless, nw (no worse than datum: BAcc, DTL, SWS) as 0/1.
 // A custom car travels as its JSON text: car=custom&carjson=...
 
 const NUMBERS = { ks: 'ks', cs: 'cs', speed: 'speed' };
@@ -16,6 +20,14 @@ export function encodeHash(state, view) {
   p.set('speed', String(state.speed));
   p.set('tracks', state.tracks);
   if (state.swsLimit !== null && state.swsLimit !== undefined) p.set('sws', String(+(state.swsLimit * 1000).toPrecision(12)));
+  if (state.ksMin != null) p.set('box', [state.ksMin, state.ksMax, state.csMin, state.csMax].join(','));
+  if (state.bounceBand) p.set('bb', state.bounceBand.join(','));
+  if (state.dampingBand) p.set('db', state.dampingBand.join(','));
+  if (state.noWorse) p.set('nw', state.noWorse.map((b) => (b ? 1 : 0)).join(','));
+  if (state.surrogate) p.set('sur', state.surrogate);
+  if (state.plan) p.set('plan', state.plan);
+  if (view.model && view.model !== 'lofi') p.set('model', view.model);
+  if (view.plan === false) p.set('samples', '0');
   if (view.scale && view.scale !== 'abs') p.set('scale', view.scale);
   if (view.large) p.set('large', '1');
   return '#' + p.toString();
@@ -55,6 +67,26 @@ export function decodeHash(hash) {
       out.state.class = v.toUpperCase();
     } else if (key === 'tracks') {
       out.state.tracks = v.toLowerCase();
+    } else if (key === 'box' || key === 'bb' || key === 'db') {
+      const n = key === 'box' ? 4 : 2;
+      const xs = v.split(',').map((x) => (x.trim() === '' ? NaN : Number(x)));
+      if (xs.length !== n || !xs.every(Number.isFinite)) out.problems.push(`${key}: '${raw}' is not ${n} numbers`);
+      else if (key === 'box') [out.state.ksMin, out.state.ksMax, out.state.csMin, out.state.csMax] = xs;
+      else out.state[key === 'bb' ? 'bounceBand' : 'dampingBand'] = xs;
+    } else if (key === 'nw') {
+      const xs = v.split(',');
+      if (xs.length !== 3 || !xs.every((x) => x === '0' || x === '1')) out.problems.push(`nw: '${raw}' is not three 0/1 flags`);
+      else out.state.noWorse = xs.map((x) => x === '1');
+    } else if (key === 'sur') {
+      out.state.surrogate = v.toLowerCase();
+    } else if (key === 'plan') {
+      out.state.plan = v.toLowerCase();
+    } else if (key === 'model') {
+      if (['lofi', 'hifi', 'surrogate', 'error'].includes(v)) out.view.model = v;
+      else out.problems.push(`model: '${raw}' is not lofi, hifi, surrogate or error`);
+    } else if (key === 'samples') {
+      if (v === '1' || v === '0') out.view.plan = v === '1';
+      else out.problems.push(`samples: '${raw}' is not 0 or 1`);
     } else if (key === 'scale') {
       if (v === 'abs' || v === 'rel') out.view.scale = v;
       else out.problems.push(`scale: '${raw}' is not 'abs' or 'rel'`);

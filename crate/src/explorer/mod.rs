@@ -3,14 +3,14 @@
 //! model, fronts with their HiFi re-check, spectra, time responses and the fitted
 //! surrogate. Everything here builds and is tested natively.
 
+pub mod maps;
 pub mod state;
 pub mod studies;
 pub mod surrogate;
 #[cfg(test)]
 mod tests;
 
-pub use state::{
-    dos_context, lofi_map, model_map, ModelMap, Scenario, State, MAX_GRID, STATE_FIELDS,
-};
+pub use maps::{lofi_map, map_of, MapModel};
+pub use state::{dos_context, model_map, ModelMap, Scenario, State, MAX_GRID, STATE_FIELDS};
 pub use studies::{front, spectra, time_response, FrontModel, FrontResult, Spectra, TimeResult};
-pub use surrogate::{fit_report, fitted, map_of, FittedSurrogate, MapModel};
+pub use surrogate::{fit_report, fitted, FittedSurrogate};

@@ -313,19 +313,17 @@ pub fn check_grid(nx: usize, ny: usize) -> Result<()> {
     Ok(())
 }
 
-/// Evaluates `model` over the `nx` x `ny` grid of `scenario`'s design box, with the
-/// objectives judged against `model`'s own datum.
-pub fn model_map<E: Evaluator + ?Sized>(
+/// The criteria of `model` over the `nx` x `ny` grid of `scenario`'s design box as
+/// `[bacc plane, dtl plane, sws plane]` (the [`ModelMap::values`] layout).
+pub fn map_values<E: Evaluator + ?Sized>(
     scenario: &Scenario,
     model: &E,
     nx: usize,
     ny: usize,
-) -> Result<ModelMap> {
+) -> Result<Vec<f64>> {
     check_grid(nx, ny)?;
-    let ctx = dos_context(&scenario.datum, model)?;
     let cells = nx * ny;
     let mut values = vec![0.0; 3 * cells];
-    let mut broken = vec![0u8; cells];
     for j in 0..ny {
         for i in 0..nx {
             let (ks, cs) = ModelMap::point(&scenario.dbox, nx, ny, i, j);
@@ -334,22 +332,55 @@ pub fn model_map<E: Evaluator + ?Sized>(
             values[k] = c.bacc;
             values[cells + k] = c.dtl;
             values[2 * cells + k] = c.sws;
+        }
+    }
+    Ok(values)
+}
+
+/// The objectives each cell of a map's `values` breaks, judged with `ctx` (a bitmask
+/// per cell, [`ModelMap::broken`]).
+pub fn broken_mask(
+    scenario: &Scenario,
+    ctx: &DosContext,
+    values: &[f64],
+    nx: usize,
+    ny: usize,
+) -> Vec<u8> {
+    let cells = nx * ny;
+    let mut broken = vec![0u8; cells];
+    for j in 0..ny {
+        for i in 0..nx {
+            let (ks, cs) = ModelMap::point(&scenario.dbox, nx, ny, i, j);
+            let k = j * nx + i;
+            let c = crate::Criteria {
+                bacc: values[k],
+                dtl: values[cells + k],
+                sws: values[2 * cells + k],
+            };
             broken[k] = scenario
                 .objectives
-                .broken(&ctx, ks, cs, &c)
+                .broken(ctx, ks, cs, &c)
                 .into_iter()
                 .fold(0, |m, o| m | objective_bit(o));
         }
     }
+    broken
+}
+
+/// Evaluates `model` over the `nx` x `ny` grid of `scenario`'s design box, with the
+/// objectives judged against `model`'s own datum.
+pub fn model_map<E: Evaluator + ?Sized>(
+    scenario: &Scenario,
+    model: &E,
+    nx: usize,
+    ny: usize,
+) -> Result<ModelMap> {
+    let values = map_values(scenario, model, nx, ny)?;
+    let ctx = dos_context(&scenario.datum, model)?;
     Ok(ModelMap {
         nx,
         ny,
+        broken: broken_mask(scenario, &ctx, &values, nx, ny),
         values,
-        broken,
     })
-}
-
-/// The LoFi map of `scenario` on an `nx` x `ny` grid.
-pub fn lofi_map(scenario: &Scenario, nx: usize, ny: usize) -> Result<ModelMap> {
-    model_map(scenario, &scenario.lofi(), nx, ny)
 }

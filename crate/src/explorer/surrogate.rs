@@ -7,11 +7,10 @@
 //! approach, scheme and plan. The key leaves out the design point and the objectives,
 //! so dragging a slider or the SWS limit reuses the fit.
 
-use super::state::{model_map, ModelMap, Scenario};
+use super::state::Scenario;
 use crate::car::Car;
 use crate::design::DesignBox;
 use crate::error::Result;
-use crate::evaluate::Evaluator;
 use crate::road::Road;
 use crate::surrogate::{
     sample_plan, surrogate_report_in, LmOptions, PlanSpec, Sample, Setting, Surrogate,
@@ -30,9 +29,9 @@ pub struct FittedSurrogate {
     pub samples: Vec<Sample>,
 }
 
-/// Everything a fit depends on.
-#[derive(PartialEq)]
-struct FitKey {
+/// Everything a fit depends on (and a map's values: the objectives only judge them).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct FitKey {
     car: Car,
     road: Road,
     dbox: DesignBox,
@@ -41,7 +40,7 @@ struct FitKey {
 }
 
 impl FitKey {
-    fn of(s: &Scenario) -> FitKey {
+    pub(crate) fn of(s: &Scenario) -> FitKey {
         FitKey {
             car: s.datum.clone(),
             road: s.road,
@@ -92,60 +91,4 @@ pub fn fit_report(s: &Scenario, levels: usize) -> Result<SurrogateReport> {
         &s.dbox,
         Some(levels),
     )
-}
-
-/// Which model a map shows.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum MapModel {
-    /// The quarter car.
-    LoFi,
-    /// The full car.
-    HiFi,
-    /// The fitted surrogate.
-    Surrogate,
-    /// The surrogate's signed relative error against the HiFi, %.
-    SurrogateError,
-}
-
-impl MapModel {
-    /// Parses "lofi", "hifi", "surrogate" or "error" (errors name `model`).
-    pub fn parse(s: &str) -> Result<MapModel> {
-        match s {
-            "lofi" => Ok(MapModel::LoFi),
-            "hifi" => Ok(MapModel::HiFi),
-            "surrogate" => Ok(MapModel::Surrogate),
-            "error" => Ok(MapModel::SurrogateError),
-            _ => Err(crate::RideError::field(
-                "model",
-                format!("'{s}' is not one of lofi, hifi, surrogate, error"),
-            )),
-        }
-    }
-}
-
-/// The map of `model` over the scenario's design box. For [`MapModel::SurrogateError`]
-/// the planes hold `100 (surrogate / HiFi - 1)`, %, and the objectives are the HiFi's.
-pub fn map_of(s: &Scenario, model: MapModel, nx: usize, ny: usize) -> Result<ModelMap> {
-    match model {
-        MapModel::LoFi => model_map(s, &s.lofi(), nx, ny),
-        MapModel::HiFi => model_map(s, &s.hifi()?, nx, ny),
-        MapModel::Surrogate => model_map(s, &*fitted(s)?.model, nx, ny),
-        MapModel::SurrogateError => {
-            let mut hifi = model_map(s, &s.hifi()?, nx, ny)?;
-            let fit = fitted(s)?;
-            let cells = nx * ny;
-            for j in 0..ny {
-                for i in 0..nx {
-                    let (ks, cs) = ModelMap::point(&s.dbox, nx, ny, i, j);
-                    let p = fit.model.evaluate(ks, cs)?.to_array();
-                    let k = j * nx + i;
-                    for (c, pc) in p.iter().enumerate() {
-                        let h = &mut hifi.values[c * cells + k];
-                        *h = 100.0 * (pc - *h) / *h;
-                    }
-                }
-            }
-            Ok(hifi)
-        }
-    }
 }

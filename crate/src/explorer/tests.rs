@@ -159,3 +159,32 @@ fn bad_surrogate_plan_and_bands_name_their_field() {
     assert!(MapModel::parse("kriging").is_err());
     assert!(FrontModel::parse("hifi").is_err());
 }
+
+#[test]
+fn kept_map_values_are_rejudged_when_only_the_objectives_change() {
+    // First map at 7 mm fills the cache; the second, at 6 mm with a damping band, reuses
+    // the values and must equal a fresh evaluation cell for cell, mask included.
+    let a = scenario(|_| {});
+    let _ = map_of(&a, MapModel::Surrogate, 9, 8).unwrap();
+    let _ = map_of(&a, MapModel::SurrogateError, 5, 4).unwrap();
+    let b = scenario(|s| {
+        s.sws_limit = Some(0.006);
+        s.damping_band = Some([0.2, 0.3]);
+    });
+    for model in [MapModel::LoFi, MapModel::Surrogate] {
+        let kept = map_of(&b, model, 9, 8).unwrap();
+        let fresh = match model {
+            MapModel::LoFi => model_map(&b, &b.lofi(), 9, 8).unwrap(),
+            _ => model_map(&b, &*fitted(&b).unwrap().model, 9, 8).unwrap(),
+        };
+        assert_eq!(kept, fresh, "{model:?}");
+    }
+    let err = map_of(&b, MapModel::SurrogateError, 5, 4).unwrap();
+    let hifi = model_map(&b, &b.hifi().unwrap(), 5, 4).unwrap();
+    assert_eq!(err.broken, hifi.broken);
+    // More of the box breaks the tighter limit than the looser one.
+    let loose = map_of(&a, MapModel::LoFi, 9, 8).unwrap();
+    let tight = map_of(&b, MapModel::LoFi, 9, 8).unwrap();
+    let count = |m: &ModelMap| m.broken.iter().filter(|&&x| x & 1 != 0).count();
+    assert!(count(&tight) > count(&loose), "{} vs {}", count(&tight), count(&loose));
+}

@@ -1,0 +1,101 @@
+// The surrogate panel: the approach and plan pickers and the fit report (metrics on the
+// HiFi validation grid, tuning parameters), from the wasm export `surrogateFit`.
+
+import { fmt } from './format.js';
+
+/** Plans offered in the picker: Audze-Eglais and full-factorial grids. */
+export const PLANS = ['ae:3', 'ae:4', 'ae:5', 'ae:6', 'ae:8', 'ae:10', 'ae:12', 'ae:15', 'ae:20',
+  'grid:2', 'grid:3', 'grid:4', 'grid:5', 'grid:7', 'grid:10'];
+
+const PLAN_WORDS = (p) => {
+  const [kind, n] = p.split(':');
+  return kind === 'ae' ? `Audze-Eglais, ${n} points` : `grid ${n} × ${n} (${n * n} points)`;
+};
+
+/** A readable label of a surrogate name (`rba-mul-rbf-mq-per-criterion`, ...). */
+export function surrogateLabel(name) {
+  const per = name.endsWith('-per-criterion');
+  const base = per ? name.slice(0, -'-per-criterion'.length) : name;
+  const words = {
+    rba: 'RBA', vba: 'VBA', pba: 'PBA', data: 'data fit', mul: 'multiplicative', add: 'additive',
+    poly1: 'linear', poly2: 'quadratic', rbf: 'RBF', gauss: 'Gaussian', mq: 'multiquadric', tps: 'thin-plate',
+    lts: 'linear transform', mts: 'mixed transform', qts: 'quadratic transform',
+    smts: 'sprung mass', umts: 'both masses', rs: 'response surface',
+  };
+  const parts = base.split('-').map((w) => words[w] || w);
+  return `${parts.join(' ')}${per ? ', per criterion' : ''} (${name})`;
+}
+
+/** Fills the approach and plan pickers. */
+export function buildPickers(approachSelect, planSelect, names) {
+  for (const n of names) {
+    const o = document.createElement('option');
+    o.value = n;
+    o.textContent = surrogateLabel(n);
+    approachSelect.append(o);
+  }
+  for (const p of PLANS) {
+    const o = document.createElement('option');
+    o.value = p;
+    o.textContent = PLAN_WORDS(p);
+    planSelect.append(o);
+  }
+}
+
+const CRIT = [
+  ['bacc', 'BAcc', 'm/s²', 1],
+  ['dtl', 'DTL', 'N', 1],
+  ['sws', 'SWS', 'mm', 1000],
+];
+
+/**
+ * The metrics table of a fit report (`ridelab surrogate` JSON): R², RMSE, largest
+ * absolute error and the relative true errors per criterion, on the HiFi grid.
+ */
+export function renderMetrics(table, report) {
+  table.replaceChildren();
+  if (!report) return;
+  const cap = table.createCaption();
+  cap.textContent = `Against the HiFi on a ${report.validation_levels} × ${report.validation_levels} grid over the design box (${report.hifi_evaluations} HiFi runs in all).`;
+  const head = table.createTHead().insertRow();
+  for (const h of ['Criterion', 'R²', 'RMSE', 'max |error|', 'max RTE %', 'mean RTE %']) {
+    const th = document.createElement('th');
+    th.scope = 'col';
+    th.textContent = h;
+    if (h !== 'Criterion') th.className = 'num';
+    head.append(th);
+  }
+  const body = table.createTBody();
+  for (const [key, title, unit, f] of CRIT) {
+    const m = report.metrics[key];
+    const tr = body.insertRow();
+    tr.dataset.crit = key;
+    const th = document.createElement('th');
+    th.scope = 'row';
+    th.textContent = `${title} (${unit})`;
+    tr.append(th);
+    const cells = [
+      ['r2', fmt(m.r2, 6)],
+      ['rmse', fmt(m.rmse * f, 3)],
+      ['mae', fmt(m.mae * f, 3)],
+      ['rte_max', fmt(m.rte_max, 3)],
+      ['rte_mean', fmt(m.rte_mean, 3)],
+    ];
+    for (const [k, text] of cells) {
+      const td = tr.insertCell();
+      td.className = 'num';
+      td.textContent = text;
+      td.dataset.metric = k;
+      td.dataset.value = String(m[k]);
+    }
+  }
+}
+
+/** One line on how the surrogate was tuned. */
+export function tuningText(report) {
+  if (!report) return '';
+  const d = report.diagnostics.map((x) => `${x.criteria}: ${x.method}${x.iterations ? `, ${x.iterations} iterations` : ''}`).join('; ');
+  const shown = report.tuning.slice(0, 12).map((p) => `${p.name} = ${fmt(p.value, 4)}`).join(', ');
+  const more = report.tuning.length > 12 ? ` and ${report.tuning.length - 12} more` : '';
+  return `${report.samples.length} HiFi samples (${report.plan_method}). Fit: ${d}. Tuning: ${shown || 'none'}${more}.`;
+}
