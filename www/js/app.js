@@ -24,8 +24,8 @@ import { Guide } from './guide.js';
 const GRID = { nx: 160, ny: 120 };
 /** HiFi and surrogate-error map resolution (worker). */
 const HIFI_GRID = { nx: 41, ny: 41 };
-/** The surrogate's feasible set on the objective plane (every other cell of the map). */
-const CLOUD_GRID = { nx: 120, ny: 90 };
+/** The surrogate's feasible set on the objective plane (about 7000 designs). */
+const CLOUD_GRID = { nx: 96, ny: 72 };
 /** Side of the HiFi grid the surrogate panel validates the fit on. */
 const VALIDATION_LEVELS = 20;
 
