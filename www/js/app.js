@@ -517,7 +517,7 @@ let spectraTimer = null;
 const spectraRun = latestOnly((s) => app.hifiEngine.call('spectra', s, NFREQ).then((r) => ({ s, r })));
 function requestSpectra() {
   // Spectra depend on the car, road and design only, not on objectives or the surrogate.
-  const key = keyOf(app.state);
+  const key = keyOf(app.state) + fitKeyOf(app.state);
   if (key === app.spectraKey) return;
   app.spectraKey = key;
   clearTimeout(spectraTimer);
@@ -527,7 +527,7 @@ function requestSpectra() {
     const s = app.state;
     spectraRun(s)
       .then((out) => {
-        if (!out || keyOf(out.s) !== keyOf(app.state)) return;
+        if (!out || keyOf(out.s) + fitKeyOf(out.s) !== keyOf(app.state) + fitKeyOf(app.state)) return;
         app.spectra = out.r;
         app.spectraPanel.draw(out.r);
         $('sp-status').textContent = `Ks ${fmt(s.ks / 1000, 4)} kN/m, Cs ${fmt(s.cs / 1000, 4)} kNs/m`;

@@ -201,7 +201,8 @@ export class SpectraPanel {
     for (const { kind, o, plot } of this.plots) {
       const a = sp.lofi[kind][i[o.key]];
       const b = sp.hifi[kind][i[o.key]];
-      const pos = [...a, ...b].filter((v) => v > 0 && Number.isFinite(v));
+      const c = sp.surrogate[kind][i[o.key]];
+      const pos = [...a, ...b, ...c].filter((v) => v > 0 && Number.isFinite(v));
       let hi = Math.max(...pos);
       let lo = Math.max(Math.min(...pos), hi * 1e-8);
       lo = 10 ** Math.floor(Math.log10(lo));
@@ -212,10 +213,12 @@ export class SpectraPanel {
       // HiFi wide underneath, LoFi narrow on top: both stay visible where they agree.
       plot.line(sp.f, b.map((v) => (v > 0 ? v : NaN)), COL.hifi, 4);
       plot.line(sp.f, a.map((v) => (v > 0 ? v : NaN)), COL.lofi, 1.6);
+      plot.line(sp.f, c.map((v) => (v > 0 ? v : NaN)), COL.nsga, 1.6, [5, 3]);
       plot.end();
       plot.legend([
         { label: 'LoFi (quarter car)', colour: COL.lofi, kind: 'line' },
         { label: 'HiFi (full car)', colour: COL.hifi, kind: 'line' },
+        { label: `tuned LoFi (${sp.surrogateRoute})`, colour: COL.nsga, kind: 'line' },
       ]);
     }
   }

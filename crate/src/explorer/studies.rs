@@ -114,7 +114,7 @@ pub struct ModelSpectra {
     pub psd: [Vec<f64>; 3],
 }
 
-/// Spectra of the design by the LoFi and HiFi models at `nfreq` log-spaced frequencies.
+/// Spectra of the design by the LoFi, HiFi and surrogate at `nfreq` log-spaced frequencies.
 #[derive(Debug, Clone, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct Spectra {
@@ -124,31 +124,84 @@ pub struct Spectra {
     pub lofi: ModelSpectra,
     /// Full car.
     pub hifi: ModelSpectra,
+    /// The tuned LoFi of the scenario's surrogate (see [`surrogate_spectra`]).
+    pub surrogate: ModelSpectra,
+    /// How the surrogate's spectra were made: "tuned quarter car" or "LoFi scaled by S / LoFi".
+    pub surrogate_route: String,
 }
 
-fn model_spectra(kind: ModelKind, s: &Scenario, f: &[f64]) -> Result<ModelSpectra> {
-    let model = kind.build(&s.design);
-    let sp = crate::criteria::Spectrum::new(&model, &s.road)?;
-    let mut out = ModelSpectra {
-        frf: Default::default(),
-        psd: Default::default(),
-    };
+/// FRF magnitudes and PSDs of `model`'s outputs `outputs[o]` on the road.
+fn spectra_of(
+    model: &crate::model::LinearModel,
+    road: &crate::road::Road,
+    f: &[f64],
+    out: &mut ModelSpectra,
+    outputs: std::ops::Range<usize>,
+) -> Result<()> {
+    let sp = crate::criteria::Spectrum::new(model, road)?;
     for &fi in f {
         let omega = 2.0 * std::f64::consts::PI * fi;
         let h = sp.displacement_transfer(0, omega);
         let p = sp.psd(fi);
-        for o in 0..3 {
+        for o in outputs.clone() {
             out.frf[o].push(h[o].norm());
             out.psd[o].push(p[o]);
         }
     }
+    Ok(())
+}
+
+fn model_spectra(kind: ModelKind, s: &Scenario, f: &[f64]) -> Result<ModelSpectra> {
+    let mut out = ModelSpectra {
+        frf: Default::default(),
+        psd: Default::default(),
+    };
+    spectra_of(&kind.build(&s.design), &s.road, f, &mut out, 0..3)?;
     Ok(out)
+}
+
+/// The surrogate's spectra at the design. A VBA or PBA surrogate is a tuned quarter car
+/// per criterion: criterion `k`'s spectra are that car's. An RBA surrogate corrects the
+/// LoFi's RMS values, `S_k = f_k (x) tau_k(x)` (or `+ d_k`), with no model behind it: its
+/// spectra are the LoFi's scaled by `r_k = S_k / f_k` (FRF by `r_k`, PSD by `r_k^2`), so
+/// that the PSD's area is `S_k^2` as the LoFi's is `f_k^2`.
+pub fn surrogate_spectra(
+    s: &Scenario,
+    f: &[f64],
+    lofi: &ModelSpectra,
+) -> Result<(ModelSpectra, String)> {
+    let fit = fitted(s)?;
+    let (ks, cs) = (s.design.front.spring, s.design.front.damper);
+    let mut out = ModelSpectra {
+        frf: Default::default(),
+        psd: Default::default(),
+    };
+    if let Some(quarters) = fit.model.tuned_quarters(ks, cs)? {
+        for (k, q) in quarters.iter().enumerate() {
+            spectra_of(
+                &crate::model::quarter_car(q),
+                &s.road,
+                f,
+                &mut out,
+                k..k + 1,
+            )?;
+        }
+        return Ok((out, "tuned quarter car".into()));
+    }
+    let sur = fit.model.evaluate(ks, cs)?.to_array();
+    let low = s.lofi().evaluate(ks, cs)?.to_array();
+    for k in 0..3 {
+        let r = sur[k] / low[k];
+        out.frf[k] = lofi.frf[k].iter().map(|h| h * r).collect();
+        out.psd[k] = lofi.psd[k].iter().map(|p| p * r * r).collect();
+    }
+    Ok((out, "LoFi scaled by S / LoFi".into()))
 }
 
 /// Largest frequency count of [`spectra`].
 pub const MAX_NFREQ: usize = 4000;
 
-/// FRFs and PSDs of the design (0.1..100 Hz, `nfreq` log-spaced points).
+/// FRFs and PSDs of the design by the three models (0.1..100 Hz, `nfreq` log-spaced points).
 pub fn spectra(s: &Scenario, nfreq: usize) -> Result<Spectra> {
     if !(2..=MAX_NFREQ).contains(&nfreq) {
         return Err(RideError::field(
@@ -159,9 +212,13 @@ pub fn spectra(s: &Scenario, nfreq: usize) -> Result<Spectra> {
     let f: Vec<f64> = (0..nfreq)
         .map(|i| 0.1 * 1000f64.powf(i as f64 / (nfreq - 1) as f64))
         .collect();
+    let lofi = model_spectra(ModelKind::Quarter, s, &f)?;
+    let (surrogate, surrogate_route) = surrogate_spectra(s, &f, &lofi)?;
     Ok(Spectra {
-        lofi: model_spectra(ModelKind::Quarter, s, &f)?,
         hifi: model_spectra(ModelKind::Full, s, &f)?,
+        lofi,
+        surrogate,
+        surrogate_route,
         f,
     })
 }

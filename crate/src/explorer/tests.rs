@@ -186,5 +186,67 @@ fn kept_map_values_are_rejudged_when_only_the_objectives_change() {
     let loose = map_of(&a, MapModel::LoFi, 9, 8).unwrap();
     let tight = map_of(&b, MapModel::LoFi, 9, 8).unwrap();
     let count = |m: &ModelMap| m.broken.iter().filter(|&&x| x & 1 != 0).count();
-    assert!(count(&tight) > count(&loose), "{} vs {}", count(&tight), count(&loose));
+    assert!(
+        count(&tight) > count(&loose),
+        "{} vs {}",
+        count(&tight),
+        count(&loose)
+    );
+}
+
+#[test]
+fn surrogate_spectra_carry_the_surrogate_rms() {
+    // VBA: each criterion's tuned quarter car has that criterion's surrogate RMS (closed
+    // form of the tuned car, an independent route), and its PSD integrates to it.
+    let s = scenario(|s| {
+        s.surrogate = Some("vba-qts".into());
+        s.ks = 26_000.0;
+        s.cs = 2_100.0;
+    });
+    let fit = fitted(&s).unwrap();
+    let sur = fit.model.evaluate(26_000.0, 2_100.0).unwrap().to_array();
+    let quarters = fit
+        .model
+        .tuned_quarters(26_000.0, 2_100.0)
+        .unwrap()
+        .unwrap();
+    for k in 0..3 {
+        let q = crate::analysis::quarter_criteria(&quarters[k], &s.road)
+            .unwrap()
+            .to_array();
+        assert!(
+            (q[k] / sur[k] - 1.0).abs() < 1e-9,
+            "criterion {k}: {} vs {}",
+            q[k],
+            sur[k]
+        );
+    }
+    let sp = spectra(&s, 4000).unwrap();
+    assert_eq!(sp.surrogate_route, "tuned quarter car");
+    // Trapezoid in ln f over 0.1..100 Hz: the band holds all but the DTL's f^-2 tail
+    // beyond 100 Hz (about 1.4 % of its square, see criteria::spectral), so 3 % bounds it.
+    let area = |p: &[f64]| {
+        (1..sp.f.len())
+            .map(|i| 0.5 * (p[i] * sp.f[i] + p[i - 1] * sp.f[i - 1]) * (sp.f[i] / sp.f[i - 1]).ln())
+            .sum::<f64>()
+    };
+    for k in 0..3 {
+        let rms = area(&sp.surrogate.psd[k]).sqrt();
+        assert!(
+            (rms / sur[k] - 1.0).abs() < 0.03,
+            "criterion {k}: PSD RMS {rms} vs {}",
+            sur[k]
+        );
+    }
+    // RBA: the LoFi's spectra scaled by S / LoFi.
+    let s = scenario(|_| {});
+    let sp = spectra(&s, 50).unwrap();
+    assert_eq!(sp.surrogate_route, "LoFi scaled by S / LoFi");
+    let fit = fitted(&s).unwrap();
+    let (ks, cs) = (s.design.front.spring, s.design.front.damper);
+    let r = fit.model.evaluate(ks, cs).unwrap().bacc / s.lofi().evaluate(ks, cs).unwrap().bacc;
+    for i in 0..50 {
+        assert!((sp.surrogate.frf[0][i] / sp.lofi.frf[0][i] - r).abs() < 1e-12);
+        assert!((sp.surrogate.psd[0][i] / sp.lofi.psd[0][i] - r * r).abs() < 1e-12);
+    }
 }
