@@ -342,3 +342,37 @@ test('guided tour: shown on a first visit, steps through, remembered when closed
   assertClean(log);
   await context.close();
 });
+
+test('car editor: an edited car applies as a custom car, bad values name the field, JSON exports', { timeout: TIMEOUT }, async () => {
+  const r = await openPage(browser, srv.url, { width: 1400, height: 1000, downloads: true });
+  const { page, context, log } = r;
+  await settle(page);
+  await page.click('#car-editor summary');
+  assert.equal(await page.inputValue('#car-sprung_mass'), '1460');
+  // A heavier body: the datum's LoFi BAcc falls (a heavier body shakes less on the same spring).
+  const before = await page.evaluate(() => window.__ridelab.lofi.datum.bacc);
+  await page.fill('#car-sprung_mass', '1700');
+  await page.click('#car-apply');
+  await settle(page);
+  const s = await page.evaluate(() => ({ car: window.__ridelab.state.car, json: JSON.parse(window.__ridelab.state.carJson), bacc: window.__ridelab.lofi.datum.bacc, name: window.__ridelab.desc.car.name }));
+  assert.equal(s.car, 'custom');
+  assert.equal(s.json.sprung_mass, 1700);
+  assert.match(s.name, /\(edited\)$/);
+  assert.ok(s.bacc < before, `datum BAcc ${s.bacc} < ${before}`);
+  // A negative tyre stiffness: the core's message names the field; the state keeps 1700 kg.
+  await page.fill('#car-front-tire_stiffness', '-5');
+  await page.click('#car-apply');
+  assert.match(await page.locator('#msg-car').textContent(), /front\.tire_stiffness/);
+  assert.equal(await page.getAttribute('#car-front-tire_stiffness', 'aria-invalid'), 'true');
+  assert.equal(await page.evaluate(() => JSON.parse(window.__ridelab.state.carJson).sprung_mass), 1700);
+  await page.fill('#car-front-tire_stiffness', 'abc');
+  await page.click('#car-apply');
+  assert.match(await page.locator('#msg-car').textContent(), /not a number/);
+  // Export: the file parses back to the applied car.
+  const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#car-export')]);
+  const exported = JSON.parse(fs.readFileSync(await dl.path(), 'utf8'));
+  assert.equal(exported.sprung_mass, 1700);
+  assert.equal(exported.front.spring, 19960);
+  assertClean(log);
+  await context.close();
+});

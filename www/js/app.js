@@ -19,6 +19,7 @@ import { fmt, fmtInput, parseNumber } from './format.js';
 import { ObjectivePlane, SpectraPanel, TimePanel, download, mapsCsv, frontCsv, canvasPng } from './panels.js';
 import { buildPickers, renderMetrics, tuningText } from './surrogatepanel.js';
 import { Guide } from './guide.js';
+import { CarEditor } from './careditor.js';
 
 /** LoFi and surrogate map resolution (cells); the image is scaled smoothly onto the plot. */
 const GRID = { nx: 160, ny: 120 };
@@ -607,6 +608,8 @@ function syncInputs() {
   put('plan', 'sur-plan', s.plan);
   ensureCustomOption();
   put('car', 'car', s.car);
+  // The editor follows the datum car, but edits in progress survive other changes.
+  if (JSON.stringify(app.carEditor.car) !== JSON.stringify(app.desc.car) && !app.bad.has('car')) app.carEditor.show(app.desc.car);
   $('map-scale').value = app.view.scale;
   $('map-model').value = app.view.model;
   $('show-plan').checked = app.view.plan;
@@ -844,6 +847,32 @@ function wire() {
     });
   }
   $('tour').addEventListener('click', () => app.guide.open());
+  $('car-apply').addEventListener('click', async () => {
+    const r = app.carEditor.read();
+    if (r.error) {
+      app.carEditor.mark(r.path);
+      setMsg('car', r.error);
+      return;
+    }
+    const json = JSON.stringify(r.car);
+    let parsed;
+    try {
+      parsed = await app.engine.call('parseCar', json);
+    } catch (e) {
+      app.carEditor.mark(e.message.split(':')[0]);
+      setMsg('car', `Car editor: ${e.message}`);
+      return;
+    }
+    app.carEditor.mark('');
+    // The design stays where it is; the datum is the edited car's own front.
+    const ok = await changeScenario({ car: 'custom', carJson: json }, 'car');
+    if (ok) app.custom = { json, ks: parsed.ks, cs: parsed.cs };
+  });
+  $('car-export').addEventListener('click', () => {
+    const car = app.desc.car;
+    const name = (car.name || 'car').toLowerCase().replace(/[^a-z0-9]+/g, '-').replace(/^-|-$/g, '');
+    download(`${name}.json`, new Blob([JSON.stringify(car, null, 2) + '\n'], { type: 'application/json' }));
+  });
   $('large').addEventListener('change', (ev) => {
     app.view.large = ev.target.checked;
     applyLarge();
@@ -1063,6 +1092,7 @@ async function main() {
     changeDesign(Math.round(ks / 10) * 10, Math.round(cs / 5) * 5, 'ks');
   }));
   app.guide = new Guide($('guide'));
+  app.carEditor = new CarEditor($('car-fields'));
   wire();
   $('loading').hidden = true;
   $('app').removeAttribute('aria-busy');
