@@ -149,3 +149,125 @@ fn bad_input_is_one_line_naming_the_option_with_exit_code_2() {
     assert_eq!(code, 2);
     assert!(err.contains("sprung_mas"), "{err}");
 }
+
+#[test]
+fn map_and_optimize_write_svg_charts_and_print_the_same() {
+    let dir = std::env::temp_dir().join(format!("ridelab-cli-svg-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let prefix = dir.join("map.svg");
+    let grid = ["--ks-range", "10000:40000:21", "--cs-range", "500:4000:15"];
+    let mut args = vec!["map", "--model", "quarter", "--json"];
+    args.extend(grid);
+    let (code, plain, _) = ridelab(&args);
+    assert_eq!(code, 0);
+    args.extend(["--svg", prefix.to_str().unwrap()]);
+    let (code, with_svg, err) = ridelab(&args);
+    assert_eq!(code, 0, "{err}");
+    // stdout is the same JSON, byte for byte; the trailing .svg is dropped from the prefix.
+    assert_eq!(with_svg, plain);
+    let settings = ridelab::maps::MapSettings {
+        grid: ridelab::maps::Grid::parse("10000:40000:21", "500:4000:15").unwrap(),
+        ..Default::default()
+    };
+    let report = ridelab::maps::map_report(
+        ModelKind::Quarter,
+        &Car::datum(),
+        &Road::default(),
+        &settings,
+    )
+    .unwrap();
+    for ((key, chart), unit) in ridelab::chart::map_report_charts(&report).into_iter().zip([
+        "BAcc [m/s^2]",
+        "DTL [N]",
+        "SWS [mm]",
+    ]) {
+        let svg = std::fs::read_to_string(dir.join(format!("map-{key}.svg"))).unwrap();
+        assert!(
+            svg.starts_with("<svg ") && svg.ends_with("</svg>\n"),
+            "{key}"
+        );
+        for label in [
+            "Ks front spring [kN/m]",
+            "Cs front damper [kNs/m]",
+            unit,
+            ">\ndatum\n",
+        ] {
+            assert!(svg.contains(label), "{key}: {label} missing");
+        }
+        // 21 x 15 nodes: one cell each at most, plus the bar's 64 and a few frames.
+        let rects = svg.matches("<rect").count();
+        assert!(rects <= 21 * 15 + 64 + 8, "{key}: {rects} rects");
+        // The same chart as the library draws from the same report.
+        assert_eq!(svg, ridelab::chart::map_chart_svg(&chart).unwrap(), "{key}");
+    }
+
+    // --csv with --svg: the CSV is unchanged too.
+    let (_, csv, _) = ridelab(&["map", "--model", "quarter", "--csv", "--relative"]);
+    let rel = dir.join("rel");
+    let (code, csv2, _) = ridelab(&[
+        "map",
+        "--model",
+        "quarter",
+        "--csv",
+        "--relative",
+        "--svg",
+        rel.to_str().unwrap(),
+    ]);
+    assert_eq!((code, csv2), (0, csv));
+    let svg = std::fs::read_to_string(dir.join("rel-dtl.svg")).unwrap();
+    assert!(svg.contains("DTL change vs datum [%]"));
+
+    let front = dir.join("front.svg");
+    let opt = [
+        "optimize",
+        "--evaluator",
+        "quarter",
+        "--method",
+        "nsga2",
+        "--population",
+        "20",
+        "--generations",
+        "10",
+        "--json",
+    ];
+    let (_, plain, _) = ridelab(&opt);
+    let mut args = opt.to_vec();
+    args.extend(["--svg", front.to_str().unwrap()]);
+    let (code, with_svg, err) = ridelab(&args);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(with_svg, plain);
+    let svg = std::fs::read_to_string(&front).unwrap();
+    for label in [
+        "BAcc [m/s^2]",
+        "DTL [N]",
+        "min-max pick",
+        ">\ndatum\n",
+        "Pareto front, NSGA-II",
+    ] {
+        assert!(svg.contains(label), "front: {label} missing");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn bad_svg_targets_are_one_line_naming_the_option() {
+    let missing = std::env::temp_dir()
+        .join("ridelab-no-such-dir")
+        .join("x.svg");
+    let missing = missing.to_str().unwrap();
+    let tmp = std::env::temp_dir();
+    let tmp = tmp.to_str().unwrap();
+    for args in [
+        &["map", "--model", "quarter", "--svg", missing][..],
+        &["map", "--model", "quarter", "--svg", ""][..],
+        &["map", "--model", "quarter", "--svg"][..],
+        &["optimize", "--evaluator", "quarter", "--svg", missing][..],
+        &["map", "--model", "quarter", "--svg", tmp][..],
+    ] {
+        let (code, out, err) = ridelab(args);
+        assert_eq!(code, 2, "{args:?}");
+        assert!(out.is_empty(), "{args:?}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(err.starts_with("error: svg: "), "{args:?}: {err}");
+    }
+}

@@ -5,6 +5,7 @@
 
 pub mod analysis;
 pub mod car;
+pub mod chart;
 pub mod criteria;
 pub mod design;
 pub mod doe;

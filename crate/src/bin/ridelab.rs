@@ -6,6 +6,7 @@
 
 use ridelab::analysis::{report, ModelKind, Report};
 use ridelab::car::Car;
+use ridelab::chart::{front_chart, line_chart_svg, map_chart_svg, map_report_charts};
 use ridelab::design::DesignBox;
 use ridelab::doe::doe_report;
 use ridelab::dos::{DesignObjectives, DosContext};
@@ -19,6 +20,7 @@ use ridelab::surrogate::{
 use ridelab::time_domain::{simulate, TimeOptions};
 use ridelab::{Evaluator, HiFi, LoFi};
 use std::collections::HashMap;
+use std::path::{Path, PathBuf};
 
 const USAGE: &str = "usage: ridelab <command> [options]
 commands:
@@ -27,16 +29,18 @@ commands:
   doe       --points N [--seed S] [--json]
   optimize  --evaluator quarter|full|SURROGATE [--plan ae:10] --method stm|nsga2 [car/road options]
             [--ks N/m --cs Ns/m for the datum] [--sws-limit m] [--grid 201] [--population 100]
-            [--generations 100] [--seed 1] [--json]
+            [--generations 100] [--seed 1] [--json] [--svg FILE]
   map       --model quarter|full [car/road options] [--ks-range 10000:40000:41] [--cs-range 500:4000:41]
-            [--relative] --json|--csv
+            [--relative] --json|--csv [--svg PREFIX]
   surrogate --approach rba-mul-poly2|vba-qts|pba-smts|... --plan ae:10|grid:5 [car/road options]
             [--predict grid:20] [--json]
   study     [car/road options] --json|--markdown
   simulate  --model quarter|full [car/road options] [--ks] [--cs] [--duration 20] [--dt 0.001] [--seed 1]
             [--bump Ns/m --rebound Ns/m] [--decimate 10] [--json|--csv]
   presets   [--json]
-car: a JSON file or a preset name (sedan, compact, suv); default sedan (the datum car)";
+car: a JSON file or a preset name (sedan, compact, suv); default sedan (the datum car)
+--svg: optimize writes the front chart to FILE; map writes PREFIX-bacc.svg, PREFIX-dtl.svg and
+       PREFIX-sws.svg (a trailing .svg on PREFIX is dropped); stdout is unchanged";
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -165,6 +169,39 @@ fn json<T: serde::Serialize>(v: &T) -> Result<String> {
         .map_err(|e| RideError::Numerical(format!("cannot write JSON: {e}")))
 }
 
+/// The `--svg` target, checked before any work: a file name (not a directory) in a
+/// directory that exists.
+fn svg_target(o: &Opts) -> Result<Option<PathBuf>> {
+    let Some(text) = o.str("svg") else {
+        return Ok(None);
+    };
+    if text.trim().is_empty() {
+        return Err(RideError::field("svg", "needs a file name"));
+    }
+    let path = PathBuf::from(text);
+    if path.is_dir() {
+        return Err(RideError::field(
+            "svg",
+            format!(
+                "'{text}' is a directory; give a file name (for map, a prefix such as {}/map)",
+                text.trim_end_matches('/')
+            ),
+        ));
+    }
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => Err(RideError::field(
+            "svg",
+            format!("directory '{}' does not exist", dir.display()),
+        )),
+        _ => Ok(Some(path)),
+    }
+}
+
+fn write_svg(path: &Path, svg: &str) -> Result<()> {
+    std::fs::write(path, svg)
+        .map_err(|e| RideError::field("svg", format!("cannot write '{}': {e}", path.display())))
+}
+
 fn run(args: &[String]) -> Result<String> {
     let Some((cmd, rest)) = args.split_first() else {
         return Err(RideError::field("command", format!("missing\n{USAGE}")));
@@ -282,9 +319,11 @@ fn optimize(args: &[String]) -> Result<String> {
         "population",
         "generations",
         "seed",
+        "svg",
     ];
     values.extend(CAR_ROAD);
     let o = Opts::parse(args, &["json"], &values)?;
+    let svg = svg_target(&o)?;
     let (car, road) = car_and_road(&o)?;
     let mut objectives = DesignObjectives::default();
     if let Some(l) = o.num("sws-limit")? {
@@ -338,6 +377,12 @@ fn optimize(args: &[String]) -> Result<String> {
     let problem = SuspensionProblem::new(evaluator, design_box, objectives, ctx)?;
     let study = run_study(&problem, &method, None)?;
     let check = recheck(&study.pick, &hifi, &datum)?;
+    if let Some(path) = &svg {
+        write_svg(
+            path,
+            &line_chart_svg(&front_chart(&study, &datum, Some(&check)))?,
+        )?;
+    }
     #[derive(serde::Serialize)]
     struct Out<'a> {
         #[serde(flatten)]
@@ -447,9 +492,10 @@ fn presets(args: &[String]) -> Result<String> {
 }
 
 fn map_cmd(args: &[String]) -> Result<String> {
-    let mut values = vec!["model", "ks-range", "cs-range"];
+    let mut values = vec!["model", "ks-range", "cs-range", "svg"];
     values.extend(CAR_ROAD);
     let o = Opts::parse(args, &["json", "csv", "relative"], &values)?;
+    let svg = svg_target(&o)?;
     let kind = model_kind(&o)?;
     let (car, road) = car_and_road(&o)?;
     let settings = MapSettings {
@@ -465,6 +511,16 @@ fn map_cmd(args: &[String]) -> Result<String> {
         ..MapSettings::default()
     };
     let r = map_report(kind, &car, &road, &settings)?;
+    if let Some(prefix) = svg {
+        let prefix = prefix.to_string_lossy();
+        let prefix = prefix.strip_suffix(".svg").unwrap_or(&prefix);
+        for (key, chart) in map_report_charts(&r) {
+            write_svg(
+                Path::new(&format!("{prefix}-{key}.svg")),
+                &map_chart_svg(&chart)?,
+            )?;
+        }
+    }
     if o.flag("csv") {
         Ok(map_csv(&r))
     } else {

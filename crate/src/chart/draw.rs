@@ -1,0 +1,174 @@
+//! Drawing helpers shared by the charts: the SVG root, fonts, titles, error conversion
+//! and clipping of polylines to the plot frame (in pixels).
+
+use super::Frame;
+use crate::error::{Result, RideError};
+use plotters::backend::SVGBackend;
+use plotters::coord::Shift;
+use plotters::drawing::{DrawingArea, DrawingAreaErrorKind, IntoDrawingArea};
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use plotters::style::{FontDesc, FontFamily, FontStyle, TextStyle, WHITE};
+
+/// A drawing area on the SVG backend in plain pixel coordinates.
+pub(crate) type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
+
+/// Pixels above the plot when the chart has a title (the title's row and a gap).
+pub(crate) const TITLE_SPACE: u32 = 34;
+/// Pixels above the plot without a title.
+pub(crate) const TOP_MARGIN: u32 = 12;
+
+/// A backend error as a core error (the string backend does not fail in practice).
+pub(crate) fn drawing_error<E: std::error::Error + Send + Sync>(
+    e: DrawingAreaErrorKind<E>,
+) -> RideError {
+    RideError::Numerical(format!("drawing the chart failed: {e}"))
+}
+
+/// Sans-serif text of `px` pixels. plotters writes `font-size` as the requested size
+/// over 1.24, so the request is scaled up by that factor.
+pub(crate) fn font(px: f64, bold: bool) -> TextStyle<'static> {
+    let style = if bold {
+        FontStyle::Bold
+    } else {
+        FontStyle::Normal
+    };
+    TextStyle::from(FontDesc::new(FontFamily::SansSerif, px * 1.24, style))
+}
+
+/// Tick label size, px.
+pub(crate) const LABEL_PX: f64 = 12.0;
+/// Axis description size, px.
+pub(crate) const DESC_PX: f64 = 14.0;
+/// Title size, px.
+pub(crate) const TITLE_PX: f64 = 16.0;
+
+/// Draws an SVG document of `width` x `height` px on a white background with `draw`.
+pub(crate) fn render(
+    width: u32,
+    height: u32,
+    draw: impl FnOnce(&Area<'_>) -> Result<()>,
+) -> Result<String> {
+    let mut buf = String::new();
+    {
+        let root = SVGBackend::with_string(&mut buf, (width, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(drawing_error)?;
+        draw(&root)?;
+        root.present().map_err(drawing_error)?;
+    }
+    Ok(buf)
+}
+
+/// The chart title, centred in the top row (nothing for an empty title).
+pub(crate) fn title(root: &Area<'_>, text: &str, width: u32) -> Result<()> {
+    if text.is_empty() {
+        return Ok(());
+    }
+    let style = font(TITLE_PX, true).pos(Pos::new(HPos::Center, VPos::Top));
+    root.draw_text(text, &style, ((width / 2) as i32, 9))
+        .map_err(drawing_error)
+}
+
+/// Pixels above the plot for a chart with this title.
+pub(crate) fn top_space(title: &str) -> u32 {
+    if title.is_empty() {
+        TOP_MARGIN
+    } else {
+        TITLE_SPACE
+    }
+}
+
+/// The pieces of the polyline `points` (unrounded pixels) inside `frame`, cut where the
+/// line leaves and enters it (Liang-Barsky on each segment). A polyline wholly inside
+/// comes back whole, one piece with every point.
+pub(crate) fn clip_polyline(frame: &Frame, points: &[(f64, f64)]) -> Vec<Vec<(f64, f64)>> {
+    let (x0, x1) = (f64::from(frame.left), f64::from(frame.right));
+    let (y0, y1) = (f64::from(frame.top), f64::from(frame.bottom));
+    let mut out = Vec::new();
+    let mut cur: Vec<(f64, f64)> = Vec::new();
+    let flush = |cur: &mut Vec<(f64, f64)>, out: &mut Vec<Vec<(f64, f64)>>| {
+        if cur.len() >= 2 {
+            out.push(std::mem::take(cur));
+        } else {
+            cur.clear();
+        }
+    };
+    for w in points.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let (mut t0, mut t1) = (0.0f64, 1.0f64);
+        let mut visible = true;
+        for (p, q) in [
+            (-dx, a.0 - x0),
+            (dx, x1 - a.0),
+            (-dy, a.1 - y0),
+            (dy, y1 - a.1),
+        ] {
+            if p == 0.0 {
+                if q < -1e-9 {
+                    visible = false;
+                }
+            } else {
+                let r = q / p;
+                if p < 0.0 {
+                    t0 = t0.max(r);
+                } else {
+                    t1 = t1.min(r);
+                }
+            }
+        }
+        if !visible || t0 > t1 {
+            flush(&mut cur, &mut out);
+            continue;
+        }
+        let at = |t: f64| (a.0 + t * dx, a.1 + t * dy);
+        if t0 > 0.0 || cur.is_empty() {
+            flush(&mut cur, &mut out);
+            cur.push(if t0 > 0.0 { at(t0) } else { a });
+        }
+        cur.push(if t1 < 1.0 { at(t1) } else { b });
+        if t1 < 1.0 {
+            flush(&mut cur, &mut out);
+        }
+    }
+    flush(&mut cur, &mut out);
+    out
+}
+
+/// Rounds pixels for the backend.
+pub(crate) fn round_all(points: &[(f64, f64)]) -> Vec<(i32, i32)> {
+    points
+        .iter()
+        .map(|&(x, y)| (x.round() as i32, y.round() as i32))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clipping_keeps_inside_lines_whole_and_cuts_at_the_frame() {
+        let f = Frame {
+            left: 0,
+            right: 100,
+            top: 0,
+            bottom: 50,
+        };
+        let inside = [(0.0, 0.0), (10.0, 20.0), (100.0, 50.0)];
+        assert_eq!(clip_polyline(&f, &inside), vec![inside.to_vec()]);
+        // Out through the right edge and back in.
+        let pieces = clip_polyline(
+            &f,
+            &[(50.0, 10.0), (150.0, 10.0), (50.0, 30.0), (60.0, 30.0)],
+        );
+        assert_eq!(pieces.len(), 2, "{pieces:?}");
+        assert_eq!(pieces[0], vec![(50.0, 10.0), (100.0, 10.0)]);
+        assert_eq!(pieces[1][0], (100.0, 20.0));
+        assert_eq!(pieces[1][2], (60.0, 30.0));
+        // Wholly outside.
+        assert!(clip_polyline(&f, &[(-5.0, -5.0), (-1.0, 60.0)]).is_empty());
+        // A diagonal across the whole frame from outside to outside.
+        let p = clip_polyline(&f, &[(-50.0, -25.0), (150.0, 75.0)]);
+        assert_eq!(p, vec![vec![(0.0, 0.0), (100.0, 50.0)]]);
+    }
+}

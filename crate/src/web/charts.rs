@@ -1,0 +1,141 @@
+//! SVG export of the page's charts: `lineChartSvg(spec)` and `mapChartSvg(spec)` take a
+//! plain JS object (a [`LineChart`] or [`MapChart`] spec, camelCase keys) and return the
+//! SVG document as a string, or throw a JS `Error` whose `field` names the spec field at
+//! fault (`series[1].points[7]`, `values`, an unknown key's own path such as `xlabel`;
+//! `spec` for the object as a whole).
+//!
+//! **Main thread only.** On wasm32, plotters 0.3.7 measures text through the DOM
+//! (`style/font/web.rs`: `window().unwrap().document().unwrap().body().unwrap()`, then a
+//! `<span>` is appended to the body, measured and removed). Without a window (a Web
+//! Worker), a document or a body, or in a document where a new `<span>` is not an HTML
+//! element, those `unwrap`s would panic, and a panic aborts the module. So every entry
+//! checks all of that first ([`text_measurable`]) and throws an error instead; the worker
+//! must not list these methods.
+
+use crate::chart::{line_chart_svg, map_chart_svg, LineChart, MapChart, MapMarker, Series};
+use crate::error::RideError;
+use js_sys::{Array, ArrayBuffer, Object, Reflect};
+use serde::de::DeserializeOwned;
+use wasm_bindgen::prelude::*;
+use wasm_bindgen::JsCast;
+
+/// A chart error as a JS `Error` with `field` set to the spec field (the core's field
+/// path verbatim: these are not state fields, so the state's field mapping does not apply).
+fn chart_error(e: RideError) -> JsValue {
+    let field = match &e {
+        RideError::Field { field, .. } => field.clone(),
+        _ => String::new(),
+    };
+    let err = js_sys::Error::new(&e.to_string());
+    // Setting a property on a fresh Error object cannot fail.
+    let _ = Reflect::set(&err, &"field".into(), &field.into());
+    err.into()
+}
+
+/// Refuses keys of the object `value` (at `path`, "" for the spec) not in `allowed`:
+/// serde-wasm-bindgen reads only the keys a struct knows, so a misspelt optional key
+/// would be dropped without a word. Non-objects are left to serde.
+fn check_keys(value: &JsValue, path: &str, allowed: &[&str]) -> Result<(), JsValue> {
+    if Array::is_array(value) || ArrayBuffer::is_view(value) {
+        return Ok(());
+    }
+    let Some(obj) = value.dyn_ref::<Object>() else {
+        return Ok(());
+    };
+    for key in Object::keys(obj).iter() {
+        let key = key.as_string().unwrap_or_default();
+        if !allowed.contains(&key.as_str()) {
+            let field = if path.is_empty() {
+                key.clone()
+            } else {
+                format!("{path}.{key}")
+            };
+            return Err(chart_error(RideError::field(
+                field,
+                format!(
+                    "unknown field `{key}`, expected one of {}",
+                    allowed.join(", ")
+                ),
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// [`check_keys`] on each object of the array at `value[key]`, as `key[k]`.
+fn check_items(value: &JsValue, key: &str, allowed: &[&str]) -> Result<(), JsValue> {
+    let items = Reflect::get(value, &key.into()).unwrap_or(JsValue::UNDEFINED);
+    if let Some(items) = items.dyn_ref::<Array>() {
+        for (k, item) in items.iter().enumerate() {
+            check_keys(&item, &format!("{key}[{k}]"), allowed)?;
+        }
+    }
+    Ok(())
+}
+
+/// Reads a spec; a bad key or value is reported at its path (`series[0].colour`).
+fn read_spec<T: DeserializeOwned>(spec: JsValue) -> Result<T, JsValue> {
+    let de = serde_wasm_bindgen::Deserializer::from(spec);
+    serde_path_to_error::deserialize(de).map_err(|e| {
+        let path = e.path().to_string();
+        let field = if path == "." {
+            "spec".to_string()
+        } else {
+            path
+        };
+        chart_error(RideError::field(field, e.inner().to_string()))
+    })
+}
+
+/// Ok when plotters can measure text here (see the module documentation).
+fn text_measurable() -> Result<(), JsValue> {
+    let fail = |why: &str| {
+        Err(chart_error(RideError::field(
+            "chart",
+            format!("SVG charts measure their text in the page's document, so they run on the main thread only: {why}"),
+        )))
+    };
+    let Some(window) = web_sys::window() else {
+        return fail("there is no window here (a Web Worker?)");
+    };
+    let Some(document) = window.document() else {
+        return fail("the window has no document");
+    };
+    if document.body().is_none() {
+        return fail("the document has no body yet");
+    }
+    match document.create_element("span") {
+        Ok(el) if el.is_instance_of::<web_sys::HtmlElement>() => Ok(()),
+        _ => fail("the document is not an HTML document"),
+    }
+}
+
+/// A line or scatter chart as an SVG string (see [`LineChart`]): `{title, xLabel,
+/// yLabel, xLog, yLog, xRange, yRange, width, height, legend, series: [{name, colour,
+/// points: [[x, y], ...], style: "line" | "dots" | {markers: shape}, size, stroke,
+/// opacity}]}`.
+#[wasm_bindgen(js_name = lineChartSvg)]
+pub fn line_chart_svg_js(spec: JsValue) -> Result<String, JsValue> {
+    check_keys(&spec, "", &LineChart::FIELDS)?;
+    check_items(&spec, "series", &Series::FIELDS)?;
+    let chart: LineChart = read_spec(spec)?;
+    chart.layout().map_err(chart_error)?;
+    text_measurable()?;
+    line_chart_svg(&chart).map_err(chart_error)
+}
+
+/// A design map as an SVG string (see [`MapChart`]): `{title, unit, nx, ny, values,
+/// sampling, designBox: {ks_min, ks_max, cs_min, cs_max}, colourMap, range, feasible,
+/// contours: {auto: n} | {levels: [...]}, markers: [{label, ks, cs, shape, colour, size}],
+/// width, height, legend}`; `values` and `feasible` may be typed arrays.
+#[wasm_bindgen(js_name = mapChartSvg)]
+pub fn map_chart_svg_js(spec: JsValue) -> Result<String, JsValue> {
+    check_keys(&spec, "", &MapChart::FIELDS)?;
+    check_items(&spec, "markers", &MapMarker::FIELDS)?;
+    let design_box = Reflect::get(&spec, &"designBox".into()).unwrap_or(JsValue::UNDEFINED);
+    check_keys(&design_box, "designBox", &MapChart::BOX_FIELDS)?;
+    let chart: MapChart = read_spec(spec)?;
+    chart.layout().map_err(chart_error)?;
+    text_measurable()?;
+    map_chart_svg(&chart).map_err(chart_error)
+}
