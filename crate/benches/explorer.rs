@@ -46,9 +46,10 @@ fn explorer(c: &mut Criterion) {
     c.bench_function("lofi map 160x120, fresh", |b| {
         b.iter(|| black_box(map_of(&next(), MapModel::LoFi, 160, 120).unwrap()))
     });
-    c.bench_function("front stm 61x61 + 2 levels on the surrogate (fit kept)", |b| {
-        b.iter(|| black_box(front(&s, "stm", FrontModel::Surrogate).unwrap()))
-    });
+    c.bench_function(
+        "front stm 61x61 + 2 levels on the surrogate (fit kept)",
+        |b| b.iter(|| black_box(front(&s, "stm", FrontModel::Surrogate).unwrap())),
+    );
     c.bench_function("front stm 61x61 + 2 levels on the LoFi (baseline)", |b| {
         b.iter(|| black_box(front(&s, "stm", FrontModel::LoFi).unwrap()))
     });

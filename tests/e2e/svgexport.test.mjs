@@ -1,8 +1,8 @@
 // End-to-end tests of the SVG export (js/svgexport.js over the wasm `lineChartSvg` and
 // `mapChartSvg`): every chart of the page as an SVG document that the browser parses,
 // with its labels and data; bad specs rejected with the field named; and the charts
-// refused, not crashed, in a Web Worker (plotters measures text in the page's document).
-// Skipped while the page does not export the chart methods yet (web/mod.rs, engine.js).
+// refused, not crashed, in a Web Worker (plotters measures text in the page's document);
+// the SVG buttons download them.
 //
 //   trunk build --release --offline && npm run test:e2e
 
@@ -36,19 +36,16 @@ after(async () => {
   if (srv) await srv.close();
 });
 
-/** The page, settled, with the time response run; null when the chart methods are not wired. */
+/** The page, settled, with the time response run. */
 async function openWired() {
-  const r = await openPage(browser, srv.url, { width: 1400, height: 1000 });
+  const r = await openPage(browser, srv.url, { width: 1400, height: 1000, downloads: true });
   await settled(r.page, 150);
   const wired = await r.page.evaluate(async () => {
     const { METHODS } = await import('./js/engine.js');
     const app = window.__ridelab;
     return typeof app.api.lineChartSvg === 'function' && METHODS.includes('lineChartSvg') && METHODS.includes('mapChartSvg');
   });
-  if (!wired) {
-    await r.context.close();
-    return null;
-  }
+  assert.ok(wired, 'the page exports lineChartSvg and mapChartSvg');
   await r.page.click('#tp-run');
   await r.page.waitForFunction(() => window.__ridelab.time !== null, null, { timeout: 60_000 });
   await settled(r.page, 50);
@@ -57,10 +54,6 @@ async function openWired() {
 
 test('every chart exports as a parseable SVG with its labels and data', { timeout: TIMEOUT }, async (t) => {
   const r = await openWired();
-  if (!r) {
-    t.skip('lineChartSvg / mapChartSvg are not exported by the page yet');
-    return;
-  }
   const { page, context, log } = r;
   const out = await page.evaluate(async () => {
     const m = await import('./js/svgexport.js');
@@ -119,9 +112,11 @@ test('every chart exports as a parseable SVG with its labels and data', { timeou
     assert.ok(chart('frf-bacc').lines.some((l) => l.stroke === stroke && l.n === out.nfreq), `FRF ${stroke}`);
     assert.ok(chart('time-dtl').lines.some((l) => l.stroke === stroke && l.n === out.ntime), `time ${stroke}`);
   }
-  // The 240 x 180 page map drawn as at most 80 x 60 blocks.
+  // The surrogate's tuned LoFi is drawn too (green).
+  assert.ok(chart('psd-bacc').lines.some((l) => l.stroke === '#15803D' && l.n === out.nfreq), 'surrogate PSD');
+  // The 160 x 120 page map drawn as at most 80 x 60 blocks.
   assert.ok(chart('map-dtl').rects <= 80 * 60 + 80, `${chart('map-dtl').rects} rects`);
-  console.log(`svg export: ${names.length} charts in ${out.ms.toFixed(0)} ms; ` +
+  t.diagnostic(`svg export: ${names.length} charts in ${out.ms.toFixed(0)} ms; ` +
     out.charts.map((c) => `${c.name} ${(c.bytes / 1024).toFixed(0)} KB`).join(', '));
   assert.deepEqual(log.errors, [], 'console errors');
   await context.close();
@@ -129,10 +124,6 @@ test('every chart exports as a parseable SVG with its labels and data', { timeou
 
 test('bad specs are refused naming the field; a worker gets an error, not a crash', { timeout: TIMEOUT }, async (t) => {
   const r = await openWired();
-  if (!r) {
-    t.skip('lineChartSvg / mapChartSvg are not exported by the page yet');
-    return;
-  }
   const { page, context, log } = r;
   const res = await page.evaluate(async () => {
     const app = window.__ridelab;
@@ -175,6 +166,23 @@ test('bad specs are refused naming the field; a worker gets an error, not a cras
   assert.equal(res.worker.first.field, 'chart', JSON.stringify(res.worker));
   assert.match(res.worker.first.message, /main thread/);
   assert.match(String(res.worker.after), /^\d+\.\d+\.\d+/);
+  assert.deepEqual(log.errors, [], 'console errors');
+  await context.close();
+});
+
+test('the SVG buttons download the objective plane and every chart', { timeout: TIMEOUT }, async () => {
+  const { page, context, log } = await openWired();
+  const [one] = await Promise.all([page.waitForEvent('download'), page.click('#op-svg')]);
+  assert.match(one.suggestedFilename(), /^ridelab-objective-sedan-B-20ms\.svg$/);
+  const text = fs.readFileSync(await one.path(), 'utf8');
+  assert.match(text, /^<svg/);
+  assert.match(text, /Pareto front, STM/);
+  const files = [];
+  page.on('download', (d) => files.push(d.suggestedFilename()));
+  await page.click('#svg-all');
+  for (let i = 0; i < 200 && files.length < 13; i++) await page.waitForTimeout(50);
+  assert.equal(files.length, 13, files.join(', '));
+  assert.ok(files.includes('ridelab-map-sws-sedan-B-20ms.svg'), files.join(', '));
   assert.deepEqual(log.errors, [], 'console errors');
   await context.close();
 });

@@ -20,6 +20,7 @@ import { ObjectivePlane, SpectraPanel, TimePanel, download, mapsCsv, frontCsv, c
 import { buildPickers, renderMetrics, tuningText } from './surrogatepanel.js';
 import { Guide } from './guide.js';
 import { CarEditor } from './careditor.js';
+import { objectiveSvg, allSvgs } from './svgexport.js';
 
 /** LoFi and surrogate map resolution (cells); the image is scaled smoothly onto the plot. */
 const GRID = { nx: 160, ny: 120 };
@@ -990,6 +991,22 @@ function wirePanels() {
     requestNsga();
   });
   $('op-png').addEventListener('click', () => canvasPng(`ridelab-objective-${stamp()}.png`, $('op-base'), $('op-overlay')));
+  // SVG charts are drawn by the core's plotters module on the main thread (it measures
+  // text through the page's DOM, which a worker has not).
+  const saveSvg = (name, svg) => download(name, new Blob([svg], { type: 'image/svg+xml' }));
+  const svgFailed = (e) => banner(`SVG export failed: ${e.message || e}`);
+  $('op-svg').addEventListener('click', () =>
+    objectiveSvg(app).then((svg) => saveSvg(`ridelab-objective-${stamp()}.svg`, svg)).catch(svgFailed));
+  $('svg-all').addEventListener('click', () =>
+    allSvgs(app)
+      .then(async (list) => {
+        // One at a time: a burst of downloads trips the browser's multiple-download guard.
+        for (const { name, svg } of list) {
+          saveSvg(`ridelab-${name}-${stamp()}.svg`, svg);
+          await new Promise((r) => setTimeout(r, 150));
+        }
+      })
+      .catch(svgFailed));
   const fcsv = () => download(`ridelab-front-${stamp()}.csv`, new Blob([frontCsv(app)], { type: 'text/csv' }));
   $('front-csv').addEventListener('click', fcsv);
   $('front-csv2').addEventListener('click', fcsv);

@@ -187,7 +187,7 @@ export class MapView {
       nx, ny, box, lo, hi, ticks, step, table, colour, maskCanvas, contours, limitLine, scale, over, under,
       infeasible: maps.feasibleCount < n,
       unit: error ? '% error vs HiFi' : scale === 'rel' ? '% vs datum' : this.crit.unit,
-      shown, kind,
+      shown, kind, feasible: maps.feasible,
     };
     this.base.setAttribute(
       'aria-label',

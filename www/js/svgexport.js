@@ -59,8 +59,8 @@ function designText(app) {
 }
 
 /**
- * The objective plane (BAcc against DTL, LoFi): the feasible designs of the LoFi map
- * (every fourth cell each way), the STM Pareto front, the NSGA-II front when computed,
+ * The objective plane (BAcc against DTL, on the surrogate): its feasible designs (every
+ * other cell of the page's 96 x 72 set each way), the STM Pareto front, the NSGA-II front when computed,
  * the min-max pick and its HiFi re-check, the datum and the current design; on the
  * datum-ratio axes when the panel shows them (`ratio`, default the panel's choice).
  */
@@ -69,11 +69,11 @@ export function objectiveSvg(app, { ratio = app.objPlane ? app.objPlane.ratio : 
   if (!fr || fr.error) return Promise.reject({ message: `no front to draw${fr ? `: ${fr.error}` : ''}`, field: 'front' });
   const d = fr.datum;
   const xy = (bacc, dtl) => (ratio ? [bacc / d.bacc, dtl / d.dtl] : [bacc, dtl]);
-  const m = app.maps;
+  const m = app.cloud;
   const n = m.nx * m.ny;
   const cloud = [];
-  for (let j = 0; j < m.ny; j += 4) {
-    for (let i = 0; i < m.nx; i += 4) {
+  for (let j = 0; j < m.ny; j += 2) {
+    for (let i = 0; i < m.nx; i += 2) {
       const k = j * m.nx + i;
       if (m.feasible[k]) cloud.push(xy(m.values[k], m.values[n + k]));
     }
@@ -87,7 +87,7 @@ export function objectiveSvg(app, { ratio = app.objPlane ? app.objPlane.ratio : 
   const yRange = widen([y0 - 0.05 * (y1 - y0), y1 + 0.6 * (y1 - y0)]);
   const series = [];
   if (cloud.length) {
-    series.push({ name: 'feasible designs (LoFi map)', colour: COL.cloud, points: cloud, style: 'dots', size: 1.4, opacity: 0.35 });
+    series.push({ name: 'feasible designs (surrogate)', colour: COL.cloud, points: cloud, style: 'dots', size: 1.4, opacity: 0.35 });
   }
   series.push(line(`Pareto front, STM (${front.length} pts)`, COL.stm, front, 2.5));
   if (app.nsga && !app.nsga.error) {
@@ -95,19 +95,20 @@ export function objectiveSvg(app, { ratio = app.objPlane ? app.objPlane.ratio : 
     series.push({ name: `NSGA-II front (${nf.length} pts)`, colour: COL.nsga, points: nf, style: 'dots', size: 2.6 });
   }
   const pk = xy(fr.study.pick.criteria.bacc, fr.study.pick.criteria.dtl);
-  series.push(marker('min-max pick (LoFi)', COL.pick, '#000000', 'diamond', pk[0], pk[1]));
   const rc = fr.recheck.rechecked;
   const dh = fr.datumHifi;
   const hp = ratio ? [rc.bacc / dh.bacc, rc.dtl / dh.dtl] : [rc.bacc, rc.dtl];
-  series.push(marker('pick re-checked (HiFi)', '#ffffff', COL.hifi, 'diamond', hp[0], hp[1], 5));
+  // The re-check larger and underneath, as on the page: a close one rings the pick.
+  series.push(marker('pick re-checked (HiFi)', '#ffffff', COL.hifi, 'diamond', hp[0], hp[1], 9));
+  series.push(marker(`min-max pick (${fr.study.evaluator})`, COL.pick, '#000000', 'diamond', pk[0], pk[1]));
   series.push(marker('datum', '#ffffff', '#000000', 'square', datum[0], datum[1], 6));
-  if (app.lofi && app.lofi.design) {
-    const p = xy(app.lofi.design.bacc, app.lofi.design.dtl);
+  if (app.surrogate && app.surrogate.design) {
+    const p = xy(app.surrogate.design.bacc, app.surrogate.design.dtl);
     series.push(marker('current design', '#000000', '#ffffff', 'circle', p[0], p[1], 4.5));
   }
   const spec = {
-    title: `Objective plane (LoFi): ${app.state.car}, class ${app.state.class} at ${app.state.speed} m/s`,
-    xLabel: ratio ? 'BAcc / datum BAcc (LoFi) [–]' : 'BAcc [m/s²]',
+    title: `Objective plane (surrogate ${fr.study.evaluator}): ${app.state.car}, class ${app.state.class} at ${app.state.speed} m/s`,
+    xLabel: ratio ? 'BAcc / datum BAcc (surrogate) [–]' : 'BAcc [m/s²]',
     yLabel: ratio ? 'DTL / datum DTL [–]' : 'DTL [N]',
     xRange,
     yRange,
@@ -137,8 +138,9 @@ export function spectraSvg(app, which = 'frf', key = 'bacc', { width = 640, heig
   const pts = (vs) => sp.f.map((f, i) => [f, vs[i]]).filter(([f, v]) => f > 0 && v > 0 && Number.isFinite(v));
   const a = pts(sp.lofi[which][k]);
   const b = pts(sp.hifi[which][k]);
+  const c = pts(sp.surrogate[which][k]);
   // The page's y range: whole decades, at most 8 of them below the peak.
-  const [low, top] = extent([...a, ...b].map((p) => p[1]));
+  const [low, top] = extent([...a, ...b, ...c].map((p) => p[1]));
   const hi = 10 ** Math.ceil(Math.log10(top));
   const lo = 10 ** Math.floor(Math.log10(Math.max(low, top * 1e-8)));
   const spec = {
@@ -153,7 +155,11 @@ export function spectraSvg(app, which = 'frf', key = 'bacc', { width = 640, heig
     height,
     legend: 'lowerLeft',
     // HiFi wide underneath, LoFi narrow on top: both stay visible where they agree.
-    series: [line('HiFi (full car)', COL.hifi, b, 4), line('LoFi (quarter car)', COL.lofi, a, 1.6)],
+    series: [
+      line('HiFi (full car)', COL.hifi, b, 4),
+      line('LoFi (quarter car)', COL.lofi, a, 1.6),
+      line(`tuned LoFi (${sp.surrogateRoute})`, COL.nsga, c, 1.6),
+    ],
   };
   return app.engine.call('lineChartSvg', spec);
 }
@@ -185,6 +191,9 @@ export function timeSvg(app, key = 'bacc', { width = 720, height = 340 } = {}) {
   return app.engine.call('lineChartSvg', spec);
 }
 
+/** The map models' names in titles. */
+const MAP_MODELS = { lofi: 'LoFi', hifi: 'HiFi', surrogate: 'surrogate', error: 'surrogate error vs HiFi' };
+
 /**
  * A design map as the MapView `view` shows it: its values (absolute, or % against the
  * datum), colour range, contour levels, the infeasible area, the datum and the design.
@@ -196,12 +205,16 @@ export function mapSvg(app, view, { width = 640, height = 480 } = {}) {
   const levels = d.ticks.filter((t) => t > d.lo + 1e-9 * span && t < d.hi - 1e-9 * span);
   const markers = [];
   if (view.markers) {
-    const { design, datum } = view.markers;
+    const { design, datum, samples, pick } = view.markers;
+    for (const [i, smp] of (samples || []).entries()) {
+      markers.push({ label: i === 0 ? 'HiFi samples' : '', ks: smp.ks, cs: smp.cs, shape: 'cross', colour: '#7c2d12', size: 4 });
+    }
+    if (pick) markers.push({ label: 'min-max pick', ks: pick.ks, cs: pick.cs, shape: 'square', colour: '#facc15', size: 5 });
     markers.push({ label: 'datum', ks: datum.ks, cs: datum.cs, shape: 'diamond' });
     markers.push({ label: 'design', ks: design.ks, cs: design.cs, shape: 'circle', colour: '#ffffff', size: 5 });
   }
   const spec = {
-    title: `${view.crit.title}: ${view.crit.long} (LoFi)`,
+    title: `${view.crit.title}: ${view.crit.long} (${MAP_MODELS[app.view.model] || 'LoFi'})`,
     unit: `${view.crit.title} [${d.unit}]`,
     nx: d.nx,
     ny: d.ny,
@@ -214,7 +227,7 @@ export function mapSvg(app, view, { width = 640, height = 480 } = {}) {
     width,
     height,
   };
-  if (d.infeasible) spec.feasible = app.maps.feasible;
+  if (d.infeasible) spec.feasible = d.feasible;
   return app.engine.call('mapChartSvg', spec);
 }
 

@@ -10,6 +10,9 @@
 //! bounceBand?, dampingBand?, noWorse?, surrogate?, plan?}`. The logic behind every entry
 //! is in [`crate::explorer`].
 
+mod charts;
+pub use charts::{line_chart_svg_js, map_chart_svg_js};
+
 use crate::analysis::{report, ModelKind};
 use crate::car::{Car, PRESETS};
 use crate::error::RideError;
