@@ -98,7 +98,7 @@ const app = {
   /** The last custom car that was loaded: {json, ks, cs}. */
   custom: null,
   /** ms from an input to the LoFi views (design), to the HiFi views too (full). */
-  metrics: { design: [], full: [], scenario: [], maps: [] },
+  metrics: { design: [], full: [], scenario: [], scenarioPhases: [], maps: [] },
   pending: 0,
   interactiveAt: null,
   /** True when every view shows the current state and nothing is queued. */
@@ -212,9 +212,14 @@ async function computeScenario(s) {
 
 /** All updates run one after another; each reads the state when it starts. */
 let chain = Promise.resolve();
+let queued = 0;
 function enqueue(fn) {
   app.pending++;
-  const p = chain.then(fn).finally(() => app.pending--);
+  queued++;
+  const p = chain.then(fn).finally(() => {
+    app.pending--;
+    queued--;
+  });
   chain = p.catch((e) => banner(`Internal error: ${e && e.message ? e.message : e}`, 'error'));
   return p;
 }
@@ -234,8 +239,10 @@ function changeScenario(patch, source) {
     if (source) setMsg(source, '');
     for (const f of Object.keys(patch)) if (FIELD_INPUT[f]) setMsg(f, '');
     Object.assign(app, r, { state: s });
+    const t1 = performance.now();
     renderScenario();
     app.metrics.scenario.push(performance.now() - t0);
+    app.metrics.scenarioPhases.push({ compute: t1 - t0, render: performance.now() - t1 });
     if (!hifiCurrent()) requestHifi(t0);
     return true;
   });
@@ -356,9 +363,23 @@ function renderMaps() {
     requestModelMaps();
     return;
   }
-  for (const v of app.views) {
-    v.setData({ maps: shown.maps, box: desc.designBox, swsLimit: desc.swsLimit, scale: app.view.scale, datum: shown.datum, kind: shown.kind });
-  }
+  for (const v of app.views) drawMap(v, shown);
+  mapStatus(shown);
+  renderMarkers();
+}
+
+/** One map view from the shown data. */
+function drawMap(v, shown) {
+  const { desc } = app;
+  v.setData({ maps: shown.maps, box: desc.designBox, swsLimit: desc.swsLimit, scale: app.view.scale, datum: shown.datum, kind: shown.kind });
+}
+
+/** The line under the maps: how much of the box is feasible, what breaks where. */
+function mapStatus(shown) {
+  const { state } = app;
+  const model = app.view.model;
+  const status = $('map-status');
+  const road = `class ${state.class} at ${fmtInput(state.speed, 3)} m/s, ${state.tracks} tracks`;
   const maps = shown.maps;
   const n = maps.nx * maps.ny;
   const who = `(${MODEL_NAMES[model === 'error' ? 'hifi' : model]}${maps.nx !== GRID.nx ? `, ${maps.nx} × ${maps.ny} grid` : ''})`;
@@ -376,7 +397,6 @@ function renderMaps() {
       `${fmt((100 * maps.feasibleCount) / n, 3)} % of the design box meets the design objectives on ${road} ${who}; ${brokenText(maps)}.${timing}`;
     status.className = 'status good';
   }
-  renderMarkers();
 }
 
 /** A promise that resolves after the next frame has been painted. */
@@ -386,29 +406,51 @@ function afterPaint() {
 
 /**
  * The LoFi (or surrogate) maps of the current scenario, computed and drawn after the
- * next paint, so an edit shows its front and readout first and its maps one frame
- * later. Queued like every update; it reads the state when it runs.
+ * next paint and outside the update queue, one map per task: an edit shows its front
+ * and readout first, its maps a frame later, and a newer edit never waits for a map. The
+ * refresh steps aside while updates are queued and starts again if the state changes
+ * under it; it reads the state when it runs. At most one is scheduled.
  */
-let mapsQueued = false;
+let mapsJob = null;
 function refreshMaps() {
-  if (mapsQueued) return;
-  mapsQueued = true;
-  enqueue(async () => {
-    await afterPaint();
-    mapsQueued = false;
-    const s = app.state;
-    const key = scenarioKey(s);
-    const t0 = performance.now();
-    if (!app.maps || app.maps.key !== key) {
-      app.maps = { ...(await app.engine.call('lofiMaps', s, GRID.nx, GRID.ny)), key };
+  if (mapsJob) return;
+  app.pending++;
+  mapsJob = (async () => {
+    for (;;) {
+      await afterPaint();
+      if (queued > 0) continue;
+      const s = app.state;
+      const key = scenarioKey(s);
+      const t0 = performance.now();
+      if (!app.maps || app.maps.key !== key) {
+        app.maps = { ...(await app.engine.call('lofiMaps', s, GRID.nx, GRID.ny)), key };
+      }
+      if (app.view.model === 'surrogate' && (!app.surMaps || app.surMaps.key !== key)) {
+        app.surMaps = { ...(await app.engine.call('modelMaps', s, 'surrogate', GRID.nx, GRID.ny)), key };
+      }
+      const shown = shownMaps();
+      if (!shown || app.state !== s) continue;
+      let current = true;
+      for (const v of app.views) {
+        if (app.state !== s || shownMaps()?.maps !== shown.maps) {
+          current = false;
+          break;
+        }
+        drawMap(v, shown);
+        await new Promise((r) => setTimeout(r, 0));
+      }
+      if (!current || app.state !== s) continue;
+      mapStatus(shown);
+      renderMarkers();
+      app.metrics.maps.push(performance.now() - t0);
+      return;
     }
-    if (app.view.model === 'surrogate' && (!app.surMaps || app.surMaps.key !== key)) {
-      app.surMaps = { ...(await app.engine.call('modelMaps', s, 'surrogate', GRID.nx, GRID.ny)), key };
-    }
-    if (s !== app.state) return; // a newer edit queued its own refresh
-    renderMaps();
-    app.metrics.maps.push(performance.now() - t0);
-  });
+  })()
+    .catch((e) => banner(`The maps failed: ${e.message || e}`, 'error'))
+    .finally(() => {
+      mapsJob = null;
+      app.pending--;
+    });
 }
 
 function renderScenario() {

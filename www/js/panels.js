@@ -210,10 +210,10 @@ export class SpectraPanel {
       plot.resize();
       plot.setRange([0.1, 100], [lo, hi]);
       plot.begin();
-      // HiFi wide underneath, LoFi narrow on top: both stay visible where they agree.
-      plot.line(sp.f, b.map((v) => (v > 0 ? v : NaN)), COL.hifi, 4);
-      plot.line(sp.f, a.map((v) => (v > 0 ? v : NaN)), COL.lofi, 1.6);
-      plot.line(sp.f, c.map((v) => (v > 0 ? v : NaN)), COL.nsga, 1.6, [5, 3]);
+      // HiFi widest, then the surrogate's tuned LoFi dashed, the LoFi narrow on top.
+      plot.line(sp.f, b.map((v) => (v > 0 ? v : NaN)), COL.hifi, 5);
+      plot.line(sp.f, c.map((v) => (v > 0 ? v : NaN)), COL.nsga, 3, [6, 4]);
+      plot.line(sp.f, a.map((v) => (v > 0 ? v : NaN)), COL.lofi, 1.4);
       plot.end();
       plot.legend([
         { label: 'LoFi (quarter car)', colour: COL.lofi, kind: 'line' },
