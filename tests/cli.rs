@@ -271,3 +271,36 @@ fn bad_svg_targets_are_one_line_naming_the_option() {
         assert!(err.starts_with("error: svg: "), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn a_reader_that_closes_the_pipe_early_ends_the_run_quietly() {
+    // `ridelab map ... --csv | head -1`: the reader takes one line and closes its end;
+    // the CLI must not panic (a panic prints "failed printing to stdout" and exits 101).
+    use std::io::{BufRead, BufReader};
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ridelab"))
+        .args([
+            "map",
+            "--model",
+            "quarter",
+            "--ks-range",
+            "10000:40000:200",
+            "--cs-range",
+            "500:4000:200",
+            "--csv",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    // The reader is dropped here: the pipe is closed with about 40 000 rows unread.
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(first.starts_with("ks"), "{first}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+}

@@ -45,7 +45,18 @@ car: a JSON file or a preset name (sedan, compact, suv); default sedan (the datu
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match run(&args) {
-        Ok(text) => print!("{text}"),
+        Ok(text) => {
+            // Not `print!`: it panics when the reader has gone (`ridelab map ... | head`).
+            // A closed pipe is the reader's choice, so it ends the run quietly.
+            use std::io::Write;
+            let mut out = std::io::stdout().lock();
+            if let Err(e) = out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+                if e.kind() != std::io::ErrorKind::BrokenPipe {
+                    eprintln!("error: writing the output: {e}");
+                    std::process::exit(1);
+                }
+            }
+        }
         Err(e) => {
             eprintln!("error: {e}");
             std::process::exit(2);
