@@ -119,16 +119,30 @@ impl DesignObjectives {
         c: &Criteria,
     ) -> Vec<(Objective, f64)> {
         let mut g = Vec::with_capacity(6);
+        self.each_constraint(ctx, ks, cs, c, |o, v| g.push((o, v)));
+        g
+    }
+
+    /// Calls `f(objective, g)` for each active objective in the order of
+    /// [`Self::constraints`], without allocating (the maps judge every cell with it).
+    pub fn each_constraint(
+        &self,
+        ctx: &DosContext,
+        ks: f64,
+        cs: f64,
+        c: &Criteria,
+        mut f: impl FnMut(Objective, f64),
+    ) {
         if let Some(l) = self.sws_limit {
-            g.push((Objective::SwsLimit, c.sws / l - 1.0));
+            f(Objective::SwsLimit, c.sws / l - 1.0);
         }
         if let Some((lo, hi)) = self.bounce_band {
-            let f = bounce_frequency(ks, ctx.tire_stiffness, ctx.sprung_mass);
-            g.push((Objective::BounceBand, band_violation(f, lo, hi)));
+            let fb = bounce_frequency(ks, ctx.tire_stiffness, ctx.sprung_mass);
+            f(Objective::BounceBand, band_violation(fb, lo, hi));
         }
         if let Some((lo, hi)) = self.damping_band {
             let z = damping_ratio(ks, cs, ctx.sprung_mass);
-            g.push((Objective::DampingBand, band_violation(z, lo, hi)));
+            f(Objective::DampingBand, band_violation(z, lo, hi));
         }
         let objs = [
             Objective::BaccDatum,
@@ -138,10 +152,9 @@ impl DesignObjectives {
         let (v, d) = (c.to_array(), ctx.datum.to_array());
         for i in 0..3 {
             if self.no_worse_than_datum[i] {
-                g.push((objs[i], v[i] / d[i] - 1.0));
+                f(objs[i], v[i] / d[i] - 1.0);
             }
         }
-        g
     }
 
     /// The objectives a design breaks (empty when feasible).

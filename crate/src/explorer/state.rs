@@ -357,11 +357,15 @@ pub fn broken_mask(
                 dtl: values[cells + k],
                 sws: values[2 * cells + k],
             };
-            broken[k] = scenario
+            let mut bits = 0;
+            scenario
                 .objectives
-                .broken(ctx, ks, cs, &c)
-                .into_iter()
-                .fold(0, |m, o| m | objective_bit(o));
+                .each_constraint(ctx, ks, cs, &c, |o, g| {
+                    if g > 0.0 {
+                        bits |= objective_bit(o);
+                    }
+                });
+            broken[k] = bits;
         }
     }
     broken
