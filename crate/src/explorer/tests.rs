@@ -230,12 +230,11 @@ fn surrogate_spectra_carry_the_surrogate_rms() {
             .map(|i| 0.5 * (p[i] * sp.f[i] + p[i - 1] * sp.f[i - 1]) * (sp.f[i] / sp.f[i - 1]).ln())
             .sum::<f64>()
     };
-    for k in 0..3 {
-        let rms = area(&sp.surrogate.psd[k]).sqrt();
+    for (k, (psd, s)) in sp.surrogate.psd.iter().zip(sur).enumerate() {
+        let rms = area(psd).sqrt();
         assert!(
-            (rms / sur[k] - 1.0).abs() < 0.03,
-            "criterion {k}: PSD RMS {rms} vs {}",
-            sur[k]
+            (rms / s - 1.0).abs() < 0.03,
+            "criterion {k}: PSD RMS {rms} vs {s}"
         );
     }
     // RBA: the LoFi's spectra scaled by S / LoFi.
