@@ -8,8 +8,10 @@ cd "$(dirname "$0")/.."
 echo "== Rust unit, integration and doc tests"
 cargo test --workspace
 
-echo "== native CLI (the end-to-end suite compares the page with it)"
-cargo build -p ridelab --bin ridelab
+# `cargo test` has built the native CLI too (target/debug/ridelab, for tests/cli.rs): the
+# end-to-end suite compares the page with it. A separate `cargo build` would rebuild the
+# dependencies with other features (no dev-dependencies) for about 2 minutes.
+test -x target/debug/ridelab
 
 echo "== wasm build of the page (trunk build --release --offline)"
 trunk build --release --offline

@@ -8,48 +8,31 @@
 // state, every bad-input message, and prints the timing figures. Screenshots go to
 // tests/e2e/out/ (gitignored).
 
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import zlib from 'node:zlib';
 import { execFileSync } from 'node:child_process';
-import { fileURLToPath } from 'node:url';
-import { startServer } from './server.mjs';
-import { launch, openPage, settled } from './browser.mjs';
+import { openPage, settled } from './browser.mjs';
+import { useSuite, assertClean, median, p95, ROOT, DIST, OUT } from './harness.mjs';
 
-const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
-const DIST = process.env.RIDELAB_DIST || path.join(ROOT, 'dist');
-const OUT = path.join(ROOT, 'tests/e2e/out');
 const TIMEOUT = 90_000;
-
-let srv;
-let browser;
 const figures = {};
-
-before(async () => {
-  if (!fs.existsSync(path.join(DIST, 'index.html'))) {
-    throw new Error(`${DIST}/index.html is missing: build the page first (trunk build --release --offline)`);
-  }
-  fs.mkdirSync(OUT, { recursive: true });
-  srv = await startServer(DIST);
-  browser = await launch();
-});
-
-after(async () => {
-  if (browser) await browser.close();
-  if (srv) await srv.close();
-  if (Object.keys(figures).length) {
-    fs.writeFileSync(path.join(OUT, 'figures.json'), JSON.stringify(figures, null, 2));
-    console.log(`figures: ${JSON.stringify(figures)}`);
-  }
+const suite = useSuite({
+  onAfter: () => {
+    if (Object.keys(figures).length) {
+      fs.writeFileSync(path.join(OUT, 'figures.json'), JSON.stringify(figures, null, 2));
+      console.log(`figures: ${JSON.stringify(figures)}`);
+    }
+  },
 });
 
 // ------------------------------------------------------------------ helpers
 
 /** Opens the page at `hash` (and `query`), waits until every view is ready. */
 function open(hash = '', { query = '', dpr = 1, width = 1400, height = 1000 } = {}) {
-  return openPage(browser, srv.url + query + hash, { width, height, dpr });
+  return openPage(suite.browser, suite.srv.url + query + hash, { width, height, dpr });
 }
 
 /** Waits until every view shows the current state and the URL has been written. */
@@ -125,20 +108,6 @@ function marker(page, k = 0) {
 
 function relErr(a, b) {
   return Math.abs(a / b - 1);
-}
-
-const p95 = (xs) => {
-  const s = [...xs].sort((a, b) => a - b);
-  return s[Math.min(s.length - 1, Math.ceil(0.95 * s.length) - 1)];
-};
-const median = (xs) => {
-  const s = [...xs].sort((a, b) => a - b);
-  return s[Math.floor(s.length / 2)];
-};
-
-function assertClean(log) {
-  assert.deepEqual(log.errors, [], 'console errors');
-  assert.deepEqual(log.foreign, [], 'requests to other hosts');
 }
 
 // ------------------------------------------------------------------ tests

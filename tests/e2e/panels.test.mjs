@@ -4,38 +4,18 @@
 //
 //   trunk build --release --offline && npm run test:e2e
 
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { startServer } from './server.mjs';
-import { launch, openPage, settled } from './browser.mjs';
+import { openPage, settled } from './browser.mjs';
+import { useSuite, assertClean, countColour, median, p95, OUT } from './harness.mjs';
 
-const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
-const DIST = process.env.RIDELAB_DIST || path.join(ROOT, 'dist');
-const OUT = path.join(ROOT, 'tests/e2e/out');
 const TIMEOUT = 120_000;
-
-let srv;
-let browser;
-
-before(async () => {
-  if (!fs.existsSync(path.join(DIST, 'index.html'))) {
-    throw new Error(`${DIST}/index.html is missing: build the page first (trunk build --release --offline)`);
-  }
-  fs.mkdirSync(OUT, { recursive: true });
-  srv = await startServer(DIST);
-  browser = await launch();
-});
-
-after(async () => {
-  if (browser) await browser.close();
-  if (srv) await srv.close();
-});
+const suite = useSuite();
 
 function open(hash = '', { width = 1400, height = 1000, dpr = 1 } = {}) {
-  return openPage(browser, srv.url + hash, { width, height, dpr, downloads: true }).then(async (r) => {
+  return openPage(suite.browser, suite.srv.url + hash, { width, height, dpr, downloads: true }).then(async (r) => {
     await settle(r.page);
     return r;
   });
@@ -43,27 +23,6 @@ function open(hash = '', { width = 1400, height = 1000, dpr = 1 } = {}) {
 
 function settle(page) {
   return settled(page, 150);
-}
-
-function assertClean(log) {
-  assert.deepEqual(log.errors, [], 'console errors');
-  assert.deepEqual(log.foreign, [], 'requests to other hosts');
-}
-
-/** Pixels of canvas `id` within `tol` of colour `rgb` (whole canvas). */
-function countColour(page, id, rgb, tol = 40) {
-  return page.evaluate(
-    ([id, rgb, tol]) => {
-      const c = document.getElementById(id);
-      const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
-      let n = 0;
-      for (let k = 0; k < d.length; k += 4) {
-        if (d[k + 3] > 200 && Math.abs(d[k] - rgb[0]) + Math.abs(d[k + 1] - rgb[1]) + Math.abs(d[k + 2] - rgb[2]) < tol) n++;
-      }
-      return n;
-    },
-    [id, rgb, tol],
-  );
 }
 
 /** RGBA of canvas `id` at CSS px (x, y). */
@@ -84,10 +43,6 @@ const LOFI = [29, 78, 216];
 const HIFI = [185, 28, 28];
 const NSGA = [21, 128, 61];
 
-const p95 = (xs) => {
-  const s = [...xs].sort((a, b) => a - b);
-  return s[Math.min(s.length - 1, Math.ceil(0.95 * s.length) - 1)];
-};
 
 test('objective plane: feasible set, STM front, pick with HiFi re-check, datum', { timeout: TIMEOUT }, async () => {
   const { page, context, log } = await open();
@@ -190,6 +145,12 @@ test('changing the SWS limit changes the front; edit-to-front timing', { timeout
   const pct = p95(edits);
   const med = [...edits].sort((a, b) => a - b)[Math.floor(edits.length / 2)];
   t.diagnostic(`SWS limit edit -> new front on screen (surrogate feasible set + STM front on the surrogate + pick + HiFi re-check + redraw; the maps follow): median ${med.toFixed(1)} ms, p95 ${pct.toFixed(1)} ms over ${edits.length} back-to-back edits`);
+  // Where an edit's time goes: waiting in the update queue, wasm work (surrogate,
+  // feasible set, front, reports), drawing (objective plane, readout, markers); the rest
+  // up to the measured time is the browser's frame (paint) and other tasks.
+  const phases = await page.evaluate(() => window.__ridelab.metrics.scenarioPhases.slice(-15));
+  const mid = (k) => median(phases.map((p) => p[k])).toFixed(1);
+  t.diagnostic(`  per edit, medians: queue ${mid('wait')} ms, wasm ${mid('compute')} ms, drawing ${mid('render')} ms`);
   // Road edits refit the surrogate (10 new HiFi runs) before the front.
   const road = [];
   for (let i = 1; i <= 10; i++) road.push(await edit('speed', 20 + 0.5 * i));
@@ -256,7 +217,9 @@ test('FRF and PSD plots draw both models', { timeout: TIMEOUT }, async () => {
   const sp = await page.evaluate(() => window.__ridelab.spectra);
   assert.ok(sp && sp.f.length > 100, 'spectra computed');
   assert.ok(Math.abs(sp.f[0] - 0.1) < 1e-12 && Math.abs(sp.f[sp.f.length - 1] - 100) < 1e-9, '0.1..100 Hz');
-  // SWS gain -> 1 at high frequency?  No: the wheel follows the road, the body stays: |H_sws| -> ~0; at low f -> 0 too.
+  // The panel draws when it is on screen (and catches up when scrolled to).
+  await page.locator('.spectra').scrollIntoViewIfNeeded();
+  await page.waitForTimeout(150);
   for (const id of ['sp-frf-bacc', 'sp-frf-dtl', 'sp-frf-sws', 'sp-psd-bacc', 'sp-psd-dtl', 'sp-psd-sws']) {
     const blue = await countColour(page, id, LOFI);
     const red = await countColour(page, id, HIFI);
@@ -374,6 +337,8 @@ test('exports: maps CSV, front CSV, PNG, session round trip', { timeout: TIMEOUT
 
 test('HiDPI and large type: the new charts are sized in device pixels and redraw', { timeout: TIMEOUT }, async () => {
   const { page, context, log } = await open('', { dpr: 2 });
+  await page.locator('.spectra').scrollIntoViewIfNeeded();
+  await page.waitForTimeout(150);
   const sizes = () =>
     page.evaluate(() =>
       ['op-base', 'op-overlay', 'sp-frf-bacc', 'sp-psd-sws'].map((id) => {

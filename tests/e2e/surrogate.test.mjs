@@ -6,73 +6,27 @@
 //
 //   trunk build --release --offline && npm run test:e2e
 
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
-import { fileURLToPath } from 'node:url';
-import { startServer } from './server.mjs';
-import { launch, openPage, settled } from './browser.mjs';
+import { openPage, settled } from './browser.mjs';
+import { useSuite, assertClean, countColour, median, p95, ROOT, OUT } from './harness.mjs';
 
-const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
-const DIST = process.env.RIDELAB_DIST || path.join(ROOT, 'dist');
-const OUT = path.join(ROOT, 'tests/e2e/out');
 const TIMEOUT = 120_000;
 const figures = {};
-
-let srv;
-let browser;
-
-before(async () => {
-  if (!fs.existsSync(path.join(DIST, 'index.html'))) {
-    throw new Error(`${DIST}/index.html is missing: build the page first (trunk build --release --offline)`);
-  }
-  fs.mkdirSync(OUT, { recursive: true });
-  srv = await startServer(DIST);
-  browser = await launch();
-});
-
-after(async () => {
-  fs.writeFileSync(path.join(OUT, 'surrogate-figures.json'), JSON.stringify(figures, null, 2));
-  if (browser) await browser.close();
-  if (srv) await srv.close();
+const suite = useSuite({
+  onAfter: () => fs.writeFileSync(path.join(OUT, 'surrogate-figures.json'), JSON.stringify(figures, null, 2)),
 });
 
 async function open(hash = '') {
-  const r = await openPage(browser, srv.url + hash, { width: 1400, height: 1000 });
+  const r = await openPage(suite.browser, suite.srv.url + hash, { width: 1400, height: 1000 });
   await settled(r.page, 150);
   return r;
 }
 
 const settle = (page) => settled(page, 150);
-
-function assertClean(log) {
-  assert.deepEqual(log.errors, [], 'console errors');
-  assert.deepEqual(log.foreign, [], 'requests to other hosts');
-}
-
-const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
-const p95 = (xs) => {
-  const s = [...xs].sort((a, b) => a - b);
-  return s[Math.min(s.length - 1, Math.ceil(0.95 * s.length) - 1)];
-};
-
-/** Pixels of canvas `id` within `tol` (sum of |channel differences|) of `rgb`. */
-function countColour(page, id, rgb, tol = 40) {
-  return page.evaluate(
-    ([id, rgb, tol]) => {
-      const c = document.getElementById(id);
-      const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
-      let n = 0;
-      for (let k = 0; k < d.length; k += 4) {
-        if (d[k + 3] > 200 && Math.abs(d[k] - rgb[0]) + Math.abs(d[k + 1] - rgb[1]) + Math.abs(d[k + 2] - rgb[2]) < tol) n++;
-      }
-      return n;
-    },
-    [id, rgb, tol],
-  );
-}
 
 function cli() {
   const candidates = [process.env.RIDELAB_CLI, path.join(ROOT, 'target/debug/ridelab'), path.join(ROOT, 'target/release/ridelab')];
@@ -344,7 +298,7 @@ test('guided tour: shown on a first visit, steps through, remembered when closed
 });
 
 test('car editor: an edited car applies as a custom car, bad values name the field, JSON exports', { timeout: TIMEOUT }, async () => {
-  const r = await openPage(browser, srv.url, { width: 1400, height: 1000, downloads: true });
+  const r = await openPage(suite.browser, suite.srv.url, { width: 1400, height: 1000, downloads: true });
   const { page, context, log } = r;
   await settle(page);
   await page.click('#car-editor summary');

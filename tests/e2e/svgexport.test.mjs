@@ -6,39 +6,19 @@
 //
 //   trunk build --release --offline && npm run test:e2e
 
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { startServer } from './server.mjs';
-import { launch, openPage, settled } from './browser.mjs';
+import { openPage, settled } from './browser.mjs';
+import { useSuite, OUT } from './harness.mjs';
 
-const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
-const DIST = process.env.RIDELAB_DIST || path.join(ROOT, 'dist');
-const OUT = path.join(ROOT, 'tests/e2e/out');
 const TIMEOUT = 120_000;
-
-let srv;
-let browser;
-
-before(async () => {
-  if (!fs.existsSync(path.join(DIST, 'index.html'))) {
-    throw new Error(`${DIST}/index.html is missing: build the page first (trunk build --release --offline)`);
-  }
-  fs.mkdirSync(OUT, { recursive: true });
-  srv = await startServer(DIST);
-  browser = await launch();
-});
-
-after(async () => {
-  if (browser) await browser.close();
-  if (srv) await srv.close();
-});
+const suite = useSuite();
 
 /** The page, settled, with the time response run. */
 async function openWired() {
-  const r = await openPage(browser, srv.url, { width: 1400, height: 1000, downloads: true });
+  const r = await openPage(suite.browser, suite.srv.url, { width: 1400, height: 1000, downloads: true });
   await settled(r.page, 150);
   const wired = await r.page.evaluate(async () => {
     const { METHODS } = await import('./js/engine.js');

@@ -226,6 +226,7 @@ function enqueue(fn) {
 
 /** A change of car, road or objective (`patch` of the state) made in field `source`. */
 function changeScenario(patch, source) {
+  const tIn = performance.now();
   return enqueue(async () => {
     const t0 = performance.now();
     const s = { ...app.state, ...patch };
@@ -242,7 +243,7 @@ function changeScenario(patch, source) {
     const t1 = performance.now();
     renderScenario();
     app.metrics.scenario.push(performance.now() - t0);
-    app.metrics.scenarioPhases.push({ compute: t1 - t0, render: performance.now() - t1 });
+    app.metrics.scenarioPhases.push({ wait: t0 - tIn, compute: t1 - t0, render: performance.now() - t1 });
     if (!hifiCurrent()) requestHifi(t0);
     return true;
   });
@@ -368,10 +369,10 @@ function renderMaps() {
   renderMarkers();
 }
 
-/** One map view from the shown data. */
-function drawMap(v, shown) {
+/** One map view from the shown data (`draw` false: data only, drawn by `v.drawBase()`). */
+function drawMap(v, shown, draw = true) {
   const { desc } = app;
-  v.setData({ maps: shown.maps, box: desc.designBox, swsLimit: desc.swsLimit, scale: app.view.scale, datum: shown.datum, kind: shown.kind });
+  v.setData({ maps: shown.maps, box: desc.designBox, swsLimit: desc.swsLimit, scale: app.view.scale, datum: shown.datum, kind: shown.kind }, draw);
 }
 
 /** The line under the maps: how much of the box is feasible, what breaks where. */
@@ -436,7 +437,10 @@ function refreshMaps() {
           current = false;
           break;
         }
-        drawMap(v, shown);
+        // Two short tasks per map (data, then drawing), so an edit waits at most one.
+        drawMap(v, shown, false);
+        await new Promise((r) => setTimeout(r, 0));
+        v.drawBase();
         await new Promise((r) => setTimeout(r, 0));
       }
       if (!current || app.state !== s) continue;
@@ -573,7 +577,7 @@ function requestSpectra() {
       .then((out) => {
         if (!out || keyOf(out.s) + fitKeyOf(out.s) !== keyOf(app.state) + fitKeyOf(app.state)) return;
         app.spectra = out.r;
-        app.spectraPanel.draw(out.r);
+        app.spectraPanel.show(out.r);
         $('sp-status').textContent = `Ks ${fmt(s.ks / 1000, 4)} kN/m, Cs ${fmt(s.cs / 1000, 4)} kNs/m`;
       })
       .catch((e) => {

@@ -24,6 +24,13 @@ export const CRITERIA = [
   },
 ];
 
+/** Hatch per group of objectives (bits of a map's `broken` mask). */
+const HATCHES = [
+  { bits: 1, dir: '/', name: 'SWS limit' },
+  { bits: 2 | 4, dir: '\\', name: 'bounce or damping band' },
+  { bits: 8 | 16 | 32, dir: '-', name: 'worse than the datum' },
+];
+
 const KS_UNIT = 1000; // N/m per kN/m
 const CS_UNIT = 1000; // N s/m per kN s/m
 
@@ -111,9 +118,10 @@ export class MapView {
    * `box`: design box (N/m, N s/m); `swsLimit`: m or null; `scale`: "abs" or "rel";
    * `datum`: the datum's criteria {bacc, dtl, sws} by the map's model (for "rel");
    * `kind`: "value" (criteria) or "error" (the planes hold the surrogate's signed error
-   * against the HiFi, %, and `scale` is ignored).
+   * against the HiFi, %, and `scale` is ignored). `draw` false leaves the drawing to a
+   * later `drawBase()` (the page splits a map's update over two tasks).
    */
-  setData({ maps, box, swsLimit, scale, datum, kind = 'value' }) {
+  setData({ maps, box, swsLimit, scale, datum, kind = 'value' }, draw = true) {
     const { nx, ny, values } = maps;
     const n = nx * ny;
     const off = this.crit.plane * n;
@@ -167,16 +175,28 @@ export class MapView {
     const colour = new OffscreenCanvas(nx, ny);
     colour.getContext('2d').putImageData(img, 0, 0);
 
-    // The infeasible mask: opaque where a design breaks an objective.
-    const mask = new ImageData(nx, ny);
-    for (let j = 0; j < ny; j++) {
-      const row = (ny - 1 - j) * nx;
-      for (let i = 0; i < nx; i++) {
-        if (!maps.feasible[j * nx + i]) mask.data[4 * (row + i) + 3] = 255;
+    // The infeasible masks, one per hatch: opaque where a design breaks an objective of
+    // that group (bits of `maps.broken`; without it, every infeasible cell is SWS's).
+    const masks = [];
+    for (const group of HATCHES) {
+      const mask = new ImageData(nx, ny);
+      let any = false;
+      for (let j = 0; j < ny; j++) {
+        const row = (ny - 1 - j) * nx;
+        for (let i = 0; i < nx; i++) {
+          const k = j * nx + i;
+          const hit = maps.broken ? maps.broken[k] & group.bits : group.bits & 1 && !maps.feasible[k];
+          if (hit) {
+            mask.data[4 * (row + i) + 3] = 255;
+            any = true;
+          }
+        }
       }
+      if (!any) continue;
+      const canvas = new OffscreenCanvas(nx, ny);
+      canvas.getContext('2d').putImageData(mask, 0, 0);
+      masks.push({ ...group, canvas });
     }
-    const maskCanvas = new OffscreenCanvas(nx, ny);
-    maskCanvas.getContext('2d').putImageData(mask, 0, 0);
 
     const { ticks, step } = niceTicks(lo, hi, 5);
     const levels = ticks.filter((t) => t > lo + 1e-9 * (hi - lo) && t < hi - 1e-9 * (hi - lo));
@@ -184,7 +204,7 @@ export class MapView {
     const limitLine = swsLimit && !error ? contourSegments(values, 2 * n, nx, ny, swsLimit) : [];
 
     this.data = {
-      nx, ny, box, lo, hi, ticks, step, table, colour, maskCanvas, contours, limitLine, scale, over, under,
+      nx, ny, box, lo, hi, ticks, step, table, colour, masks, contours, limitLine, scale, over, under,
       infeasible: maps.feasibleCount < n,
       unit: error ? '% error vs HiFi' : scale === 'rel' ? '% vs datum' : this.crit.unit,
       shown, kind, feasible: maps.feasible,
@@ -195,7 +215,7 @@ export class MapView {
         `and damper rate Cs ${box.cs_min / CS_UNIT} to ${box.cs_max / CS_UNIT} kNs/m; ` +
         `values ${fmt(lo)} to ${fmt(hi)} ${this.data.unit}.`,
     );
-    this.drawBase();
+    if (draw) this.drawBase();
   }
 
   /**
@@ -262,25 +282,40 @@ export class MapView {
       strokeSegs(segs);
     }
 
-    // Infeasible area: grey wash plus diagonal hatching, cut to the mask.
-    if (d.infeasible) {
-      const dpr = this.size.dpr;
+    // Infeasible area: a grey wash plus hatching per objective group ('/' SWS limit,
+    // '\' frequency bands, '-' worse than the datum), each cut to its mask; an area that
+    // breaks two groups is darker and cross-hatched.
+    const dpr = this.size.dpr;
+    for (const m of d.masks) {
       const hatch = new OffscreenCanvas(Math.ceil(plot.w * dpr), Math.ceil(plot.h * dpr));
       const hg = hatch.getContext('2d');
+      const [W, H] = [hatch.width, hatch.height];
       hg.fillStyle = 'rgba(150,150,150,0.62)';
-      hg.fillRect(0, 0, hatch.width, hatch.height);
+      hg.fillRect(0, 0, W, H);
       hg.strokeStyle = 'rgb(58,58,58)';
       hg.lineWidth = 1.1 * dpr;
       const gap = 7 * dpr;
       hg.beginPath();
-      for (let x = -hatch.height; x < hatch.width; x += gap) {
-        hg.moveTo(x, hatch.height);
-        hg.lineTo(x + hatch.height, 0);
+      if (m.dir === '-') {
+        for (let y = gap / 2; y < H; y += gap) {
+          hg.moveTo(0, y);
+          hg.lineTo(W, y);
+        }
+      } else {
+        for (let x = -H; x < W; x += gap) {
+          if (m.dir === '/') {
+            hg.moveTo(x, H);
+            hg.lineTo(x + H, 0);
+          } else {
+            hg.moveTo(x, 0);
+            hg.lineTo(x + H, H);
+          }
+        }
       }
       hg.stroke();
       hg.globalCompositeOperation = 'destination-in';
       hg.imageSmoothingEnabled = false;
-      hg.drawImage(d.maskCanvas, 0, 0, hatch.width, hatch.height);
+      hg.drawImage(m.canvas, 0, 0, W, H);
       g.drawImage(hatch, plot.x, plot.y, plot.w, plot.h);
     }
     // The SWS limit itself.

@@ -194,8 +194,27 @@ export class SpectraPanel {
     }
   }
 
+  /**
+   * Draws `sp` now if the panel is on screen, else when it scrolls into view: six log-log
+   * charts are the largest redraw after a design change, and nobody sees them off screen.
+   */
+  show(sp) {
+    this.data = sp;
+    if (!this.observer) {
+      this.visible = true;
+      this.observer = new IntersectionObserver((entries) => {
+        this.visible = entries.some((e) => e.isIntersecting);
+        if (this.visible && this.dirty) this.draw(this.data);
+      });
+      this.observer.observe($('sp-frf-bacc').closest('section'));
+    }
+    this.dirty = !this.visible;
+    if (this.visible) this.draw(sp);
+  }
+
   draw(sp) {
     this.data = sp;
+    this.dirty = false;
     if (!sp) return;
     const i = { bacc: 0, dtl: 1, sws: 2 };
     for (const { kind, o, plot } of this.plots) {

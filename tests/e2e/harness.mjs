@@ -1,0 +1,66 @@
+// What every end-to-end suite shares: paths, the server and browser started once per
+// file (node:test `before` / `after`), and the checks on logs and canvas pixels.
+import { before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { startServer } from './server.mjs';
+import { launch } from './browser.mjs';
+
+export const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
+export const DIST = process.env.RIDELAB_DIST || path.join(ROOT, 'dist');
+export const OUT = path.join(ROOT, 'tests/e2e/out');
+
+/**
+ * Serves dist/ and launches Chromium before the file's tests, closes both after them
+ * (then runs `onAfter`). Returns `{srv, browser}`, filled in once `before` has run.
+ */
+export function useSuite({ onAfter } = {}) {
+  const suite = { srv: null, browser: null };
+  before(async () => {
+    if (!fs.existsSync(path.join(DIST, 'index.html'))) {
+      throw new Error(`${DIST}/index.html is missing: build the page first (trunk build --release --offline)`);
+    }
+    fs.mkdirSync(OUT, { recursive: true });
+    suite.srv = await startServer(DIST);
+    suite.browser = await launch();
+  });
+  after(async () => {
+    if (suite.browser) await suite.browser.close();
+    if (suite.srv) await suite.srv.close();
+    if (onAfter) onAfter();
+  });
+  return suite;
+}
+
+/** No console errors and no request to another host. */
+export function assertClean(log) {
+  assert.deepEqual(log.errors, [], 'console errors');
+  assert.deepEqual(log.foreign, [], 'requests to other hosts');
+}
+
+/** Pixels of canvas `id` within `tol` (sum of |channel differences|) of colour `rgb`. */
+export function countColour(page, id, rgb, tol = 40) {
+  return page.evaluate(
+    ([id, rgb, tol]) => {
+      const c = document.getElementById(id);
+      const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      let n = 0;
+      for (let k = 0; k < d.length; k += 4) {
+        if (d[k + 3] > 200 && Math.abs(d[k] - rgb[0]) + Math.abs(d[k + 1] - rgb[1]) + Math.abs(d[k + 2] - rgb[2]) < tol) n++;
+      }
+      return n;
+    },
+    [id, rgb, tol],
+  );
+}
+
+/** The median of `xs`. */
+export const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
+
+/** The 95th percentile of `xs` (nearest rank). */
+export const p95 = (xs) => {
+  const s = [...xs].sort((a, b) => a - b);
+  return s[Math.min(s.length - 1, Math.ceil(0.95 * s.length) - 1)];
+};
