@@ -430,7 +430,12 @@ function refreshMaps() {
         app.surMaps = { ...(await app.engine.call('modelMaps', s, 'surrogate', GRID.nx, GRID.ny)), key };
       }
       const shown = shownMaps();
-      if (!shown || app.state !== s) continue;
+      if (app.state !== s) continue;
+      // HiFi and error maps come from the worker; their arrival draws them (renderMaps).
+      if (!shown) {
+        if (app.view.model === 'hifi' || app.view.model === 'error') return;
+        continue;
+      }
       let current = true;
       for (const v of app.views) {
         if (app.state !== s || shownMaps()?.maps !== shown.maps) {
