@@ -228,6 +228,52 @@ export class MapView {
     this.drawOverlay();
   }
 
+  /** A `w` x `h` scratch canvas of this view (device px), kept between redraws. */
+  scratchCanvas(w, h) {
+    if (!this.scratch || this.scratch.width !== w || this.scratch.height !== h) this.scratch = new OffscreenCanvas(w, h);
+    return this.scratch;
+  }
+
+  /**
+   * The grey wash with hatch lines in direction `dir` ('/', '\\' or '-') on a `w` x `h`
+   * canvas (device px), drawn once per size and direction.
+   */
+  hatchPattern(dir, w, h) {
+    this.patterns = this.patterns || new Map();
+    const key = `${dir} ${w} ${h}`;
+    let c = this.patterns.get(key);
+    if (c) return c;
+    if (this.patterns.size > 6) this.patterns.clear();
+    c = new OffscreenCanvas(w, h);
+    const hg = c.getContext('2d');
+    const dpr = this.size.dpr;
+    hg.fillStyle = 'rgba(150,150,150,0.62)';
+    hg.fillRect(0, 0, w, h);
+    hg.strokeStyle = 'rgb(58,58,58)';
+    hg.lineWidth = 1.1 * dpr;
+    const gap = 7 * dpr;
+    hg.beginPath();
+    if (dir === '-') {
+      for (let y = gap / 2; y < h; y += gap) {
+        hg.moveTo(0, y);
+        hg.lineTo(w, y);
+      }
+    } else {
+      for (let x = -h; x < w; x += gap) {
+        if (dir === '/') {
+          hg.moveTo(x, h);
+          hg.lineTo(x + h, 0);
+        } else {
+          hg.moveTo(x, 0);
+          hg.lineTo(x + h, h);
+        }
+      }
+    }
+    hg.stroke();
+    this.patterns.set(key, c);
+    return c;
+  }
+
   ctx(canvas) {
     const g = canvas.getContext('2d');
     g.setTransform(this.size.dpr, 0, 0, this.size.dpr, 0, 0);
@@ -285,38 +331,19 @@ export class MapView {
     // Infeasible area: a grey wash plus hatching per objective group ('/' SWS limit,
     // '\' frequency bands, '-' worse than the datum), each cut to its mask; an area that
     // breaks two groups is darker and cross-hatched.
-    const dpr = this.size.dpr;
+    const W = Math.ceil(plot.w * this.size.dpr);
+    const H = Math.ceil(plot.h * this.size.dpr);
     for (const m of d.masks) {
-      const hatch = new OffscreenCanvas(Math.ceil(plot.w * dpr), Math.ceil(plot.h * dpr));
-      const hg = hatch.getContext('2d');
-      const [W, H] = [hatch.width, hatch.height];
-      hg.fillStyle = 'rgba(150,150,150,0.62)';
-      hg.fillRect(0, 0, W, H);
-      hg.strokeStyle = 'rgb(58,58,58)';
-      hg.lineWidth = 1.1 * dpr;
-      const gap = 7 * dpr;
-      hg.beginPath();
-      if (m.dir === '-') {
-        for (let y = gap / 2; y < H; y += gap) {
-          hg.moveTo(0, y);
-          hg.lineTo(W, y);
-        }
-      } else {
-        for (let x = -H; x < W; x += gap) {
-          if (m.dir === '/') {
-            hg.moveTo(x, H);
-            hg.lineTo(x + H, 0);
-          } else {
-            hg.moveTo(x, 0);
-            hg.lineTo(x + H, H);
-          }
-        }
-      }
-      hg.stroke();
-      hg.globalCompositeOperation = 'destination-in';
-      hg.imageSmoothingEnabled = false;
-      hg.drawImage(m.canvas, 0, 0, W, H);
-      g.drawImage(hatch, plot.x, plot.y, plot.w, plot.h);
+      // One scratch canvas per view, reused: the hatch pattern is copied in, cut to the
+      // mask, and drawn (no new plot-sized canvas per map per redraw).
+      const scratch = this.scratchCanvas(W, H);
+      const sg = scratch.getContext('2d');
+      sg.globalCompositeOperation = 'copy';
+      sg.drawImage(this.hatchPattern(m.dir, W, H), 0, 0);
+      sg.globalCompositeOperation = 'destination-in';
+      sg.imageSmoothingEnabled = false;
+      sg.drawImage(m.canvas, 0, 0, W, H);
+      g.drawImage(scratch, 0, 0, W, H, plot.x, plot.y, plot.w, plot.h);
     }
     // The SWS limit itself.
     if (d.limitLine.length) {
