@@ -464,6 +464,9 @@ function refreshMaps() {
 
 function renderScenario() {
   const { state } = app;
+  // The car editor follows the datum car (only a scenario change can change it), but
+  // edits in progress survive changes of road, box or objectives.
+  if (JSON.stringify(app.carEditor.car) !== JSON.stringify(app.desc.car)) app.carEditor.show(app.desc.car);
   $('speed-kmh').textContent = `= ${fmt(state.speed * 3.6, 3)} km/h`;
   app.objPlane.drawBase();
   app.frontDrawnAt = performance.now();
@@ -660,8 +663,6 @@ function syncInputs() {
   put('plan', 'sur-plan', s.plan);
   ensureCustomOption();
   put('car', 'car', s.car);
-  // The editor follows the datum car, but edits in progress survive other changes.
-  if (JSON.stringify(app.carEditor.car) !== JSON.stringify(app.desc.car) && !app.bad.has('car')) app.carEditor.show(app.desc.car);
   $('map-scale').value = app.view.scale;
   $('map-model').value = app.view.model;
   $('show-plan').checked = app.view.plan;

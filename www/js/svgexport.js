@@ -123,16 +123,11 @@ export function objectiveSvg(app, { ratio = app.objPlane ? app.objPlane.ratio : 
  * One FRF (`which` = 'frf') or PSD ('psd') plot of the current design, log-log over
  * 0.1..100 Hz: HiFi and LoFi for output `key` ('bacc', 'dtl' or 'sws').
  */
-export function spectraSvg(app, which = 'frf', key = 'bacc', { width = 640, height = 440 } = {}) {
+export async function spectraSvg(app, which = 'frf', key = 'bacc', { width = 640, height = 440 } = {}) {
   const sp = app.spectra;
-  if (!sp) return Promise.reject({ message: 'no spectra to draw yet', field: 'spectra' });
-  if (which !== 'frf' && which !== 'psd') return Promise.reject({ message: `'${which}' is not 'frf' or 'psd'`, field: 'which' });
-  let o;
-  try {
-    o = output(key);
-  } catch (e) {
-    return Promise.reject(e);
-  }
+  if (!sp) throw { message: 'no spectra to draw yet', field: 'spectra' };
+  if (which !== 'frf' && which !== 'psd') throw { message: `'${which}' is not 'frf' or 'psd'`, field: 'which' };
+  const o = output(key);
   const k = OUTPUTS.indexOf(o);
   // Log axes: only positive values can be drawn.
   const pts = (vs) => sp.f.map((f, i) => [f, vs[i]]).filter(([f, v]) => f > 0 && v > 0 && Number.isFinite(v));
@@ -165,15 +160,10 @@ export function spectraSvg(app, which = 'frf', key = 'bacc', { width = 640, heig
 }
 
 /** One output (`key`) of the time response, when it has been run: HiFi and LoFi with their RMS. */
-export function timeSvg(app, key = 'bacc', { width = 720, height = 340 } = {}) {
+export async function timeSvg(app, key = 'bacc', { width = 720, height = 340 } = {}) {
   const res = app.time;
-  if (!res) return Promise.reject({ message: 'no time response yet: run it first', field: 'time' });
-  let o;
-  try {
-    o = output(key);
-  } catch (e) {
-    return Promise.reject(e);
-  }
+  if (!res) throw { message: 'no time response yet: run it first', field: 'time' };
+  const o = output(key);
   const k = OUTPUTS.indexOf(o);
   const pts = (r) => r.t.map((t, i) => [t, r.outputs[k][i] * o.scale]);
   const rms = (r) => (r.rms[k] * o.scale).toPrecision(3);
