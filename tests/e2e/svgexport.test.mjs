@@ -87,13 +87,17 @@ test('every chart exports as a parseable SVG with its labels and data', { timeou
   assert.ok(chart('map-sws').texts.includes('Ks front spring [kN/m]'));
   assert.ok(chart('map-sws').texts.includes('Cs front damper [kNs/m]'));
   assert.ok(chart('map-bacc').texts.includes('BAcc [m/s²]'));
-  // The FRF lines carry every frequency (all positive), the time lines every sample.
+  // The lines are simplified to within half a pixel (the core's chart tests bound it):
+  // a smooth FRF keeps a fraction of its frequencies, a noisy time response most samples.
+  const vertices = (name, stroke) => Math.max(0, ...chart(name).lines.filter((l) => l.stroke === stroke).map((l) => l.n));
   for (const stroke of ['#1D4ED8', '#B91C1C']) {
-    assert.ok(chart('frf-bacc').lines.some((l) => l.stroke === stroke && l.n === out.nfreq), `FRF ${stroke}`);
-    assert.ok(chart('time-dtl').lines.some((l) => l.stroke === stroke && l.n === out.ntime), `time ${stroke}`);
+    const f = vertices('frf-bacc', stroke);
+    assert.ok(f > 20 && f < out.nfreq, `FRF ${stroke}: ${f} of ${out.nfreq} vertices`);
+    const t = vertices('time-dtl', stroke);
+    assert.ok(t > out.ntime / 2 && t <= out.ntime, `time ${stroke}: ${t} of ${out.ntime} vertices`);
   }
   // The surrogate's tuned LoFi is drawn too (green).
-  assert.ok(chart('psd-bacc').lines.some((l) => l.stroke === '#15803D' && l.n === out.nfreq), 'surrogate PSD');
+  assert.ok(vertices('psd-bacc', '#15803D') > 20, 'surrogate PSD');
   // The 160 x 120 page map drawn as at most 80 x 60 blocks.
   assert.ok(chart('map-dtl').rects <= 80 * 60 + 80, `${chart('map-dtl').rects} rects`);
   t.diagnostic(`svg export: ${names.length} charts in ${out.ms.toFixed(0)} ms; ` +

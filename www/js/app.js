@@ -1154,7 +1154,7 @@ async function main() {
   }
   buildSelects();
   app.objPlane = new ObjectivePlane(app);
-  app.spectraPanel = new SpectraPanel();
+  app.spectraPanel = new SpectraPanel(app);
   app.timePanel = new TimePanel(app);
   const grid = $('map-grid');
   app.views = CRITERIA.map((c) => new MapView(grid, c, (ks, cs) => {

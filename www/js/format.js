@@ -1,4 +1,5 @@
-// Number formatting and axis ticks shared by the readout and the maps.
+// Number formatting shared by the readout, the panels and the number inputs (chart ticks
+// are the core's: plotters draws every axis).
 
 /** `v` with `sig` significant digits, fixed notation, no digit grouping. */
 export function fmt(v, sig = 4) {
@@ -29,13 +30,6 @@ function minus(s) {
   return s.replace(/^-/, '−');
 }
 
-/** Tick label: the shortest decimal that shows the step. */
-export function fmtTick(v, step) {
-  let dec = 0;
-  while (dec < 10 && Math.abs(Math.round(step * 10 ** dec) - step * 10 ** dec) > 1e-6) dec++;
-  return minus((Math.abs(v) < step * 1e-9 ? 0 : v).toFixed(dec));
-}
-
 /** A small positive quantity such as a relative error, e.g. "3e-12" or "0.0042". */
 export function fmtSmall(v) {
   if (!Number.isFinite(v)) return '–';
@@ -43,19 +37,6 @@ export function fmtSmall(v) {
   if (Math.abs(v) >= 1e-3) return fmt(v, 2);
   const [m, e] = v.toExponential(0).split('e');
   return `${m}e${e.replace('+', '')}`;
-}
-
-/** About `n` "nice" ticks (1, 2, 2.5 or 5 times a power of ten) covering [lo, hi]. */
-export function niceTicks(lo, hi, n = 5) {
-  if (!(Number.isFinite(lo) && Number.isFinite(hi)) || hi <= lo) return { ticks: [lo], step: 1 };
-  const raw = (hi - lo) / Math.max(1, n);
-  const p = 10 ** Math.floor(Math.log10(raw));
-  const m = raw / p;
-  const step = (m < 1.5 ? 1 : m < 2.25 ? 2 : m < 3.5 ? 2.5 : m < 7.5 ? 5 : 10) * p;
-  const ticks = [];
-  const first = Math.ceil(lo / step - 1e-9);
-  for (let k = first; k * step <= hi + step * 1e-9; k++) ticks.push(k * step);
-  return { ticks, step };
 }
 
 /**

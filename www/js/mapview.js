@@ -6,7 +6,8 @@
 
 import { VIRIDIS, DIVERGING, paint } from './colormap.js';
 import { contourSegments } from './contour.js';
-import { fmtTick, niceTicks, fmt, fmtPct } from './format.js';
+import { fmt, fmtPct } from './format.js';
+import { drawMapFrame } from '../ridelab.js';
 
 /** The criteria drawn as maps: plane index in the wasm map, display unit and factor. */
 export const CRITERIA = [
@@ -30,6 +31,10 @@ const HATCHES = [
   { bits: 2 | 4, dir: '\\', name: 'bounce or damping band' },
   { bits: 8 | 16 | 32, dir: '-', name: 'worse than the datum' },
 ];
+
+/** The core's smallest map chart, logical px. */
+const MIN_W = 360;
+const MIN_H = 240;
 
 const KS_UNIT = 1000; // N/m per kN/m
 const CS_UNIT = 1000; // N s/m per kN s/m
@@ -84,18 +89,16 @@ export class MapView {
     this.bindPointer();
   }
 
-  /** Lays out the plot, colour bar and margins in CSS px for the current font size. */
+  /**
+   * The plot and colour bar in CSS px (`{fs, plot: {x, y, w, h}, bar}`) as the core's map
+   * chart laid them out at the last `drawBase` (null before the first).
+   */
   layout() {
-    const { w, h } = this.size;
-    const fs = Math.round(rootFontPx() * 0.8);
-    const left = fs * 3.4;
-    const bottom = fs * 2.9;
-    const top = fs * 0.7;
-    const barW = fs * 0.9;
-    const right = fs * 0.9 + barW + fs * 0.4 + fs * 2.9 + fs * 1.4;
-    const plot = { x: left, y: top, w: Math.max(10, w - left - right), h: Math.max(10, h - top - bottom) };
-    const bar = { x: plot.x + plot.w + fs * 0.9, y: plot.y + fs * 0.8, w: barW, h: plot.h - fs * 1.6 };
-    return { fs, plot, bar };
+    const pl = this.placed;
+    if (!pl) return null;
+    const z = pl.zoom;
+    const rect = (f) => ({ x: f.left * z, y: f.top * z, w: (f.right - f.left) * z, h: (f.bottom - f.top) * z });
+    return { fs: 12 * z, plot: rect(pl.frame), bar: rect(pl.bar) };
   }
 
   resize() {
@@ -198,13 +201,12 @@ export class MapView {
       masks.push({ ...group, canvas });
     }
 
-    const { ticks, step } = niceTicks(lo, hi, 5);
-    const levels = ticks.filter((t) => t > lo + 1e-9 * (hi - lo) && t < hi - 1e-9 * (hi - lo));
-    const contours = levels.map((lv) => contourSegments(shown, 0, nx, ny, lv));
     const limitLine = swsLimit && !error ? contourSegments(values, 2 * n, nx, ny, swsLimit) : [];
 
     this.data = {
-      nx, ny, box, lo, hi, ticks, step, table, colour, masks, contours, limitLine, scale, over, under,
+      nx, ny, box, lo, hi, table, colour, masks, limitLine, scale, over, under,
+      // Contour levels and lines: at the colour bar's ticks, set when it is drawn.
+      levels: [], levelsKey: null, contours: [],
       infeasible: maps.feasibleCount < n,
       unit: error ? '% error vs HiFi' : scale === 'rel' ? '% vs datum' : this.crit.unit,
       shown, kind, feasible: maps.feasible,
@@ -288,14 +290,54 @@ export class MapView {
     ];
   }
 
+  /** The map chart spec of the current data for the core (`drawMapFrame`, `mapChartSvg`). */
+  chartSpec(width, height) {
+    const d = this.data;
+    return {
+      unit: `${this.crit.title} [${d.unit}]`,
+      nx: d.nx,
+      ny: d.ny,
+      values: d.shown,
+      designBox: d.box,
+      colourMap: d.scale === 'rel' ? 'diverging' : 'viridis',
+      range: [d.lo, d.hi],
+      legend: 'none',
+      width,
+      height,
+    };
+  }
+
+  /**
+   * The map: plotters draws the frame (axes, ticks, labels, colour bar with its unit) at
+   * the core's layout; the page puts the dense colour image in it, then the contour lines
+   * at the colour bar's ticks, the hatching and the SWS limit.
+   */
   drawBase() {
     if (!this.size.w) return;
-    const g = this.ctx(this.base);
-    const { w, h } = this.size;
-    g.clearRect(0, 0, w, h);
-    if (!this.data) return;
+    const { w, h, dpr } = this.size;
+    if (!this.data) {
+      this.ctx(this.base).clearRect(0, 0, w, h);
+      return;
+    }
     const d = this.data;
-    const { fs, plot, bar } = this.layout();
+    // Logical px: the CSS size over the type zoom, never below the chart's minimum.
+    const zoom = Math.min(rootFontPx() / 15, w / MIN_W, h / MIN_H);
+    try {
+      const placed = drawMapFrame(this.base, this.chartSpec(Math.max(MIN_W, Math.floor(w / zoom)), Math.max(MIN_H, Math.floor(h / zoom))), dpr * zoom);
+      this.placed = { ...placed, zoom };
+      this.error = null;
+    } catch (e) {
+      this.placed = null;
+      this.error = { message: String(e.message || e), field: e.field || '' };
+      const g = this.ctx(this.base);
+      g.clearRect(0, 0, w, h);
+      g.fillStyle = '#a3281d';
+      g.font = '13px system-ui, sans-serif';
+      g.fillText(`Cannot draw this map: ${this.error.message}`, 8, 20, w - 16);
+      return;
+    }
+    const g = this.ctx(this.base);
+    const { plot, bar } = this.layout();
     const gx = (x) => plot.x + ((x + 0.5) / d.nx) * plot.w; // grid -> CSS px
     const gy = (y) => plot.y + plot.h - ((y + 0.5) / d.ny) * plot.h;
 
@@ -304,8 +346,16 @@ export class MapView {
     g.imageSmoothingQuality = 'high';
     g.drawImage(d.colour, plot.x, plot.y, plot.w, plot.h);
 
-    // Contour lines at the colour-bar ticks: a dark halo under a light line reads on
-    // both ends of the colour map.
+    // Contour lines at the colour bar's ticks (kept until the levels change): a dark
+    // halo under a light line reads on both ends of the colour map.
+    const span = d.hi - d.lo;
+    const levels = this.placed.barTicks.filter((t) => t > d.lo + 1e-9 * span && t < d.hi - 1e-9 * span);
+    const key = levels.join(' ');
+    if (d.levelsKey !== key) {
+      d.levelsKey = key;
+      d.levels = levels;
+      d.contours = levels.map((lv) => contourSegments(d.shown, 0, d.nx, d.ny, lv));
+    }
     const strokeSegs = (segs) => {
       g.beginPath();
       for (let k = 0; k < segs.length; k += 4) {
@@ -331,8 +381,8 @@ export class MapView {
     // Infeasible area: a grey wash plus hatching per objective group ('/' SWS limit,
     // '\' frequency bands, '-' worse than the datum), each cut to its mask; an area that
     // breaks two groups is darker and cross-hatched.
-    const W = Math.ceil(plot.w * this.size.dpr);
-    const H = Math.ceil(plot.h * this.size.dpr);
+    const W = Math.ceil(plot.w * dpr);
+    const H = Math.ceil(plot.h * dpr);
     for (const m of d.masks) {
       // One scratch canvas per view, reused: the hatch pattern is copied in, cut to the
       // mask, and drawn (no new plot-sized canvas per map per redraw).
@@ -355,57 +405,14 @@ export class MapView {
       strokeSegs(d.limitLine);
     }
     g.restore();
-
-    // Frame and axes.
     g.strokeStyle = '#333';
     g.lineWidth = 1;
     g.strokeRect(plot.x, plot.y, plot.w, plot.h);
-    g.fillStyle = '#1b1f24';
-    g.font = `${fs}px system-ui, sans-serif`;
-    const b = d.box;
-    const kt = niceTicks(b.ks_min / KS_UNIT, b.ks_max / KS_UNIT, Math.max(3, Math.floor(plot.w / (fs * 4.5))));
-    g.textAlign = 'center';
-    g.textBaseline = 'top';
-    g.beginPath();
-    for (const t of kt.ticks) {
-      const [x] = this.toPlot(t * KS_UNIT, b.cs_min, plot);
-      g.moveTo(x, plot.y + plot.h);
-      g.lineTo(x, plot.y + plot.h + fs * 0.35);
-      g.fillText(fmtTick(t, kt.step), x, plot.y + plot.h + fs * 0.45);
-    }
-    const ct = niceTicks(b.cs_min / CS_UNIT, b.cs_max / CS_UNIT, Math.max(3, Math.floor(plot.h / (fs * 3))));
-    g.textAlign = 'right';
-    g.textBaseline = 'middle';
-    for (const t of ct.ticks) {
-      const [, y] = this.toPlot(b.ks_min, t * CS_UNIT, plot);
-      g.moveTo(plot.x, y);
-      g.lineTo(plot.x - fs * 0.35, y);
-      g.fillText(fmtTick(t, ct.step), plot.x - fs * 0.5, y);
-    }
-    g.stroke();
-    g.textAlign = 'center';
-    g.textBaseline = 'bottom';
-    g.fillText('Spring rate Ks (kN/m)', plot.x + plot.w / 2, this.size.h - fs * 0.15);
-    g.save();
-    g.translate(fs * 0.2, plot.y + plot.h / 2);
-    g.rotate(-Math.PI / 2);
-    g.textBaseline = 'top';
-    g.fillText('Damper rate Cs (kNs/m)', 0, 0);
-    g.restore();
 
-    // Colour bar with ticks and unit.
-    const strip = new ImageData(1, 256);
-    for (let k = 0; k < 256; k++) paint(d.table, 1 - k / 255, strip.data, 4 * k);
-    const stripCanvas = new OffscreenCanvas(1, 256);
-    stripCanvas.getContext('2d').putImageData(strip, 0, 0);
-    g.imageSmoothingEnabled = true;
-    g.drawImage(stripCanvas, bar.x, bar.y, bar.w, bar.h);
-    g.strokeRect(bar.x, bar.y, bar.w, bar.h);
-    // "and above" / "and below" triangles for values beyond the colour range.
+    // "and above" / "and below" triangles on the colour bar for values beyond its range.
     const tri = (y, dir, t) => {
       const c = new Uint8ClampedArray(4);
       paint(d.table, t, c, 0);
-      g.save();
       g.beginPath();
       g.moveTo(bar.x, y);
       g.lineTo(bar.x + bar.w / 2, y - dir * bar.w * 0.9);
@@ -414,34 +421,16 @@ export class MapView {
       g.fillStyle = `rgb(${c[0]},${c[1]},${c[2]})`;
       g.fill();
       g.stroke();
-      g.restore();
     };
     if (d.over) tri(bar.y, 1, 1);
     if (d.under) tri(bar.y + bar.h, -1, 0);
-    g.textAlign = 'left';
-    g.textBaseline = 'middle';
-    g.beginPath();
-    for (const t of d.ticks) {
-      const y = bar.y + bar.h - ((t - d.lo) / (d.hi - d.lo)) * bar.h;
-      g.moveTo(bar.x + bar.w, y);
-      g.lineTo(bar.x + bar.w + fs * 0.3, y);
-      g.fillText(fmtTick(t, d.step), bar.x + bar.w + fs * 0.4, y);
-    }
-    g.stroke();
-    g.save();
-    g.translate(this.size.w - fs * 0.15, bar.y + bar.h / 2);
-    g.rotate(-Math.PI / 2);
-    g.textAlign = 'center';
-    g.textBaseline = 'bottom';
-    g.fillText(`${this.crit.title} (${d.unit})`, 0, 0);
-    g.restore();
   }
 
   drawOverlay() {
     if (!this.size.w) return;
     const g = this.ctx(this.overlay);
     g.clearRect(0, 0, this.size.w, this.size.h);
-    if (!this.data || !this.markers) return;
+    if (!this.data || !this.markers || !this.placed) return;
     const { fs, plot } = this.layout();
     const { design, datum, samples, pick } = this.markers;
     const inside = (p) => p[0] >= plot.x - 0.5 && p[0] <= plot.x + plot.w + 0.5 && p[1] >= plot.y - 0.5 && p[1] <= plot.y + plot.h + 0.5;
@@ -525,7 +514,7 @@ export class MapView {
   bindPointer() {
     let dragging = false;
     const pick = (ev, clamp) => {
-      if (!this.data) return false;
+      if (!this.data || !this.placed) return false;
       const rect = this.overlay.getBoundingClientRect();
       const { plot } = this.layout();
       let u = (ev.clientX - rect.left - plot.x) / plot.w;

@@ -6,18 +6,12 @@
 
 import { Plot } from './plot.js';
 import { fmt, fmtPct } from './format.js';
+import { CLOUD_OPACITY, OUTPUTS, cloudPoints, objectiveSpec, planeXY, spectraSpec, timeSpec } from './chartspecs.js';
 
 const $ = (id) => document.getElementById(id);
 
-const COL = {
-  cloud: 'rgba(120, 160, 210, 0.35)',
-  stm: '#c2410c',
-  nsga: '#15803d',
-  lofi: '#1d4ed8',
-  hifi: '#b91c1c',
-  datum: '#fff',
-  pick: '#facc15',
-};
+/** The live layer's colours (the charts' own are in js/chartspecs.js). */
+const CLOUD_FILL = `rgba(120, 160, 210, ${CLOUD_OPACITY})`;
 
 // ------------------------------------------------------------------ objective plane
 
@@ -25,41 +19,15 @@ export class ObjectivePlane {
   constructor(app) {
     this.app = app;
     this.base = new Plot($('op-base'), { aspect: 0.62 });
-    this.over = new Plot($('op-overlay'), { aspect: 0.62 });
+    this.over = $('op-overlay');
     this.ratio = false;
   }
 
-  /** Axis values of criteria `c` ({bacc, dtl}) in the current scale. */
-  xy(bacc, dtl) {
-    const d = this.app.front?.datum;
-    return this.ratio && d ? [bacc / d.bacc, dtl / d.dtl] : [bacc, dtl];
-  }
-
-  labels() {
-    return this.ratio
-      ? ['BAcc / datum BAcc (surrogate)  [–]', 'DTL / datum DTL  [–]']
-      : ['BAcc RMS  [m/s²]', 'DTL RMS  [N]'];
-  }
-
-  /** The feasible cells of the surrogate's map as [bacc[], dtl[]] (at most 120 x 90 of them). */
-  cloud() {
-    const m = this.app.cloud;
-    const n = m.nx * m.ny;
-    const step = m.nx > 120 ? 2 : 1;
-    const xs = [];
-    const ys = [];
-    for (let j = 0; j < m.ny; j += step) {
-      for (let i = 0; i < m.nx; i += step) {
-        const k = j * m.nx + i;
-        if (!m.feasible[k]) continue;
-        const [x, y] = this.xy(m.values[k], m.values[n + k]);
-        xs.push(x);
-        ys.push(y);
-      }
-    }
-    return [xs, ys];
-  }
-
+  /**
+   * The plane in three layers on the base canvas: plotters' axes, the cloud of feasible
+   * designs (the page's own dots: thousands of them in one path), then plotters' fronts,
+   * markers and legend. The current design goes on the overlay canvas.
+   */
   drawBase() {
     const { app } = this;
     const fr = app.front;
@@ -76,56 +44,12 @@ export class ObjectivePlane {
     msg.hidden = true;
     wrap.hidden = false;
     $('op-pick').hidden = false;
-    const [xl, yl] = this.labels();
-    this.base.opts.xLabel = xl;
-    this.base.opts.yLabel = yl;
-    const [cx, cy] = this.cloud();
-    const front = fr.study.front.map((p) => this.xy(p.bacc, p.dtl));
-    const d = this.xy(fr.datum.bacc, fr.datum.dtl);
-    // The range: the front, the datum and the bulk of the feasible set near the front.
-    const fx = front.map((p) => p[0]);
-    const fy = front.map((p) => p[1]);
-    const xs = [...fx, d[0]];
-    const ys = [...fy, d[1]];
-    const xmin = Math.min(...xs);
-    const ymin = Math.min(...ys);
-    const xmax = Math.max(...xs);
-    const ymax = Math.max(...ys);
-    const xr = [xmin - 0.05 * (xmax - xmin), xmax + 0.6 * (xmax - xmin)];
-    const yr = [ymin - 0.05 * (ymax - ymin), ymax + 0.6 * (ymax - ymin)];
-    this.base.resize();
-    this.over.resize();
-    this.base.setRange(xr, yr);
-    this.over.setRange(xr, yr);
-    this.over.opts = this.base.opts;
-    this.base.begin();
-    this.base.dots(cx, cy, COL.cloud, 1.4);
-    this.base.line(fx, fy, COL.stm, 2.5);
-    const legend = [
-      { label: 'feasible designs (surrogate)', colour: 'rgb(120,160,210)', kind: 'dot' },
-      { label: `Pareto front, STM (${fr.study.front.length} pts)`, colour: COL.stm, kind: 'line' },
-    ];
-    if (app.nsga && !app.nsga.error) {
-      const nf = app.nsga.study.front.map((p) => this.xy(p.bacc, p.dtl));
-      this.base.dots(nf.map((p) => p[0]), nf.map((p) => p[1]), COL.nsga, 2.6);
-      legend.push({ label: `NSGA-II front (${nf.length} pts)`, colour: COL.nsga, kind: 'dot' });
+    const spec = objectiveSpec(app, { ratio: this.ratio, live: true });
+    if (this.base.draw(spec, 'axes')) {
+      // Every cell of a cloud up to 120 wide, every other one of a larger one.
+      this.base.dots(cloudPoints(app, this.ratio, app.cloud.nx > 120 ? 2 : 1), CLOUD_FILL, 1.4);
+      this.base.draw(spec, 'series');
     }
-    const pk = fr.study.pick.criteria;
-    const pp = this.xy(pk.bacc, pk.dtl);
-    const rc = fr.recheck.rechecked;
-    const dh = fr.datumHifi;
-    // The HiFi re-check of the pick, on the same datum-relative scale as its model: a
-    // larger diamond underneath, so a close re-check rings the pick instead of hiding it.
-    const hp = this.ratio ? [rc.bacc / dh.bacc, rc.dtl / dh.dtl] : [rc.bacc, rc.dtl];
-    this.base.marker(hp[0], hp[1], 'diamond', '#fff', COL.hifi, 9);
-    this.base.marker(pp[0], pp[1], 'diamond', COL.pick, '#000', 6);
-    this.base.marker(d[0], d[1], 'square', COL.datum, '#000', 8);
-    legend.push({ label: 'min-max pick (surrogate)', colour: COL.pick, kind: 'marker', shape: 'diamond', stroke: '#000' });
-    legend.push({ label: 'pick re-checked (HiFi)', colour: '#fff', kind: 'marker', shape: 'diamond', stroke: COL.hifi });
-    legend.push({ label: 'datum', colour: '#fff', kind: 'marker', shape: 'square', stroke: '#000' });
-    legend.push({ label: 'current design', colour: '#000', kind: 'marker', stroke: '#fff' });
-    this.base.end();
-    this.base.legend(legend);
     this.renderPick();
     this.drawOverlay();
   }
@@ -133,20 +57,31 @@ export class ObjectivePlane {
   /** The current design's marker (moves with the sliders). */
   drawOverlay() {
     const { app } = this;
-    if (!app.front || app.front.error || !this.over.x) return;
-    const c = this.over.canvas;
+    const b = this.base;
+    if (!app.front || app.front.error || !b.placed || b.error) return;
+    const c = this.over;
+    const { w, h, dpr } = b.size;
+    if (c.width !== b.canvas.width || c.height !== b.canvas.height) {
+      c.width = b.canvas.width;
+      c.height = b.canvas.height;
+    }
+    if (c.style.height !== b.canvas.style.height) c.style.height = b.canvas.style.height;
     const g = c.getContext('2d');
-    g.setTransform(this.over.size.dpr, 0, 0, this.over.size.dpr, 0, 0);
-    g.clearRect(0, 0, this.over.size.w, this.over.size.h);
-    const { plot } = this.over.layout();
-    g.save();
+    g.setTransform(dpr, 0, 0, dpr, 0, 0);
+    g.clearRect(0, 0, w, h);
+    const { plot } = b.layout();
+    const [x, y] = planeXY(app, this.ratio)(app.surrogate.design.bacc, app.surrogate.design.dtl);
+    const [px, py] = b.px(x, y);
+    this.designAt = [px, py];
+    if (px < plot.x || px > plot.x + plot.w || py < plot.y || py > plot.y + plot.h) return;
+    const r = 4.5 * b.size.zoom;
     g.beginPath();
-    g.rect(plot.x, plot.y, plot.w, plot.h);
-    g.clip();
-    this.over.g = g;
-    const [x, y] = this.xy(app.surrogate.design.bacc, app.surrogate.design.dtl);
-    this.designAt = this.over.marker(x, y, 'circle', '#000', '#fff', 4.5);
-    g.restore();
+    g.arc(px, py, r, 0, 2 * Math.PI);
+    g.fillStyle = '#000';
+    g.fill();
+    g.lineWidth = 2;
+    g.strokeStyle = '#fff';
+    g.stroke();
   }
 
   renderPick() {
@@ -177,20 +112,12 @@ export class ObjectivePlane {
 
 // ------------------------------------------------------------------ spectra
 
-const OUT_NAMES = [
-  { key: 'bacc', name: 'BAcc', frf: '|H| BAcc / road displacement  [1/s²]', psd: 'PSD BAcc  [(m/s²)²/Hz]' },
-  { key: 'dtl', name: 'DTL', frf: '|H| DTL / road displacement  [N/m]', psd: 'PSD DTL  [N²/Hz]' },
-  { key: 'sws', name: 'SWS', frf: '|H| SWS / road displacement  [m/m]', psd: 'PSD SWS  [m²/Hz]' },
-];
-
 export class SpectraPanel {
-  constructor() {
+  constructor(app) {
+    this.app = app;
     this.plots = [];
-    for (const kind of ['frf', 'psd']) {
-      for (const o of OUT_NAMES) {
-        const c = $(`sp-${kind}-${o.key}`);
-        this.plots.push({ kind, o, plot: new Plot(c, { xLog: true, yLog: true, aspect: 0.7, xLabel: 'frequency  [Hz]', yLabel: o[kind] }) });
-      }
+    for (const which of ['frf', 'psd']) {
+      for (const o of OUTPUTS) this.plots.push({ which, key: o.key, plot: new Plot($(`sp-${which}-${o.key}`), { aspect: 0.7 }) });
     }
   }
 
@@ -212,34 +139,13 @@ export class SpectraPanel {
     if (this.visible) this.draw(sp);
   }
 
+  /** The six charts of `sp` (the app's current spectra) through plotters. */
   draw(sp) {
     this.data = sp;
     this.dirty = false;
     if (!sp) return;
-    const i = { bacc: 0, dtl: 1, sws: 2 };
-    for (const { kind, o, plot } of this.plots) {
-      const a = sp.lofi[kind][i[o.key]];
-      const b = sp.hifi[kind][i[o.key]];
-      const c = sp.surrogate[kind][i[o.key]];
-      const pos = [...a, ...b, ...c].filter((v) => v > 0 && Number.isFinite(v));
-      let hi = Math.max(...pos);
-      let lo = Math.max(Math.min(...pos), hi * 1e-8);
-      lo = 10 ** Math.floor(Math.log10(lo));
-      hi = 10 ** Math.ceil(Math.log10(hi));
-      plot.resize();
-      plot.setRange([0.1, 100], [lo, hi]);
-      plot.begin();
-      // HiFi widest, then the surrogate's tuned LoFi dashed, the LoFi narrow on top.
-      plot.line(sp.f, b.map((v) => (v > 0 ? v : NaN)), COL.hifi, 5);
-      plot.line(sp.f, c.map((v) => (v > 0 ? v : NaN)), COL.nsga, 3, [6, 4]);
-      plot.line(sp.f, a.map((v) => (v > 0 ? v : NaN)), COL.lofi, 1.4);
-      plot.end();
-      plot.legend([
-        { label: 'LoFi (quarter car)', colour: COL.lofi, kind: 'line' },
-        { label: 'HiFi (full car)', colour: COL.hifi, kind: 'line' },
-        { label: `tuned LoFi (${sp.surrogateRoute})`, colour: COL.nsga, kind: 'line' },
-      ]);
-    }
+    $('sp-key-route').textContent = sp.surrogateRoute;
+    for (const { which, key, plot } of this.plots) plot.draw(spectraSpec(this.app, which, key, { legend: 'none' }));
   }
 }
 
@@ -248,10 +154,7 @@ export class SpectraPanel {
 export class TimePanel {
   constructor(app) {
     this.app = app;
-    this.plots = OUT_NAMES.map((o) => ({
-      o,
-      plot: new Plot($(`tp-${o.key}`), { aspect: 0.45, xLabel: 'time  [s]', yLabel: { bacc: 'BAcc  [m/s²]', dtl: 'DTL  [N]', sws: 'SWS  [mm]' }[o.key] }),
-    }));
+    this.plots = OUTPUTS.map((o) => ({ key: o.key, plot: new Plot($(`tp-${o.key}`), { aspect: 0.45 }) }));
     this.car = $('tp-car');
     this.res = null;
     this.playing = false;
@@ -262,22 +165,7 @@ export class TimePanel {
   draw(res) {
     this.res = res;
     if (!res) return;
-    const scale = { bacc: 1, dtl: 1, sws: 1000 };
-    this.plots.forEach(({ o, plot }, i) => {
-      const a = res.lofi.outputs[i].map((v) => v * scale[o.key]);
-      const b = res.hifi.outputs[i].map((v) => v * scale[o.key]);
-      const all = [...a, ...b];
-      plot.resize();
-      plot.setRange([res.lofi.t[0], res.lofi.t[res.lofi.t.length - 1]], [Math.min(...all), Math.max(...all)]);
-      plot.begin();
-      plot.line(res.hifi.t, b, COL.hifi, 2.6);
-      plot.line(res.lofi.t, a, COL.lofi, 1);
-      plot.end();
-      plot.legend([
-        { label: `LoFi (RMS ${fmt(res.lofi.rms[i] * scale[o.key], 3)})`, colour: COL.lofi, kind: 'line' },
-        { label: `HiFi (RMS ${fmt(res.hifi.rms[i] * scale[o.key], 3)})`, colour: COL.hifi, kind: 'line' },
-      ]);
-    });
+    for (const { key, plot } of this.plots) plot.draw(timeSpec(this.app, key));
     this.k = 0;
     this.drawCar();
   }

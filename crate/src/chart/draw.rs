@@ -3,14 +3,15 @@
 
 use super::Frame;
 use crate::error::{Result, RideError};
-use plotters::backend::SVGBackend;
+use plotters::backend::{DrawingBackend, SVGBackend};
 use plotters::coord::Shift;
 use plotters::drawing::{DrawingArea, DrawingAreaErrorKind, IntoDrawingArea};
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::{FontDesc, FontFamily, FontStyle, TextStyle, WHITE};
 
-/// A drawing area on the SVG backend in plain pixel coordinates.
-pub(crate) type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
+/// A drawing area in plain pixel coordinates on any plotters backend (the SVG backend
+/// for documents, the page's canvas for the screen).
+pub(crate) type Area<DB> = DrawingArea<DB, Shift>;
 
 /// Pixels above the plot when the chart has a title (the title's row and a gap).
 pub(crate) const TITLE_SPACE: u32 = 34;
@@ -46,7 +47,7 @@ pub(crate) const TITLE_PX: f64 = 16.0;
 pub(crate) fn render(
     width: u32,
     height: u32,
-    draw: impl FnOnce(&Area<'_>) -> Result<()>,
+    draw: impl FnOnce(&Area<SVGBackend<'_>>) -> Result<()>,
 ) -> Result<String> {
     let mut buf = String::new();
     {
@@ -59,7 +60,7 @@ pub(crate) fn render(
 }
 
 /// The chart title, centred in the top row (nothing for an empty title).
-pub(crate) fn title(root: &Area<'_>, text: &str, width: u32) -> Result<()> {
+pub(crate) fn title<DB: DrawingBackend>(root: &Area<DB>, text: &str, width: u32) -> Result<()> {
     if text.is_empty() {
         return Ok(());
     }
@@ -134,6 +135,53 @@ pub(crate) fn clip_polyline(frame: &Frame, points: &[(f64, f64)]) -> Vec<Vec<(f6
     out
 }
 
+/// How far a dropped vertex may lie from the simplified polyline, px.
+pub(crate) const SIMPLIFY_PX: f64 = 0.5;
+
+/// The polyline `points` (unrounded pixels) with the vertices dropped that lie within
+/// `tol` px of the line through the ones kept (Ramer-Douglas-Peucker). Backends draw at
+/// whole pixels; a smooth curve sampled more densely than that, with each vertex rounded,
+/// draws as a staircase on a HiDPI canvas. With near-collinear vertices dropped, the
+/// rounding error spreads over long segments. Peaks of noisy data stand out by more than
+/// `tol` and stay. The ends are always kept.
+pub(crate) fn simplify(points: &[(f64, f64)], tol: f64) -> Vec<(f64, f64)> {
+    let n = points.len();
+    if n < 3 {
+        return points.to_vec();
+    }
+    let mut keep = vec![false; n];
+    keep[0] = true;
+    keep[n - 1] = true;
+    let mut stack = vec![(0usize, n - 1)];
+    while let Some((a, b)) = stack.pop() {
+        let (p, q) = (points[a], points[b]);
+        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+        let len = dx.hypot(dy);
+        let mut worst = (0.0f64, a);
+        for (k, r) in points.iter().enumerate().take(b).skip(a + 1) {
+            // Distance to the segment's line, or to `p` when the segment is a point.
+            let d = if len > 0.0 {
+                ((r.0 - p.0) * dy - (r.1 - p.1) * dx).abs() / len
+            } else {
+                (r.0 - p.0).hypot(r.1 - p.1)
+            };
+            if d > worst.0 {
+                worst = (d, k);
+            }
+        }
+        if worst.0 > tol {
+            keep[worst.1] = true;
+            stack.push((a, worst.1));
+            stack.push((worst.1, b));
+        }
+    }
+    points
+        .iter()
+        .zip(keep)
+        .filter_map(|(&p, k)| k.then_some(p))
+        .collect()
+}
+
 /// Rounds pixels for the backend.
 pub(crate) fn round_all(points: &[(f64, f64)]) -> Vec<(i32, i32)> {
     points
@@ -145,6 +193,47 @@ pub(crate) fn round_all(points: &[(f64, f64)]) -> Vec<(i32, i32)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Distance from `r` to the segment `p`-`q`.
+    fn to_segment(r: (f64, f64), p: (f64, f64), q: (f64, f64)) -> f64 {
+        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+        let t = (((r.0 - p.0) * dx + (r.1 - p.1) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+        (r.0 - p.0 - t * dx).hypot(r.1 - p.1 - t * dy)
+    }
+
+    #[test]
+    fn simplifying_keeps_every_point_within_the_tolerance() {
+        // A straight line of 500 points: its ends only.
+        let line: Vec<(f64, f64)> = (0..500)
+            .map(|i| (i as f64 * 0.7, 3.0 + i as f64 * 0.2))
+            .collect();
+        assert_eq!(simplify(&line, 0.5), vec![line[0], line[499]]);
+        // A smooth arc, 400 points over 300 px: far fewer vertices, none dropped
+        // further than 0.5 px from what is drawn.
+        let arc: Vec<(f64, f64)> = (0..400)
+            .map(|i| {
+                let t = i as f64 / 399.0 * 1.5;
+                (150.0 + 150.0 * t.cos(), 200.0 - 150.0 * t.sin())
+            })
+            .collect();
+        let s = simplify(&arc, 0.5);
+        assert!(s.len() < 40, "{} vertices kept", s.len());
+        assert_eq!((s[0], s[s.len() - 1]), (arc[0], arc[399]));
+        let worst = arc
+            .iter()
+            .map(|&r| {
+                s.windows(2)
+                    .map(|w| to_segment(r, w[0], w[1]))
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .fold(0.0, f64::max);
+        assert!(worst <= 0.5, "worst distance {worst} px");
+        // A zigzag of 2 px amplitude (noisy data) keeps every peak.
+        let zig: Vec<(f64, f64)> = (0..100)
+            .map(|i| (i as f64, if i % 2 == 0 { 0.0 } else { 2.0 }))
+            .collect();
+        assert_eq!(simplify(&zig, 0.5), zig);
+    }
 
     #[test]
     fn clipping_keeps_inside_lines_whole_and_cuts_at_the_frame() {

@@ -3,6 +3,7 @@
 use super::colour::Rgb;
 use super::draw::Area;
 use crate::error::Result;
+use plotters::backend::DrawingBackend;
 use plotters::element::{PathElement, Polygon};
 use plotters::style::{Color, ShapeStyle};
 use serde::{Deserialize, Serialize};
@@ -85,8 +86,8 @@ pub enum Legend {
 
 /// The marker polygon at pixel `(x, y)`, rounded once: filled with `fill`, outlined with
 /// `stroke` (1.5 px wide, drawn 2 px: the backend's widths are whole pixels).
-pub(crate) fn draw_marker(
-    area: &Area,
+pub(crate) fn draw_marker<DB: DrawingBackend>(
+    area: &Area<DB>,
     (x, y): (f64, f64),
     shape: MarkerShape,
     r: f64,

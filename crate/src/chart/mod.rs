@@ -33,7 +33,7 @@
 
 pub mod axis;
 pub mod colour;
-mod draw;
+pub(crate) mod draw;
 pub mod line;
 pub mod map;
 pub mod marker;

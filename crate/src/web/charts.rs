@@ -21,7 +21,7 @@ use wasm_bindgen::JsCast;
 
 /// A chart error as a JS `Error` with `field` set to the spec field (the core's field
 /// path verbatim: these are not state fields, so the state's field mapping does not apply).
-fn chart_error(e: RideError) -> JsValue {
+pub(super) fn chart_error(e: RideError) -> JsValue {
     let field = match &e {
         RideError::Field { field, .. } => field.clone(),
         _ => String::new(),
@@ -35,7 +35,7 @@ fn chart_error(e: RideError) -> JsValue {
 /// Refuses keys of the object `value` (at `path`, "" for the spec) not in `allowed`:
 /// serde-wasm-bindgen reads only the keys a struct knows, so a misspelt optional key
 /// would be dropped without a word. Non-objects are left to serde.
-fn check_keys(value: &JsValue, path: &str, allowed: &[&str]) -> Result<(), JsValue> {
+pub(super) fn check_keys(value: &JsValue, path: &str, allowed: &[&str]) -> Result<(), JsValue> {
     if Array::is_array(value) || ArrayBuffer::is_view(value) {
         return Ok(());
     }
@@ -63,7 +63,7 @@ fn check_keys(value: &JsValue, path: &str, allowed: &[&str]) -> Result<(), JsVal
 }
 
 /// [`check_keys`] on each object of the array at `value[key]`, as `key[k]`.
-fn check_items(value: &JsValue, key: &str, allowed: &[&str]) -> Result<(), JsValue> {
+pub(super) fn check_items(value: &JsValue, key: &str, allowed: &[&str]) -> Result<(), JsValue> {
     let items = Reflect::get(value, &key.into()).unwrap_or(JsValue::UNDEFINED);
     if let Some(items) = items.dyn_ref::<Array>() {
         for (k, item) in items.iter().enumerate() {
@@ -74,7 +74,7 @@ fn check_items(value: &JsValue, key: &str, allowed: &[&str]) -> Result<(), JsVal
 }
 
 /// Reads a spec; a bad key or value is reported at its path (`series[0].colour`).
-fn read_spec<T: DeserializeOwned>(spec: JsValue) -> Result<T, JsValue> {
+pub(super) fn read_spec<T: DeserializeOwned>(spec: JsValue) -> Result<T, JsValue> {
     let de = serde_wasm_bindgen::Deserializer::from(spec);
     serde_path_to_error::deserialize(de).map_err(|e| {
         let path = e.path().to_string();
@@ -88,7 +88,7 @@ fn read_spec<T: DeserializeOwned>(spec: JsValue) -> Result<T, JsValue> {
 }
 
 /// Ok when plotters can measure text here (see the module documentation).
-fn text_measurable() -> Result<(), JsValue> {
+pub(super) fn text_measurable() -> Result<(), JsValue> {
     let fail = |why: &str| {
         Err(chart_error(RideError::field(
             "chart",

@@ -11,7 +11,9 @@
 //! is in [`crate::explorer`].
 
 mod charts;
+mod screen;
 pub use charts::{line_chart_svg_js, map_chart_svg_js};
+pub use screen::{draw_line_chart_js, draw_map_frame_js};
 
 use crate::analysis::{report, ModelKind};
 use crate::car::{Car, PRESETS};

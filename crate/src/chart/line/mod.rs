@@ -6,11 +6,16 @@
 
 use super::axis::Scale;
 use super::colour::Rgb;
-use super::draw::{self, clip_polyline, drawing_error, font, round_all, Area};
+use super::draw::{
+    self, clip_polyline, drawing_error, font, round_all, simplify, Area, SIMPLIFY_PX,
+};
 use super::marker::{draw_marker, Legend, MarkerShape};
 use super::{check_size, Frame};
 use crate::error::{Result, RideError};
+use plotters::backend::DrawingBackend;
 use plotters::chart::{ChartBuilder, SeriesLabelPosition};
+use plotters::coord::Shift;
+use plotters::drawing::DrawingArea;
 use plotters::element::{Circle, EmptyElement, PathElement, Polygon, Rectangle};
 use plotters::style::{Color, RGBAColor, RGBColor, ShapeStyle, WHITE};
 use serde::{Deserialize, Serialize};
@@ -41,7 +46,8 @@ pub struct Series {
     /// `#rrggbb`.
     #[serde(alias = "color")]
     pub colour: String,
-    /// The data, `(x, y)` in the axes' units; finite, and `> 0` on a log axis.
+    /// The data, `(x, y)` in the axes' units; finite, and `> 0` on a log axis. A series
+    /// without points is drawn in the legend only (for data the caller draws itself).
     pub points: Vec<(f64, f64)>,
     /// Line, dots or markers (default line).
     #[serde(default)]
@@ -185,12 +191,6 @@ impl LineChart {
         let (mut xmin, mut xmax) = (f64::INFINITY, f64::NEG_INFINITY);
         let (mut ymin, mut ymax) = (f64::INFINITY, f64::NEG_INFINITY);
         for (k, s) in self.series.iter().enumerate() {
-            if s.points.is_empty() {
-                return Err(RideError::field(
-                    format!("series[{k}].points"),
-                    "is empty; a series needs at least one point",
-                ));
-            }
             for (i, &(x, y)) in s.points.iter().enumerate() {
                 for (axis, v, log) in [("x", x, self.x_log), ("y", y, self.y_log)] {
                     if !v.is_finite() {
@@ -213,8 +213,12 @@ impl LineChart {
             }
             self.drawn(k)?;
         }
-        let scale = |field: &str, range: Option<(f64, f64)>, min, max, log| match range {
+        let scale = |field: &str, range: Option<(f64, f64)>, min: f64, max: f64, log| match range {
             Some((lo, hi)) => Scale::new(field, lo, hi, log),
+            None if min > max => Err(RideError::field(
+                field,
+                "no series has a point to take the range from; give the range or a point",
+            )),
             None => Scale::auto(field, min, max, log),
         };
         let x = scale("xRange", self.x_range, xmin, xmax, self.x_log)?;
@@ -277,17 +281,46 @@ fn stroke_px(px: f64) -> u32 {
 pub fn line_chart_svg(chart: &LineChart) -> Result<String> {
     let layout = chart.layout()?;
     draw::render(chart.width, chart.height, |root| {
-        draw_chart(root, chart, &layout)
+        draw_layers(root, chart, &layout, Layer::All)
     })
 }
 
-fn draw_chart(root: &Area<'_>, chart: &LineChart, layout: &Layout) -> Result<()> {
+/// The parts of a line chart, drawn in this order: the page draws dense data of its own
+/// (the objective plane's cloud of feasible designs) between the axes and the series.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Layer {
+    /// Title, grid, ticks, tick labels and axis descriptions.
+    Axes,
+    /// The series, the frame around the plot and the legend.
+    Series,
+    /// Both.
+    All,
+}
+
+/// Draws `layer` of the checked chart on `root`, an area of `chart.width` x
+/// `chart.height` px whose background the caller has filled, and returns the layout
+/// (where data land). Any plotters backend: the page passes its canvas.
+pub fn draw_line_chart<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    chart: &LineChart,
+    layer: Layer,
+) -> Result<Layout> {
+    let layout = chart.layout()?;
+    draw_layers(root, chart, &layout, layer)?;
+    Ok(layout)
+}
+
+fn draw_layers<DB: DrawingBackend>(
+    root: &Area<DB>,
+    chart: &LineChart,
+    layout: &Layout,
+    layer: Layer,
+) -> Result<()> {
     let Layout {
         frame,
         x: sx,
         y: sy,
     } = *layout;
-    draw::title(root, &chart.title, chart.width)?;
     let mut cc = ChartBuilder::on(root)
         .margin_top(frame.top as u32)
         .margin_left(MARGIN_LEFT)
@@ -301,25 +334,31 @@ fn draw_chart(root: &Area<'_>, chart: &LineChart, layout: &Layout) -> Result<()>
         cc.plotting_area().get_pixel_range(),
         (frame.left..frame.right + 1, frame.top..frame.bottom + 1)
     );
-    let nx = ((frame.right - frame.left) / 80).clamp(2, 10) as usize;
-    let ny = ((frame.bottom - frame.top) / 40).clamp(2, 10) as usize;
-    let (xt, yt) = (sx.ticks(nx), sy.ticks(ny));
-    let fx = |v: &f64| sx.label(*v, &xt);
-    let fy = |v: &f64| sy.label(*v, &yt);
-    cc.configure_mesh()
-        .x_labels(nx)
-        .y_labels(ny)
-        .max_light_lines(0)
-        .x_label_formatter(&fx)
-        .y_label_formatter(&fy)
-        .label_style(font(draw::LABEL_PX, false))
-        .axis_desc_style(font(draw::DESC_PX, false))
-        .x_desc(chart.x_label.as_str())
-        .y_desc(chart.y_label.as_str())
-        .bold_line_style(RGBColor(227, 230, 234))
-        .axis_style(RGBColor(85, 85, 85))
-        .draw()
-        .map_err(drawing_error)?;
+    if layer != Layer::Series {
+        draw::title(root, &chart.title, chart.width)?;
+        let nx = ((frame.right - frame.left) / 80).clamp(2, 10) as usize;
+        let ny = ((frame.bottom - frame.top) / 40).clamp(2, 10) as usize;
+        let (xt, yt) = (sx.ticks(nx), sy.ticks(ny));
+        let fx = |v: &f64| sx.label(*v, &xt);
+        let fy = |v: &f64| sy.label(*v, &yt);
+        cc.configure_mesh()
+            .x_labels(nx)
+            .y_labels(ny)
+            .max_light_lines(0)
+            .x_label_formatter(&fx)
+            .y_label_formatter(&fy)
+            .label_style(font(draw::LABEL_PX, false))
+            .axis_desc_style(font(draw::DESC_PX, false))
+            .x_desc(chart.x_label.as_str())
+            .y_desc(chart.y_label.as_str())
+            .bold_line_style(RGBColor(227, 230, 234))
+            .axis_style(RGBColor(85, 85, 85))
+            .draw()
+            .map_err(drawing_error)?;
+    }
+    if layer == Layer::Axes {
+        return Ok(());
+    }
 
     for (k, s) in chart.series.iter().enumerate() {
         let d = chart.drawn(k)?;
@@ -333,6 +372,7 @@ fn draw_chart(root: &Area<'_>, chart: &LineChart, layout: &Layout) -> Result<()>
                     stroke_width: stroke_px(d.size),
                 };
                 for piece in clip_polyline(&frame, &pixels) {
+                    let piece = simplify(&piece, SIMPLIFY_PX);
                     root.draw(&PathElement::new(round_all(&piece), style))
                         .map_err(drawing_error)?;
                 }
@@ -384,14 +424,15 @@ fn draw_chart(root: &Area<'_>, chart: &LineChart, layout: &Layout) -> Result<()>
     Ok(())
 }
 
-type Chart<'a, 'b> = plotters::chart::ChartContext<
-    'a,
-    plotters::backend::SVGBackend<'b>,
-    plotters::coord::cartesian::Cartesian2d<Scale, Scale>,
->;
+type Chart<'a, DB> =
+    plotters::chart::ChartContext<'a, DB, plotters::coord::cartesian::Cartesian2d<Scale, Scale>>;
 
 /// Registers the legend entry of series `s` (nothing is drawn in the plot here).
-fn legend_entry<'a>(cc: &mut Chart<'a, 'a>, s: &Series, d: &Drawn) -> Result<()> {
+fn legend_entry<'a, DB: DrawingBackend + 'a>(
+    cc: &mut Chart<'a, DB>,
+    s: &Series,
+    d: &Drawn,
+) -> Result<()> {
     let anno = cc
         .draw_series(Vec::<PathElement<(f64, f64)>>::new())
         .map_err(drawing_error)?;

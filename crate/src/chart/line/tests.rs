@@ -50,16 +50,17 @@ fn a_log_log_chart_is_well_formed_and_labelled() {
             "tick {want} missing from {t:?}"
         );
     }
-    // Both series: one polyline each with every point.
+    // Both series: one polyline each, the same vertices (simplified alike: fewer than
+    // the 200 points, how close they stay is `data_points_land_within_half_a_pixel`).
     let lines: Vec<_> = all(&els, "polyline")
         .into_iter()
         .filter(|e| e.attr("stroke") == "#1D4ED8" || e.attr("stroke") == "#B91C1C")
         .collect();
     let data: Vec<_> = lines.iter().filter(|e| e.points().len() > 2).collect();
     assert_eq!(data.len(), 2);
-    for l in data {
-        assert_eq!(l.points().len(), 200);
-    }
+    assert_eq!(data[0].points(), data[1].points());
+    let n = data[0].points().len();
+    assert!(n > 10 && n < 200, "{n} vertices");
     println!("log-log FRF chart: {} bytes", svg.len());
 }
 
@@ -90,26 +91,55 @@ fn data_points_land_within_half_a_pixel() {
     );
     let line = all(&els, "polyline")
         .into_iter()
-        .find(|e| e.attr("stroke") == "#1D4ED8" && e.points().len() == 200)
+        .find(|e| e.attr("stroke") == "#1D4ED8")
         .unwrap();
     let pts = line.points();
-    let mut worst = 0.0f64;
-    for (k, &(x, y)) in chart.series[1].points.iter().enumerate() {
-        // Independent of the chart code: log10 fractions of the frame.
-        let ex = 80.0 + (x.log10() - (-1.0)) / 3.0 * (619.0 - 80.0);
-        let ey = 347.0 - (y.log10() - ylo.log10()) / (yhi.log10() - ylo.log10()) * (347.0 - 34.0);
-        worst = worst.max((pts[k].0 - ex).abs()).max((pts[k].1 - ey).abs());
-    }
-    assert!(worst <= 0.5, "worst pixel error {worst}");
-    // 1 Hz is a third of the way along: column 80 + 539 / 3 = 259.67 -> 260.
-    let one = (0..200)
-        .min_by(|&a, &b| {
-            let d = |k: usize| (chart.series[1].points[k].0 - 1.0).abs();
-            d(a).total_cmp(&d(b))
+    // Independent of the chart code: log10 fractions of the frame.
+    let exact: Vec<(f64, f64)> = chart.series[1]
+        .points
+        .iter()
+        .map(|&(x, y)| {
+            let ex = 80.0 + (x.log10() - (-1.0)) / 3.0 * (619.0 - 80.0);
+            let ey =
+                347.0 - (y.log10() - ylo.log10()) / (yhi.log10() - ylo.log10()) * (347.0 - 34.0);
+            (ex, ey)
         })
-        .unwrap();
-    let x1 = chart.series[1].points[one].0;
-    assert!((pts[one].0 - (80.0 + (x1.log10() + 1.0) / 3.0 * 539.0)).abs() <= 0.5);
+        .collect();
+    // Each vertex drawn is a data point rounded to the pixel, the ends included ...
+    assert!(pts.len() >= 2 && pts.len() <= 200);
+    assert_eq!(pts[0], (exact[0].0.round(), exact[0].1.round()));
+    let last = exact[exact.len() - 1];
+    assert_eq!(pts[pts.len() - 1], (last.0.round(), last.1.round()));
+    for &(x, y) in &pts {
+        let near = exact
+            .iter()
+            .any(|&(ex, ey)| (x - ex).abs() <= 0.5 && (y - ey).abs() <= 0.5);
+        assert!(near, "vertex ({x}, {y}) is no data point");
+    }
+    // ... and every data point lies within a pixel of the line drawn (half a pixel of
+    // simplification plus the rounding of the vertices).
+    let to_segment = |r: (f64, f64), p: (f64, f64), q: (f64, f64)| {
+        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+        let l2 = dx * dx + dy * dy;
+        let t = if l2 > 0.0 {
+            (((r.0 - p.0) * dx + (r.1 - p.1) * dy) / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (r.0 - p.0 - t * dx).hypot(r.1 - p.1 - t * dy)
+    };
+    let worst = exact
+        .iter()
+        .map(|&r| {
+            pts.windows(2)
+                .map(|w| to_segment(r, w[0], w[1]))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .fold(0.0, f64::max);
+    assert!(
+        worst <= 1.0,
+        "worst distance of a data point from the line {worst} px"
+    );
 }
 
 #[test]
@@ -200,12 +230,30 @@ fn bad_input_names_the_field() {
     let mut c = base.clone();
     c.series.clear();
     assert!(err(&c).starts_with("series: "));
+    // A series without points is a legend entry only; with no point anywhere the ranges
+    // must be given.
     let mut c = base.clone();
     c.series[1].points.clear();
+    let svg = line_chart_svg(&c).expect("a legend-only series is fine");
+    assert!(svg.contains(&c.series[1].name), "its legend entry is drawn");
+    for s in &mut c.series {
+        s.points.clear();
+    }
     assert!(
-        err(&c).starts_with("series[1].points: is empty"),
+        err(&c).starts_with("xRange: no series has a point"),
         "{}",
         err(&c)
+    );
+    c.x_range = Some((1.0, 2.0));
+    assert!(
+        err(&c).starts_with("yRange: no series has a point"),
+        "{}",
+        err(&c)
+    );
+    c.y_range = Some((1.0, 2.0));
+    assert!(
+        line_chart_svg(&c).is_ok(),
+        "explicit ranges and no data: an empty frame"
     );
     let mut c = base.clone();
     c.series[0].colour = "red".into();
@@ -268,4 +316,30 @@ fn field_lists_are_the_serde_keys() {
         .collect();
     want.sort();
     assert_eq!(keys(&Series::new("a", "#000000", vec![])), want);
+}
+
+#[test]
+fn the_layers_drawn_in_turn_make_the_whole_chart() {
+    let chart = spectrum();
+    let whole = line_chart_svg(&chart).unwrap();
+    let layered = draw::render(chart.width, chart.height, |root| {
+        let a = draw_line_chart(root, &chart, Layer::Axes)?;
+        let b = draw_line_chart(root, &chart, Layer::Series)?;
+        assert_eq!(a, b, "both layers place the data alike");
+        Ok(())
+    })
+    .unwrap();
+    assert_eq!(layered, whole);
+    let axes = draw::render(chart.width, chart.height, |root| {
+        draw_line_chart(root, &chart, Layer::Axes).map(drop)
+    })
+    .unwrap();
+    let body = |svg: &str| svg.trim_end().trim_end_matches("</svg>").to_string();
+    assert!(whole.starts_with(&body(&axes)), "the axes come first");
+    for colour in ["#B91C1C", "#1D4ED8"] {
+        assert!(
+            whole.contains(colour) && !axes.contains(colour),
+            "no {colour} series in the axes"
+        );
+    }
 }

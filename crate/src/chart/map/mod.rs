@@ -9,11 +9,11 @@
 //! corner to corner (the CLI's [`crate::maps::Grid`], [`Sampling::Nodes`]; the cells
 //! drawn are centred on the nodes, half cells along the edges).
 //!
-//! Layout, px: the plot spans from `left = 74` to `right = width - 109`, and from
+//! Layout, px: the plot spans from `left = 62` to `right = width - 95`, and from
 //! `top = 34` (12 without a title) to `bottom = height - 53`; the colour bar from column
-//! `width - 90` to `width - 75`, 8 px inside the plot's top and bottom.
+//! `width - 80` to `width - 65`, 8 px inside the plot's top and bottom.
 
-use super::axis::Scale;
+use super::axis::{linear_ticks, Scale};
 use super::colour::{ColourMap, Rgb};
 use super::draw;
 use super::marker::{Legend, MarkerShape};
@@ -162,18 +162,31 @@ pub struct MapLayout {
     pub block_size: (usize, usize),
 }
 
-const MARGIN_LEFT: u32 = 10;
-const Y_LABEL_AREA: u32 = 64;
+const MARGIN_LEFT: u32 = 6;
+const Y_LABEL_AREA: u32 = 56;
 const X_LABEL_AREA: u32 = 46;
 const MARGIN_BOTTOM: u32 = 6;
-const MARGIN_RIGHT: u32 = 8;
-const BAR_LABELS: u32 = 66;
+const MARGIN_RIGHT: u32 = 4;
+const BAR_LABELS: u32 = 60;
 const BAR_WIDTH: u32 = 16;
-const BAR_GAP: u32 = 18;
+const BAR_GAP: u32 = 14;
 const BAR_INSET: i32 = 8;
 
 /// kN/m per N/m (and kNs/m per N s/m).
 const KILO: f64 = 1e-3;
+
+impl MapLayout {
+    /// The most ticks the colour bar takes: one per 36 px of bar, 2..=8.
+    pub fn bar_tick_count(&self) -> usize {
+        ((self.bar.bottom - self.bar.top) / 36).clamp(2, 8) as usize
+    }
+
+    /// The colour bar's ticks, in the values' unit (the page draws its contour lines at
+    /// these levels).
+    pub fn bar_ticks(&self) -> Vec<f64> {
+        linear_ticks(self.colours.lo, self.colours.hi, self.bar_tick_count()).0
+    }
+}
 
 impl MapMarker {
     /// The JS keys of a marker (`color` is accepted for `colour`).
@@ -434,7 +447,7 @@ impl MapChart {
 
 mod render;
 
-pub use render::map_chart_svg;
+pub use render::{draw_map_frame, map_chart_svg};
 
 #[cfg(test)]
 mod tests;

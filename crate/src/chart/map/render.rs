@@ -5,14 +5,18 @@ use super::{
     Contours, MapChart, MapLayout, BAR_LABELS, HATCH, KILO, MARGIN_BOTTOM, MARGIN_LEFT,
     MARGIN_RIGHT, WASH, X_LABEL_AREA, Y_LABEL_AREA,
 };
-use crate::chart::axis::{linear_ticks, Scale};
+use crate::chart::axis::Scale;
 use crate::chart::colour::Rgb;
 use crate::chart::draw::{self, clip_polyline, drawing_error, font, round_all, Area};
 use crate::chart::marker::{draw_marker, Legend};
 use crate::chart::Frame;
 use crate::error::Result;
 use crate::maps::{contour, nice_levels};
-use plotters::chart::{ChartBuilder, SeriesLabelPosition};
+use plotters::backend::DrawingBackend;
+use plotters::chart::{ChartBuilder, ChartContext, SeriesLabelPosition};
+use plotters::coord::cartesian::Cartesian2d;
+use plotters::coord::Shift;
+use plotters::drawing::DrawingArea;
 use plotters::element::{EmptyElement, PathElement, Polygon, Rectangle};
 use plotters::style::{Color, RGBAColor, RGBColor, ShapeStyle, WHITE};
 
@@ -32,7 +36,7 @@ fn style(c: Rgb, alpha: f64, width: u32) -> ShapeStyle {
     }
 }
 
-fn draw_map(root: &Area<'_>, chart: &MapChart, l: &MapLayout) -> Result<()> {
+fn draw_map<DB: DrawingBackend>(root: &Area<DB>, chart: &MapChart, l: &MapLayout) -> Result<()> {
     let f = l.frame;
     draw::title(root, &chart.title, chart.width)?;
 
@@ -118,38 +122,7 @@ fn draw_map(root: &Area<'_>, chart: &MapChart, l: &MapLayout) -> Result<()> {
         }
     }
 
-    // Axes, ticks and labels.
-    let mut cc = ChartBuilder::on(root)
-        .margin_top(f.top as u32)
-        .margin_left(MARGIN_LEFT)
-        .margin_right(chart.width - f.right as u32 - 1)
-        .margin_bottom(MARGIN_BOTTOM)
-        .x_label_area_size(X_LABEL_AREA)
-        .y_label_area_size(Y_LABEL_AREA)
-        .build_cartesian_2d(l.ks, l.cs)
-        .map_err(drawing_error)?;
-    debug_assert_eq!(
-        cc.plotting_area().get_pixel_range(),
-        (f.left..f.right + 1, f.top..f.bottom + 1)
-    );
-    let nx = ((f.right - f.left) / 70).clamp(2, 10) as usize;
-    let ny = ((f.bottom - f.top) / 40).clamp(2, 10) as usize;
-    let (xt, yt) = (l.ks.ticks(nx), l.cs.ticks(ny));
-    let fx = |v: &f64| l.ks.label(*v, &xt);
-    let fy = |v: &f64| l.cs.label(*v, &yt);
-    cc.configure_mesh()
-        .disable_mesh()
-        .x_labels(nx)
-        .y_labels(ny)
-        .x_label_formatter(&fx)
-        .y_label_formatter(&fy)
-        .label_style(font(draw::LABEL_PX, false))
-        .axis_desc_style(font(draw::DESC_PX, false))
-        .x_desc("Ks front spring [kN/m]")
-        .y_desc("Cs front damper [kNs/m]")
-        .axis_style(RGBColor(51, 51, 51))
-        .draw()
-        .map_err(drawing_error)?;
+    let mut cc = map_axes(root, chart, l)?;
 
     // Markers inside the box, with legend entries.
     for (k, m) in chart.markers.iter().enumerate() {
@@ -211,11 +184,68 @@ fn draw_map(root: &Area<'_>, chart: &MapChart, l: &MapLayout) -> Result<()> {
     colour_bar(root, chart, l)
 }
 
+/// The Ks and Cs axes of the map: ticks, tick labels and axis descriptions (in kN/m and
+/// kNs/m), no grid. Returns the chart context for the legend.
+fn map_axes<'a, DB: DrawingBackend + 'a>(
+    root: &'a Area<DB>,
+    chart: &MapChart,
+    l: &MapLayout,
+) -> Result<ChartContext<'a, DB, Cartesian2d<Scale, Scale>>> {
+    let f = l.frame;
+    let mut cc = ChartBuilder::on(root)
+        .margin_top(f.top as u32)
+        .margin_left(MARGIN_LEFT)
+        .margin_right(chart.width - f.right as u32 - 1)
+        .margin_bottom(MARGIN_BOTTOM)
+        .x_label_area_size(X_LABEL_AREA)
+        .y_label_area_size(Y_LABEL_AREA)
+        .build_cartesian_2d(l.ks, l.cs)
+        .map_err(drawing_error)?;
+    debug_assert_eq!(
+        cc.plotting_area().get_pixel_range(),
+        (f.left..f.right + 1, f.top..f.bottom + 1)
+    );
+    let nx = ((f.right - f.left) / 55).clamp(2, 10) as usize;
+    let ny = ((f.bottom - f.top) / 40).clamp(2, 10) as usize;
+    let (xt, yt) = (l.ks.ticks(nx), l.cs.ticks(ny));
+    let fx = |v: &f64| l.ks.label(*v, &xt);
+    let fy = |v: &f64| l.cs.label(*v, &yt);
+    cc.configure_mesh()
+        .disable_mesh()
+        .x_labels(nx)
+        .y_labels(ny)
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fy)
+        .label_style(font(draw::LABEL_PX, false))
+        .axis_desc_style(font(draw::DESC_PX, false))
+        .x_desc("Ks front spring [kN/m]")
+        .y_desc("Cs front damper [kNs/m]")
+        .axis_style(RGBColor(51, 51, 51))
+        .draw()
+        .map_err(drawing_error)?;
+    Ok(cc)
+}
+
+/// Draws the map's frame on `root` (an area of `chart.width` x `chart.height` px, its
+/// background filled by the caller): the title, the axes with their ticks and labels and
+/// the colour bar with its ticks and unit; not the cells, contours, hatching or markers.
+/// The page draws those itself from its RGBA buffer, inside the returned layout's frame.
+pub fn draw_map_frame<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    chart: &MapChart,
+) -> Result<MapLayout> {
+    let l = chart.layout()?;
+    draw::title(root, &chart.title, chart.width)?;
+    map_axes(root, chart, &l)?;
+    colour_bar(root, chart, &l)?;
+    Ok(l)
+}
+
 /// Diagonal hatching (rows grow down: lines `x + y = c`, `c` a multiple of the spacing)
 /// over the infeasible blocks: each line is walked through the block grid and drawn
 /// where it crosses infeasible blocks, one segment per unbroken stretch.
-fn hatch(
-    root: &Area<'_>,
+fn hatch<DB: DrawingBackend>(
+    root: &Area<DB>,
     f: &Frame,
     xs: &[f64],
     ys: &[f64],
@@ -273,14 +303,19 @@ fn hatch(
     Ok(())
 }
 
-fn draw_segment(root: &Area<'_>, a: (f64, f64), b: (f64, f64), s: ShapeStyle) -> Result<()> {
+fn draw_segment<DB: DrawingBackend>(
+    root: &Area<DB>,
+    a: (f64, f64),
+    b: (f64, f64),
+    s: ShapeStyle,
+) -> Result<()> {
     root.draw(&PathElement::new(round_all(&[a, b]), s))
         .map_err(drawing_error)
 }
 
 /// The colour bar: the colour map in 64 steps from the range's low end (bottom) to its
 /// high end, ticks at round values, the unit along its right side.
-fn colour_bar(root: &Area<'_>, chart: &MapChart, l: &MapLayout) -> Result<()> {
+fn colour_bar<DB: DrawingBackend>(root: &Area<DB>, chart: &MapChart, l: &MapLayout) -> Result<()> {
     const STEPS: usize = 64;
     let (bar, s) = (l.bar, l.colours);
     let row = |t: f64| (f64::from(bar.bottom) + t * f64::from(bar.top - bar.bottom)).round() as i32;
@@ -301,13 +336,12 @@ fn colour_bar(root: &Area<'_>, chart: &MapChart, l: &MapLayout) -> Result<()> {
         .right_y_label_area_size(BAR_LABELS)
         .build_cartesian_2d(Scale::new("range", 0.0, 1.0, false)?, s)
         .map_err(drawing_error)?;
-    let n = ((bar.bottom - bar.top) / 36).clamp(2, 8) as usize;
-    let (ticks, _) = linear_ticks(s.lo, s.hi, n);
+    let ticks = l.bar_ticks();
     let fy = |v: &f64| s.label(*v, &ticks);
     cc.configure_mesh()
         .disable_mesh()
         .disable_x_axis()
-        .y_labels(n)
+        .y_labels(l.bar_tick_count())
         .y_label_formatter(&fy)
         .label_style(font(draw::LABEL_PX, false))
         .axis_desc_style(font(draw::DESC_PX, false))

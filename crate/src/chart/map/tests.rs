@@ -99,10 +99,10 @@ fn axes_and_colour_bar_carry_units() {
     let c = chart(6, 4, |i, j| (i + j) as f64);
     let l = c.layout().unwrap();
     let f = l.frame;
-    assert_eq!((f.left, f.right, f.top, f.bottom), (74, 531, 34, 427));
+    assert_eq!((f.left, f.right, f.top, f.bottom), (62, 545, 34, 427));
     assert_eq!(
         (l.bar.left, l.bar.right, l.bar.top, l.bar.bottom),
-        (550, 565, 42, 419)
+        (560, 575, 42, 419)
     );
     let els = parse(&map_chart_svg(&c).unwrap());
     let t = texts(&els);
@@ -448,4 +448,30 @@ fn field_lists_are_the_serde_keys() {
         size: None,
     };
     assert_eq!(keys(&m), sorted(&MapMarker::FIELDS));
+}
+
+#[test]
+fn the_frame_alone_has_the_axes_and_colour_bar_but_no_cells() {
+    let c = chart(40, 30, |i, j| 0.4 + 0.01 * i as f64 + 0.002 * j as f64);
+    let l = c.layout().unwrap();
+    let whole = parse(&map_chart_svg(&c).unwrap());
+    let frame_svg = draw::render(c.width, c.height, |root| {
+        let placed = draw_map_frame(root, &c)?;
+        assert_eq!(placed, l, "the frame is placed as the whole chart");
+        Ok(())
+    })
+    .unwrap();
+    let frame = parse(&frame_svg);
+    // Every label of the whole chart (title, axis descriptions, ticks of both axes and
+    // of the colour bar) and nothing else.
+    assert_eq!(texts(&frame), texts(&whole));
+    assert!(texts(&frame).iter().any(|t| t == "Ks front spring [kN/m]"));
+    assert!(texts(&frame).iter().any(|t| t == "BAcc [m/s^2]"));
+    // No cells: the whole chart has 40 x 30 of them (merged into runs along rows).
+    assert!(cells(&whole, &l).len() >= 30, "{}", cells(&whole, &l).len());
+    assert!(
+        cells(&frame, &l).is_empty(),
+        "{} cells",
+        cells(&frame, &l).len()
+    );
 }
