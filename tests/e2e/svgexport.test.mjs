@@ -170,3 +170,108 @@ test('the SVG buttons download the objective plane and every chart', { timeout: 
   assert.deepEqual(log.errors, [], 'console errors');
   await context.close();
 });
+
+test('on-screen charts: plotters draws them on the canvas at the core layout; bad arguments name the field', { timeout: TIMEOUT }, async (t) => {
+  const { page, context, log } = await openWired();
+  const res = await page.evaluate(() => {
+    const { api } = window.__ridelab;
+    // A known chart at twice the resolution: a red diagonal over 0..10 x 0..10.
+    const c = document.createElement('canvas');
+    c.width = 800;
+    c.height = 600;
+    const spec = {
+      xLabel: 'x [m]',
+      yLabel: 'y [m]',
+      xRange: [0, 10],
+      yRange: [0, 10],
+      width: 400,
+      height: 300,
+      legend: 'none',
+      series: [{ colour: '#ff0000', points: [[0, 0], [10, 10]], size: 3 }],
+    };
+    const placed = api.drawLineChart(c, spec, 2, 'all');
+    const d = c.getContext('2d').getImageData(0, 0, 800, 600).data;
+    const rgb = (x, y) => Array.from(d.slice(4 * (y * 800 + x), 4 * (y * 800 + x) + 3));
+    const f = placed.frame;
+    // The data point (5, 5) lands mid-frame (device px = 2 x logical).
+    const mid = rgb(Math.round(f.left + f.right), Math.round(f.top + f.bottom));
+    // Tick labels and the axis description: dark pixels left of the frame, below it.
+    let left = 0;
+    let below = 0;
+    for (let y = 0; y < 600; y++) {
+      for (let x = 0; x < 800; x++) {
+        const k = 4 * (y * 800 + x);
+        const dark = d[k] + d[k + 1] + d[k + 2] < 300;
+        if (dark && x < 2 * f.left - 4 && y < 2 * f.bottom) left++;
+        if (dark && y > 2 * f.bottom + 4) below++;
+      }
+    }
+    const fail = (fn) => {
+      try {
+        fn();
+        return null;
+      } catch (e) {
+        return { field: e.field, message: e.message };
+      }
+    };
+    const map = { unit: 'u [m]', nx: 2, ny: 2, values: [1, 2, 3, 4], designBox: { ks_min: 1e4, ks_max: 4e4, cs_min: 500, cs_max: 4000 }, width: 400, height: 300 };
+    const mapPlaced = api.drawMapFrame(c, map, 1);
+    return {
+      placed,
+      corner: rgb(2, 2),
+      mid,
+      left,
+      below,
+      mapPlaced,
+      layer: fail(() => api.drawLineChart(c, spec, 1, 'bogus')),
+      scale: fail(() => api.drawLineChart(c, spec, 0, 'all')),
+      colour: fail(() => api.drawLineChart(c, { ...spec, series: [{ colour: 'red', points: [[1, 1]] }] }, 1, 'all')),
+      values: fail(() => api.drawMapFrame(c, { ...map, values: [1, 2, 3] }, 1)),
+      box: fail(() => api.drawMapFrame(c, { ...map, designBox: { ...map.designBox, ks_max: 1 } }, 1)),
+    };
+  });
+  // The core's line chart layout (crate/src/chart/line): left 80, right width - 21,
+  // top 12 without a title, bottom height - 53.
+  assert.deepEqual(res.placed.frame, { left: 80, right: 379, top: 12, bottom: 247 });
+  assert.deepEqual([res.placed.x.lo, res.placed.x.hi, res.placed.y.lo, res.placed.y.hi], [0, 10, 0, 10]);
+  assert.deepEqual(res.corner, [255, 255, 255], 'white background');
+  assert.ok(res.mid[0] > 200 && res.mid[1] < 60 && res.mid[2] < 60, `the line at mid-frame: ${res.mid}`);
+  assert.ok(res.left > 300, `y tick labels and description drawn (${res.left} dark px)`);
+  assert.ok(res.below > 300, `x tick labels and description drawn (${res.below} dark px)`);
+  // The map layout (crate/src/chart/map): left 62, right width - 95; the bar 8 px inside.
+  assert.deepEqual(res.mapPlaced.frame, { left: 62, right: 305, top: 12, bottom: 247 });
+  assert.deepEqual([res.mapPlaced.bar.top, res.mapPlaced.bar.bottom], [20, 239]);
+  // At most one tick per 36 px of bar: 219 px, 6 ticks at most, so a step of 1 over 1..4.
+  assert.deepEqual(res.mapPlaced.barTicks, [1, 2, 3, 4]);
+  assert.equal(res.layer.field, 'layer');
+  assert.equal(res.scale.field, 'scale');
+  assert.equal(res.colour.field, 'series[0].colour');
+  assert.equal(res.values.field, 'values');
+  assert.equal(res.box.field, 'designBox');
+
+  // The page's charts: drawing cost, medians over 10 redraws (performance.now()).
+  await page.locator('.spectra').scrollIntoViewIfNeeded();
+  const ms = await page.evaluate(() => {
+    const app = window.__ridelab;
+    const time = (fn) => {
+      const xs = [];
+      for (let i = 0; i < 10; i++) {
+        const t0 = performance.now();
+        fn();
+        xs.push(performance.now() - t0);
+      }
+      xs.sort((a, b) => a - b);
+      return xs[5];
+    };
+    return {
+      spectra: time(() => app.spectraPanel.draw(app.spectra)),
+      plane: time(() => app.objPlane.drawBase()),
+      map: time(() => app.views[0].drawBase()),
+    };
+  });
+  t.diagnostic(`on-screen charts (plotters on canvas), medians: six FRF/PSD charts ${ms.spectra.toFixed(1)} ms, ` +
+    `objective plane ${ms.plane.toFixed(1)} ms, one map with its frame ${ms.map.toFixed(1)} ms`);
+  fs.writeFileSync(path.join(OUT, 'chart-draw.json'), JSON.stringify(ms, null, 1));
+  assert.deepEqual(log.errors, [], 'console errors');
+  await context.close();
+});

@@ -19,7 +19,9 @@
 //! The legend's labels are still measured by plotters itself (through the document), so
 //! this runs on the main thread only, like the SVG charts (see `charts`).
 
-use super::charts::{chart_error, check_items, check_keys, read_spec, text_measurable};
+use super::charts::{
+    chart_error, check_items, check_keys, read_map_spec, read_spec, text_measurable,
+};
 use crate::chart::draw::drawing_error;
 use crate::chart::line::{draw_line_chart, Layer, Layout};
 use crate::chart::map::draw_map_frame;
@@ -339,7 +341,7 @@ pub fn draw_map_frame_js(
     check_items(&spec, "markers", &MapMarker::FIELDS)?;
     let design_box = Reflect::get(&spec, &"designBox".into()).unwrap_or(JsValue::UNDEFINED);
     check_keys(&design_box, "designBox", &MapChart::BOX_FIELDS)?;
-    let chart: MapChart = read_spec(spec)?;
+    let chart = read_map_spec(spec)?;
     let l = chart.layout().map_err(chart_error)?;
     on_canvas(canvas, scale, (chart.width, chart.height), false, |root| {
         draw_map_frame(root, &chart).map(drop)

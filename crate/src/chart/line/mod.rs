@@ -185,8 +185,11 @@ impl LineChart {
     /// the axes from the ranges or the data.
     pub fn layout(&self) -> Result<Layout> {
         check_size(self.width, self.height, (240, 200))?;
-        if self.series.is_empty() {
-            return Err(RideError::field("series", "no series to draw"));
+        if self.series.is_empty() && (self.x_range.is_none() || self.y_range.is_none()) {
+            return Err(RideError::field(
+                "series",
+                "no series to draw; give a series, or both xRange and yRange for empty axes",
+            ));
         }
         let (mut xmin, mut xmax) = (f64::INFINITY, f64::NEG_INFINITY);
         let (mut ymin, mut ymax) = (f64::INFINITY, f64::NEG_INFINITY);
