@@ -13,10 +13,11 @@ use super::marker::{draw_marker, Legend, MarkerShape};
 use super::{check_size, Frame};
 use crate::error::{Result, RideError};
 use plotters::backend::DrawingBackend;
-use plotters::chart::{ChartBuilder, SeriesLabelPosition};
+use plotters::chart::ChartBuilder;
 use plotters::coord::Shift;
 use plotters::drawing::DrawingArea;
-use plotters::element::{Circle, EmptyElement, PathElement, Polygon, Rectangle};
+use plotters::element::{Circle, PathElement, Rectangle};
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::{Color, RGBAColor, RGBColor, ShapeStyle, WHITE};
 use serde::{Deserialize, Serialize};
 use std::collections::HashSet;
@@ -397,84 +398,90 @@ fn draw_layers<DB: DrawingBackend>(
                 }
             }
         }
-        if !s.name.is_empty() {
-            legend_entry(&mut cc, s, &d)?;
-        }
     }
     root.draw(&Rectangle::new(
         [(frame.left, frame.top), (frame.right, frame.bottom)],
         ShapeStyle::from(RGBColor(85, 85, 85)).stroke_width(1),
     ))
     .map_err(drawing_error)?;
-    let position = match chart.legend {
-        Legend::UpperRight => SeriesLabelPosition::UpperRight,
-        Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
-        Legend::LowerRight => SeriesLabelPosition::LowerRight,
-        Legend::LowerLeft => SeriesLabelPosition::LowerLeft,
-        Legend::None => return Ok(()),
-    };
-    if chart.series.iter().any(|s| !s.name.is_empty()) {
-        cc.configure_series_labels()
-            .position(position)
-            .margin(8)
-            .legend_area_size(26)
-            .label_font(font(draw::LABEL_PX, false))
-            .background_style(WHITE.mix(0.88))
-            .border_style(RGBColor(187, 187, 187))
-            .draw()
-            .map_err(drawing_error)?;
-    }
-    Ok(())
+    draw_legend(root, chart, &frame)
 }
 
-type Chart<'a, DB> =
-    plotters::chart::ChartContext<'a, DB, plotters::coord::cartesian::Cartesian2d<Scale, Scale>>;
+/// Legend geometry, px: gap to the frame, padding, row height, sample width, gap to text.
+const LEGEND: (i32, i32, i32, i32, i32) = (8, 6, 18, 22, 6);
 
-/// Registers the legend entry of series `s` (nothing is drawn in the plot here).
-fn legend_entry<'a, DB: DrawingBackend + 'a>(
-    cc: &mut Chart<'a, DB>,
-    s: &Series,
-    d: &Drawn,
+/// The legend of the named series in the chart's corner: a sample of each series' style
+/// and its name, on a translucent white box. Text is measured by the backend (the page's
+/// canvas measures it itself; plotters' own legend would measure it in the document).
+fn draw_legend<DB: DrawingBackend>(
+    root: &Area<DB>,
+    chart: &LineChart,
+    frame: &Frame,
 ) -> Result<()> {
-    let anno = cc
-        .draw_series(Vec::<PathElement<(f64, f64)>>::new())
-        .map_err(drawing_error)?;
-    anno.label(s.name.as_str());
-    let colour = rgba(d.colour, d.opacity.max(0.6));
-    match s.style {
-        SeriesStyle::Line => {
-            let style = ShapeStyle {
-                color: colour,
-                filled: false,
-                stroke_width: stroke_px(d.size).min(4),
-            };
-            anno.legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
-        }
-        SeriesStyle::Dots => {
-            let r = stroke_px(d.size).clamp(2, 5);
-            anno.legend(move |(x, y)| Circle::new((x + 10, y), r, colour.filled()));
-        }
-        SeriesStyle::Markers(shape) => {
-            let r = d.size.min(7.0);
-            let pts: Vec<(i32, i32)> = shape
-                .outline(r)
-                .into_iter()
-                .map(|(dx, dy)| (dx.round() as i32, dy.round() as i32))
-                .collect();
-            let mut closed = pts.clone();
-            closed.push(pts[0]);
-            let fill = d.colour.plotters().filled();
-            let stroke = d
-                .stroke
-                .map(|c| ShapeStyle::from(c.plotters()).stroke_width(2));
-            anno.legend(move |(x, y)| {
-                let outline = match stroke {
-                    Some(st) => PathElement::new(closed.clone(), st),
-                    None => PathElement::new(Vec::new(), fill),
+    let named: Vec<usize> = (0..chart.series.len())
+        .filter(|&k| !chart.series[k].name.is_empty())
+        .collect();
+    if named.is_empty() || chart.legend == Legend::None {
+        return Ok(());
+    }
+    let (gap, pad, row, sample, text_gap) = LEGEND;
+    let style = font(draw::LABEL_PX, false);
+    let mut text_w = 0;
+    for &k in &named {
+        let (w, _) = root
+            .estimate_text_size(&chart.series[k].name, &style)
+            .map_err(drawing_error)?;
+        text_w = text_w.max(w as i32);
+    }
+    let w = pad + sample + text_gap + text_w + pad;
+    let h = pad + row * named.len() as i32 + pad / 2;
+    let x0 = match chart.legend {
+        Legend::UpperLeft | Legend::LowerLeft => frame.left + gap,
+        _ => frame.right - gap - w,
+    };
+    let y0 = match chart.legend {
+        Legend::LowerLeft | Legend::LowerRight => frame.bottom - gap - h,
+        _ => frame.top + gap,
+    };
+    root.draw(&Rectangle::new(
+        [(x0, y0), (x0 + w, y0 + h)],
+        WHITE.mix(0.88).filled(),
+    ))
+    .map_err(drawing_error)?;
+    root.draw(&Rectangle::new(
+        [(x0, y0), (x0 + w, y0 + h)],
+        ShapeStyle::from(RGBColor(187, 187, 187)).stroke_width(1),
+    ))
+    .map_err(drawing_error)?;
+    let text = style.pos(Pos::new(HPos::Left, VPos::Center));
+    for (i, &k) in named.iter().enumerate() {
+        let s = &chart.series[k];
+        let d = chart.drawn(k)?;
+        let y = y0 + pad + row * i as i32 + row / 2;
+        let (xs, xc) = (x0 + pad, x0 + pad + sample / 2);
+        let colour = rgba(d.colour, d.opacity.max(0.6));
+        match s.style {
+            SeriesStyle::Line => {
+                let line = ShapeStyle {
+                    color: colour,
+                    filled: false,
+                    stroke_width: stroke_px(d.size).min(4),
                 };
-                EmptyElement::at((x + 10, y)) + Polygon::new(pts.clone(), fill) + outline
-            });
+                root.draw(&PathElement::new(vec![(xs, y), (xs + sample, y)], line))
+                    .map_err(drawing_error)?;
+            }
+            SeriesStyle::Dots => {
+                let r = stroke_px(d.size).clamp(2, 5);
+                root.draw(&Circle::new((xc, y), r, colour.filled()))
+                    .map_err(drawing_error)?;
+            }
+            SeriesStyle::Markers(shape) => {
+                let at = (f64::from(xc), f64::from(y));
+                draw_marker(root, at, shape, d.size.min(7.0), d.colour, d.stroke)?;
+            }
         }
+        root.draw_text(&s.name, &text, (xs + sample + text_gap, y))
+            .map_err(drawing_error)?;
     }
     Ok(())
 }
