@@ -1,8 +1,10 @@
-//! Charts as SVG documents, drawn with the `plotters` crate's SVG backend: line and
-//! scatter charts ([`LineChart`]: objective plane, FRF / PSD plots, time responses) and
-//! design maps ([`MapChart`]: a criterion over Ks x Cs with contours, the infeasible area
-//! hatched, markers and a colour bar). Plain Rust: the CLI writes them to files, the page
-//! gets them through the wasm shell (`web::charts`).
+//! Charts drawn with the `plotters` crate: line and scatter charts ([`LineChart`]:
+//! objective plane, FRF / PSD plots, time responses) and design maps ([`MapChart`]: a
+//! criterion over Ks x Cs with contours, the infeasible area hatched, markers and a colour
+//! bar). Plain Rust, generic over the plotters backend: as SVG documents through plotters'
+//! SVG backend (the CLI writes them to files, the page exports them through `web::charts`),
+//! and on the page's canvas ([`line::draw_line_chart`] by layers, [`map::draw_map_frame`]
+//! for a map's axes and colour bar) through the wasm shell (`web::screen`).
 //!
 //! Specs deserialise from the page's plain JS objects (camelCase keys, unknown keys
 //! refused); every error is a [`RideError::Field`] naming the spec field at fault by its

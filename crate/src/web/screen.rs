@@ -1,7 +1,8 @@
 //! On-screen charts: `drawLineChart(canvas, spec, scale, layer)` draws a [`LineChart`]
-//! (the same spec as `lineChartSvg`) on a `<canvas>` with plotters, through
-//! `plotters-canvas`, and returns where the data land, so the page can put its own dense
-//! data and live markers on the same axes.
+//! (the same spec as `lineChartSvg`) and `drawMapFrame(canvas, spec, scale)` the axes and
+//! colour bar of a [`MapChart`] (the same spec as `mapChartSvg`) on a `<canvas>` with
+//! plotters, through `plotters-canvas`, and return where the data land, so the page can
+//! put its dense data and live markers on the same axes.
 //!
 //! [`ScreenBackend`] wraps `plotters_canvas::CanvasBackend` for three things it does not
 //! do:
@@ -12,12 +13,13 @@
 //!   device pixels.
 //! - **Text measured on the canvas.** plotters on wasm32 measures text by appending a
 //!   `<span>` to the body and reading its size: a forced layout of the page per tick
-//!   label. Here `measureText` on the context does it without touching the document.
+//!   label. Here `measureText` on the context does it without touching the document (the
+//!   chart module's legends measure through the backend too).
 //! - **Font size.** The chart module asks for `px * 1.24` because the SVG backend writes
 //!   sizes divided by 1.24; `CanvasBackend` writes them as given, so they are scaled back.
 //!
-//! The legend's labels are still measured by plotters itself (through the document), so
-//! this runs on the main thread only, like the SVG charts (see `charts`).
+//! Like the SVG charts (see `charts`), these refuse to run without a document, before
+//! anything could reach plotters' own text measure.
 
 use super::charts::{
     chart_error, check_items, check_keys, read_map_spec, read_spec, text_measurable,
