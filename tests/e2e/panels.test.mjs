@@ -194,6 +194,63 @@ test('changing the SWS limit changes the front; edit-to-front timing', { timeout
   await context.close();
 });
 
+test('dragging the SWS limit slider moves the front while it is dragged', { timeout: TIMEOUT }, async (t) => {
+  const { page, context, log } = await open();
+  await page.locator('#sws-range').scrollIntoViewIfNeeded();
+  const box = await page.locator('#sws-range').boundingBox();
+  const f0 = await page.evaluate(() => ({ draws: window.__ridelab.frontDraws, hv: window.__ridelab.front.study.hypervolume }));
+  // A pointer drag across the slider at about 60 moves a second, from 30 % to 70 % of
+  // its track (1..20 mm: about 6.7 to 14.3 mm).
+  const y = box.y + box.height / 2;
+  await page.mouse.move(box.x + 0.3 * box.width, y);
+  await page.mouse.down();
+  const during = [];
+  for (let i = 1; i <= 40; i++) {
+    await page.mouse.move(box.x + (0.3 + (0.4 * i) / 40) * box.width, y);
+    await page.waitForTimeout(16);
+    if (i % 10 === 0) during.push(await page.evaluate(() => window.__ridelab.frontDraws));
+  }
+  const dragged = await page.evaluate(() => Number(document.getElementById('sws-range').value));
+  await page.mouse.up();
+  const drawsAtRelease = await page.evaluate(() => window.__ridelab.frontDraws);
+  await settle(page);
+  const end = await page.evaluate(() => ({
+    draws: window.__ridelab.frontDraws,
+    limit: window.__ridelab.state.swsLimit,
+    text: document.getElementById('sws-limit').value,
+    hv: window.__ridelab.front.study.hypervolume,
+    maxSws: Math.max(...window.__ridelab.front.study.front.map((p) => p.sws)),
+  }));
+  t.diagnostic(`SWS slider drag (40 moves, ~0.9 s): ${drawsAtRelease - f0.draws} fronts drawn during the drag, ` +
+    `${end.draws - f0.draws} in all; front draws after every 10 moves: ${during.map((d) => d - f0.draws).join(', ')}`);
+  // The front moved while the pointer was still down, more than once ...
+  assert.ok(during[0] > f0.draws, 'a new front within the first 10 moves');
+  assert.ok(drawsAtRelease - f0.draws >= 4, `${drawsAtRelease - f0.draws} fronts during the drag`);
+  // ... and it ends on the slider's last value, shown in the text field too.
+  assert.ok(dragged > 12 && dragged < 16, `slider at ${dragged} mm`);
+  assert.ok(Math.abs(end.limit * 1000 - dragged) < 1e-9, `limit ${end.limit * 1000} mm = slider ${dragged} mm`);
+  assert.equal(Number(end.text), dragged);
+  assert.notEqual(end.hv, f0.hv, 'a different front');
+  assert.ok(end.maxSws <= end.limit * (1 + 1e-9), 'the front keeps to the new limit');
+  // Faster input than the page can follow coalesces: 20 input events in one task make
+  // at most two updates (the one taken first, then the latest value), not 20.
+  const burst = await page.evaluate(async () => {
+    const a = window.__ridelab;
+    const n = a.frontDraws;
+    const el = document.getElementById('sws-range');
+    for (let i = 0; i < 20; i++) {
+      el.value = String(9 + 0.1 * i);
+      el.dispatchEvent(new Event('input'));
+    }
+    while (!a.isSettled()) await new Promise((r) => setTimeout(r, 5));
+    return { fronts: a.frontDraws - n, limit: a.state.swsLimit };
+  });
+  assert.ok(burst.fronts >= 1 && burst.fronts <= 2, `${burst.fronts} fronts for a burst of 20 inputs`);
+  assert.ok(Math.abs(burst.limit - 0.0109) < 1e-12, `the burst ends on its last value (${burst.limit})`);
+  assertClean(log);
+  await context.close();
+});
+
 test('class C: the objective plane names the binding objective', { timeout: TIMEOUT }, async () => {
   const { page, context, log } = await open();
   await page.selectOption('#class', 'C');

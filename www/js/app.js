@@ -225,10 +225,12 @@ function enqueue(fn) {
 }
 
 /** A change of car, road or objective (`patch` of the state) made in field `source`. */
-function changeScenario(patch, source) {
+function changeScenario(patchOrFn, source) {
   const tIn = performance.now();
   return enqueue(async () => {
     const t0 = performance.now();
+    // A function is read when the job runs: a drag's latest value (see dragSwsLimit).
+    const patch = typeof patchOrFn === 'function' ? patchOrFn() : patchOrFn;
     const s = { ...app.state, ...patch };
     let r;
     try {
@@ -247,6 +249,26 @@ function changeScenario(patch, source) {
     if (!hifiCurrent()) requestHifi(t0);
     return true;
   });
+}
+
+/** The SWS limit (mm) the slider was dragged to, not yet taken by a queued update. */
+let pendingSwsMm = null;
+
+/**
+ * The SWS limit slider: the front and pick follow while it is dragged. Input events
+ * coalesce: while an update for the slider waits in the queue, a new position only
+ * replaces its value, so the front is never more than one update behind the pointer.
+ */
+function dragSwsLimit(mm) {
+  const waiting = pendingSwsMm !== null;
+  pendingSwsMm = mm;
+  $('sws-limit').value = fmtInput(mm, 4);
+  if (waiting) return;
+  changeScenario(() => {
+    const v = pendingSwsMm;
+    pendingSwsMm = null;
+    return { swsLimit: v / 1000 };
+  }, 'swsLimit');
 }
 
 /** The latest design request; bursts of slider or drag input coalesce into it. */
@@ -637,6 +659,11 @@ function syncInputs() {
   put('class', 'class', s.class);
   put('tracks', 'tracks', s.tracks);
   put('swsLimit', 'sws-limit', s.swsLimit == null ? '' : fmtInput(s.swsLimit * 1000, 4));
+  // The SWS slider spans 1 to 20 mm (and the limit, if outside); no limit: its top.
+  const swsMm = s.swsLimit == null ? null : s.swsLimit * 1000;
+  $('sws-range').min = String(Math.min(1, swsMm ?? 1));
+  $('sws-range').max = String(Math.max(20, swsMm ?? 20));
+  if (pendingSwsMm === null) $('sws-range').value = String(swsMm ?? $('sws-range').max);
   const box = app.desc.designBox;
   if (!app.bad.has('box')) {
     $('ks-min').value = fmtInput(box.ks_min / 1000, 4);
@@ -811,6 +838,7 @@ function wire() {
   numberField('cs-num', 'cs', (v) => changeDesign(app.state.ks, Math.round(v * 1e6) / 1e3, 'cs'));
   numberField('speed', 'speed', (v) => changeScenario({ speed: v }, 'speed'));
   numberField('sws-limit', 'swsLimit', (v) => changeScenario({ swsLimit: v / 1000 }, 'swsLimit'));
+  $('sws-range').addEventListener('input', (ev) => dragSwsLimit(Number(ev.target.value)));
   $('class').addEventListener('change', (ev) => changeScenario({ class: ev.target.value }, 'class'));
   $('tracks').addEventListener('change', (ev) => changeScenario({ tracks: ev.target.value }, 'tracks'));
   $('car').addEventListener('change', (ev) => {
