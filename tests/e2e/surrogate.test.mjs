@@ -149,7 +149,7 @@ test('map model toggle: HiFi and error maps from the worker equal point evaluati
       const s = { ...a.state, speed: 20 + 0.5 * (i + 1) };
       let done = false;
       const t0 = performance.now();
-      const job = a.hifiEngine.call('modelMaps', s, 'hifi', 41, 41).then(() => {
+      const job = a.heavyEngine.call('modelMaps', s, 'hifi', 41, 41).then(() => {
         done = true;
         return performance.now() - t0;
       });

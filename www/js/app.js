@@ -63,6 +63,7 @@ const app = {
   api,
   engine: null,
   hifiEngine: null,
+  heavyEngine: null,
   defaults: null,
   presets: [],
   state: null,
@@ -296,9 +297,23 @@ function changeDesign(ks, cs, source, t0 = performance.now()) {
     app.state = s;
     app.lofi.design = design;
     app.surrogate.design = surrogateRow(sur, app.desc);
-    renderDesign();
+    // The HiFi readout of the design (about 3 ms) in the same update, so every view
+    // follows the slider in one frame; the datum's (once per scenario) and any failure
+    // go to the HiFi worker.
+    let hifiNow = false;
+    if (app.hifi.datumKey === keyOf(datumStateOf(s, app.desc))) {
+      try {
+        app.hifi.design = await app.engine.call('analyse', s, 'full');
+        app.hifi.key = keyOf(s);
+        hifiNow = true;
+      } catch {
+        hifiNow = false;
+      }
+    }
+    renderDesign(); // every column, the HiFi one current when computed above
     app.metrics.design.push(performance.now() - start);
-    requestHifi(start);
+    if (hifiNow) app.metrics.full.push(performance.now() - start);
+    else requestHifi(start);
     return true;
   });
 }
@@ -503,8 +518,8 @@ function renderScenario() {
 const modelMapsRun = latestOnly(async ({ s, model }) => {
   const t0 = performance.now();
   const [maps, datum] = await Promise.all([
-    app.hifiEngine.call('modelMaps', s, model, HIFI_GRID.nx, HIFI_GRID.ny),
-    model === 'hifi' ? app.hifiEngine.call('criteria', { ...s, ks: app.desc.datumKs, cs: app.desc.datumCs }, 'full') : null,
+    app.heavyEngine.call('modelMaps', s, model, HIFI_GRID.nx, HIFI_GRID.ny),
+    model === 'hifi' ? app.heavyEngine.call('criteria', { ...s, ks: app.desc.datumKs, cs: app.desc.datumCs }, 'full') : null,
   ]);
   return { s, model, maps, datum, ms: performance.now() - t0 };
 });
@@ -527,7 +542,7 @@ function requestModelMaps() {
 }
 
 /** The surrogate's fit report (samples, tuning, metrics on the HiFi grid), from the worker. */
-const fitRun = latestOnly((s) => app.hifiEngine.call('surrogateFit', s, VALIDATION_LEVELS).then((r) => ({ s, r })));
+const fitRun = latestOnly((s) => app.heavyEngine.call('surrogateFit', s, VALIDATION_LEVELS).then((r) => ({ s, r })));
 function requestFit() {
   const s = app.state;
   const key = fitKeyOf(s);
@@ -576,7 +591,7 @@ function requestNsga() {
   const key = scen(s);
   $('op-status').textContent = 'NSGA-II running…';
   app.pending++;
-  app.hifiEngine
+  app.heavyEngine
     .call('front', s, 'nsga2', 'surrogate')
     .catch((e) => ({ error: e.message || String(e) }))
     .then((r) => {
@@ -592,7 +607,7 @@ function requestNsga() {
 
 /** FRFs and PSDs of the current design (both models, worker), debounced. */
 let spectraTimer = null;
-const spectraRun = latestOnly((s) => app.hifiEngine.call('spectra', s, NFREQ).then((r) => ({ s, r })));
+const spectraRun = latestOnly((s) => app.heavyEngine.call('spectra', s, NFREQ).then((r) => ({ s, r })));
 function requestSpectra() {
   // Spectra depend on the car, road and design only, not on objectives or the surrogate.
   const key = keyOf(app.state) + fitKeyOf(app.state);
@@ -1029,7 +1044,7 @@ async function runTime() {
   const t0 = performance.now();
   try {
     const s = app.state;
-    const r = await app.hifiEngine.call('timeResponse', s, opts);
+    const r = await app.heavyEngine.call('timeResponse', s, opts);
     app.time = r;
     app.timeKey = JSON.stringify(s);
     $('tp-charts').hidden = false;
@@ -1156,8 +1171,13 @@ async function main() {
   app.marks = { start: performance.now() };
   // The worker loads its own copy of the module: start it first, in parallel.
   const kind = new URLSearchParams(location.search).get('engine') === 'main' ? 'main' : 'worker';
+  // Two workers: one answers the HiFi readout of each design (a few ms) and is never
+  // busy with long jobs; the other runs those (HiFi maps, the fit's validation, spectra,
+  // time responses, NSGA-II), so a slider move never waits behind them.
   const worker = kind === 'worker' ? createEngine(api, 'worker') : null;
+  const heavy = kind === 'worker' ? createEngine(api, 'worker') : null;
   worker?.catch(() => {}); // handled by deferredEngine (falls back to the main thread)
+  heavy?.catch(() => {});
   try {
     await init({ module_or_path: new URL('../ridelab_bg.wasm', import.meta.url) });
   } catch (e) {
@@ -1168,6 +1188,7 @@ async function main() {
   try {
     app.engine = await createEngine(api, 'main');
     app.hifiEngine = worker ? deferredEngine(worker, app.engine) : app.engine;
+    app.heavyEngine = heavy ? deferredEngine(heavy, app.engine) : app.engine;
     app.defaults = await app.engine.call('defaultState');
     app.presets = await app.engine.call('presets');
     app.classes = await app.engine.call('roadClasses');
