@@ -5,7 +5,7 @@
 const STEPS = [
   ['ks-range', 'Drag the spring rate Ks slider: the readout, the design marker (white dot) on the maps and the black dot on the objective plane move at once.'],
   ['map-grid', 'Read the maps: colour is the criterion over Ks and Cs, hatched areas break a design objective. Click or drag on a map to set the design.'],
-  ['sws-limit', 'Tighten the SWS limit (try 6 mm): more of the box is hatched and the Pareto front and the pick move.'],
+  ['sws-range', 'Drag the SWS limit slider down (or type 6 mm): more of the box is hatched, and the Pareto front and the pick move as you drag.'],
   ['map-model', 'Switch the maps to HiFi or to the surrogate error: the surrogate is the LoFi tuned to a few HiFi runs (× marks).'],
   ['op-wrap', 'The objective plane: no design beats the front in both comfort (BAcc) and road holding (DTL). The yellow diamond is the min-max pick, re-checked on the full car.'],
   ['sp-frf-bacc', 'Frequency responses and a time response show why: body bounce near 1 Hz, wheel hop near 10 Hz.'],
