@@ -192,14 +192,8 @@ pub(crate) fn round_all(points: &[(f64, f64)]) -> Vec<(i32, i32)> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::svgcheck::farthest_from;
     use super::*;
-
-    /// Distance from `r` to the segment `p`-`q`.
-    fn to_segment(r: (f64, f64), p: (f64, f64), q: (f64, f64)) -> f64 {
-        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
-        let t = (((r.0 - p.0) * dx + (r.1 - p.1) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
-        (r.0 - p.0 - t * dx).hypot(r.1 - p.1 - t * dy)
-    }
 
     #[test]
     fn simplifying_keeps_every_point_within_the_tolerance() {
@@ -219,14 +213,7 @@ mod tests {
         let s = simplify(&arc, 0.5);
         assert!(s.len() < 40, "{} vertices kept", s.len());
         assert_eq!((s[0], s[s.len() - 1]), (arc[0], arc[399]));
-        let worst = arc
-            .iter()
-            .map(|&r| {
-                s.windows(2)
-                    .map(|w| to_segment(r, w[0], w[1]))
-                    .fold(f64::INFINITY, f64::min)
-            })
-            .fold(0.0, f64::max);
+        let worst = farthest_from(&arc, &s);
         assert!(worst <= 0.5, "worst distance {worst} px");
         // A zigzag of 2 px amplitude (noisy data) keeps every peak.
         let zig: Vec<(f64, f64)> = (0..100)

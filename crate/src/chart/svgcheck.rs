@@ -115,3 +115,25 @@ pub fn all<'a>(els: &'a [Element], name: &str) -> Vec<&'a Element> {
 pub fn texts(els: &[Element]) -> Vec<String> {
     all(els, "text").iter().map(|e| e.text.clone()).collect()
 }
+
+/// The largest distance, px, from a point of `points` to the polyline `line`.
+pub fn farthest_from(points: &[(f64, f64)], line: &[(f64, f64)]) -> f64 {
+    let to_segment = |r: (f64, f64), p: (f64, f64), q: (f64, f64)| {
+        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+        let l2 = dx * dx + dy * dy;
+        let t = if l2 > 0.0 {
+            (((r.0 - p.0) * dx + (r.1 - p.1) * dy) / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (r.0 - p.0 - t * dx).hypot(r.1 - p.1 - t * dy)
+    };
+    points
+        .iter()
+        .map(|&r| {
+            line.windows(2)
+                .map(|w| to_segment(r, w[0], w[1]))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .fold(0.0, f64::max)
+}

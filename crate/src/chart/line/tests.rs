@@ -1,4 +1,4 @@
-use super::super::svgcheck::{all, parse, texts};
+use super::super::svgcheck::{all, farthest_from, parse, texts};
 use super::*;
 
 fn spectrum() -> LineChart {
@@ -118,24 +118,7 @@ fn data_points_land_within_half_a_pixel() {
     }
     // ... and every data point lies within a pixel of the line drawn (half a pixel of
     // simplification plus the rounding of the vertices).
-    let to_segment = |r: (f64, f64), p: (f64, f64), q: (f64, f64)| {
-        let (dx, dy) = (q.0 - p.0, q.1 - p.1);
-        let l2 = dx * dx + dy * dy;
-        let t = if l2 > 0.0 {
-            (((r.0 - p.0) * dx + (r.1 - p.1) * dy) / l2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        (r.0 - p.0 - t * dx).hypot(r.1 - p.1 - t * dy)
-    };
-    let worst = exact
-        .iter()
-        .map(|&r| {
-            pts.windows(2)
-                .map(|w| to_segment(r, w[0], w[1]))
-                .fold(f64::INFINITY, f64::min)
-        })
-        .fold(0.0, f64::max);
+    let worst = farthest_from(&exact, &pts);
     assert!(
         worst <= 1.0,
         "worst distance of a data point from the line {worst} px"
