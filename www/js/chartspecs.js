@@ -185,15 +185,22 @@ export function timeSpec(app, key = 'bacc', { width = 720, height = 340, title =
   const k = OUTPUTS.indexOf(o);
   const pts = (r) => r.t.map((t, i) => [t, r.outputs[k][i] * o.scale]);
   const rms = (r) => (r.rms[k] * o.scale).toPrecision(3);
+  const a = pts(res.hifi);
+  const b = pts(res.lofi);
+  // Room above the signals for the legend (a third of their span), none taken below.
+  const [lo, hi] = extent([...a, ...b].map((p) => p[1]));
+  const span = hi > lo ? hi - lo : Math.abs(hi) || 1;
   return {
     title,
     xLabel: 'time [s]',
     yLabel: o.time,
+    xRange: [res.hifi.t[0], res.hifi.t[res.hifi.t.length - 1]],
+    yRange: [lo - 0.04 * span, hi + 0.34 * span],
     width,
     height,
     series: [
-      line(`HiFi (RMS ${rms(res.hifi)})`, COL.hifi, pts(res.hifi), 2.6),
-      line(`LoFi (RMS ${rms(res.lofi)})`, COL.lofi, pts(res.lofi), 1),
+      line(`HiFi (RMS ${rms(res.hifi)})`, COL.hifi, a, 2.6),
+      line(`LoFi (RMS ${rms(res.lofi)})`, COL.lofi, b, 1),
     ],
   };
 }
