@@ -6,7 +6,7 @@
 // `{message, field}` when there is nothing to draw.
 
 /** The chart colours, #rrggbb. */
-export const COL = {
+const COL = {
   cloud: '#78a0d2',
   stm: '#c2410c',
   nsga: '#15803d',
@@ -25,6 +25,7 @@ export const OUTPUTS = [
   { key: 'sws', name: 'SWS', frf: '|H| SWS / road displacement [m/m]', psd: 'PSD SWS [m²/Hz]', time: 'SWS [mm]', scale: 1000 },
 ];
 
+/** The output `key` ('bacc', 'dtl' or 'sws'); throws `{message, field: 'key'}` for another. */
 export function output(key) {
   const o = OUTPUTS.find((x) => x.key === key);
   if (!o) throw { message: `no output '${key}' (bacc, dtl or sws)`, field: 'key' };

@@ -5,7 +5,7 @@
 // never to the worker: plotters measures text in the page's document. A failure rejects
 // with `{message, field}` like every engine call (`field` names the spec field).
 
-import { OUTPUTS, designText, objectiveSpec, spectraSpec, timeSpec } from './chartspecs.js';
+import { OUTPUTS, designText, objectiveSpec, output, spectraSpec, timeSpec } from './chartspecs.js';
 
 /** A spec builder's result as a promise (its `{message, field}` throw as a rejection). */
 function specOf(build) {
@@ -30,8 +30,7 @@ export function objectiveSvg(app, { ratio = app.objPlane ? app.objPlane.ratio : 
 /** One FRF (`which` = 'frf') or PSD ('psd') plot of output `key` ('bacc', 'dtl', 'sws'). */
 export function spectraSvg(app, which = 'frf', key = 'bacc', { width = 640, height = 440 } = {}) {
   return specOf(() => {
-    const name = OUTPUTS.find((o) => o.key === key)?.name || key;
-    const title = `${name} ${which === 'frf' ? 'frequency response' : 'PSD'}: ${designText(app)}`;
+    const title = `${output(key).name} ${which === 'frf' ? 'frequency response' : 'PSD'}: ${designText(app)}`;
     return spectraSpec(app, which, key, { width, height, title });
   }).then((spec) => app.engine.call('lineChartSvg', spec));
 }
@@ -39,8 +38,7 @@ export function spectraSvg(app, which = 'frf', key = 'bacc', { width = 640, heig
 /** One output (`key`) of the time response, once it has been run. */
 export function timeSvg(app, key = 'bacc', { width = 720, height = 340 } = {}) {
   return specOf(() => {
-    const name = OUTPUTS.find((o) => o.key === key)?.name || key;
-    return timeSpec(app, key, { width, height, title: `${name} time response: ${designText(app)}` });
+    return timeSpec(app, key, { width, height, title: `${output(key).name} time response: ${designText(app)}` });
   }).then((spec) => app.engine.call('lineChartSvg', spec));
 }
 
