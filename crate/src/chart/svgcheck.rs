@@ -137,3 +137,16 @@ pub fn farthest_from(points: &[(f64, f64)], line: &[(f64, f64)]) -> f64 {
         })
         .fold(0.0, f64::max)
 }
+
+/// The JSON keys a value serialises with, sorted (to compare with a spec's field list).
+pub fn keys<T: serde::Serialize>(v: &T) -> Vec<String> {
+    let mut k: Vec<String> = serde_json::to_value(v)
+        .unwrap()
+        .as_object()
+        .unwrap()
+        .keys()
+        .cloned()
+        .collect();
+    k.sort();
+    k
+}

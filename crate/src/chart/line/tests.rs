@@ -1,4 +1,4 @@
-use super::super::svgcheck::{all, farthest_from, parse, texts};
+use super::super::svgcheck::{all, farthest_from, keys, parse, texts};
 use super::*;
 
 fn spectrum() -> LineChart {
@@ -273,18 +273,6 @@ fn specs_read_from_json_with_camel_case_keys() {
     assert!(line_chart_svg(&c).is_ok());
     let bad = serde_json::from_str::<LineChart>(r#"{"xlabel": "oops"}"#).unwrap_err();
     assert!(bad.to_string().contains("unknown field `xlabel`"), "{bad}");
-}
-
-fn keys<T: Serialize>(v: &T) -> Vec<String> {
-    let mut k: Vec<String> = serde_json::to_value(v)
-        .unwrap()
-        .as_object()
-        .unwrap()
-        .keys()
-        .cloned()
-        .collect();
-    k.sort();
-    k
 }
 
 #[test]

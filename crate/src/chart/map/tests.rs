@@ -1,4 +1,4 @@
-use super::super::svgcheck::{all, parse, texts, Element};
+use super::super::svgcheck::{all, keys, parse, texts, Element};
 use super::*;
 
 /// `nx` x `ny` cell values `f(i, j)` over the default box.
@@ -411,18 +411,6 @@ fn specs_read_from_json_like_the_page_sends_them() {
     assert!(map_chart_svg(&c).is_ok());
     let e = serde_json::from_str::<MapChart>(r#"{"colorMap": "viridis"}"#).unwrap_err();
     assert!(e.to_string().contains("unknown field `colorMap`"), "{e}");
-}
-
-fn keys<T: Serialize>(v: &T) -> Vec<String> {
-    let mut k: Vec<String> = serde_json::to_value(v)
-        .unwrap()
-        .as_object()
-        .unwrap()
-        .keys()
-        .cloned()
-        .collect();
-    k.sort();
-    k
 }
 
 fn sorted(list: &[&str]) -> Vec<String> {
