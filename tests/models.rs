@@ -10,7 +10,7 @@ use ridelab::criteria::{
 use ridelab::model::{full_car, quarter_car, symmetric_half};
 use ridelab::road::{Road, RoadClass, Tracks};
 use ridelab::time_domain::{simulate, TimeOptions};
-use ridelab::{Criteria, Evaluator, HiFi, LoFi};
+use ridelab::{Criteria, Evaluator, HiFi, LoFi, ModelKind};
 
 fn max_rel(a: Criteria, b: Criteria) -> f64 {
     a.to_array()
@@ -257,17 +257,14 @@ fn long_time_domain_record_matches_frequency_rms_within_3_percent() {
         f_max: 250.0,
         ..Default::default()
     };
-    for (name, model) in [
-        ("quarter", quarter_car(&car.quarter())),
-        ("full", full_car(&car)),
-    ] {
+    for (name, kind) in [("quarter", ModelKind::Quarter), ("full", ModelKind::Full)] {
         for tracks in [Tracks::Correlated, Tracks::Independent] {
             let road = Road {
                 tracks,
                 ..Road::default()
             };
-            let exact = criteria_exact(&model, &road).unwrap();
-            let td = simulate(&model, &road, &opt).unwrap();
+            let exact = criteria_exact(&kind.build(&car), &road).unwrap();
+            let td = simulate(kind, &car, &road, &opt).unwrap();
             let rms = Criteria::from_array(td.rms);
             let d = max_rel(rms, exact);
             assert!(
@@ -280,49 +277,6 @@ fn long_time_domain_record_matches_frequency_rms_within_3_percent() {
             }
         }
     }
-}
-
-#[test]
-fn symmetric_asymmetric_damper_reproduces_linear_run() {
-    // RK4 with Csb = Csr = cs is an independent integration of the same linear model.
-    let car = Car::datum();
-    let model = full_car(&car);
-    let road = Road::default();
-    let base = TimeOptions {
-        duration: 10.0,
-        dt: 5e-4,
-        seed: 3,
-        f_min: 0.1,
-        f_max: 100.0,
-        ..Default::default()
-    };
-    let lin = simulate(&model, &road, &base).unwrap();
-    let cs = car.front.damper;
-    let nl = simulate(
-        &model,
-        &road,
-        &TimeOptions {
-            asymmetric: Some((cs, cs)),
-            ..base
-        },
-    )
-    .unwrap();
-    for o in 0..3 {
-        let d = (lin.rms[o] / nl.rms[o] - 1.0).abs();
-        // RK4 global error is O(h^4): about 3e-5 at h = 0.5 ms.
-        assert!(d < 1e-4, "output {o}: RK4 vs exact {d:e}");
-    }
-    // A soft bump / hard rebound damper changes the response.
-    let asym = simulate(
-        &model,
-        &road,
-        &TimeOptions {
-            asymmetric: Some((0.5 * cs, 1.5 * cs)),
-            ..base
-        },
-    )
-    .unwrap();
-    assert!((asym.rms[0] / lin.rms[0] - 1.0).abs() > 1e-3);
 }
 
 #[test]
@@ -371,7 +325,7 @@ fn evaluators_and_bad_inputs() {
         dt: 0.0,
         ..Default::default()
     };
-    assert!(simulate(&full_car(&car), &road, &t)
+    assert!(simulate(ModelKind::Full, &car, &road, &t)
         .unwrap_err()
         .to_string()
         .starts_with("dt"));

@@ -17,7 +17,7 @@ use ridelab::road::{Road, RoadClass, Tracks};
 use ridelab::surrogate::{
     sample_plan, study, surrogate_report, LmOptions, PlanSpec, Setting, SurrogateSpec,
 };
-use ridelab::time_domain::{simulate, TimeOptions};
+use ridelab::time_domain::{simulate, Damper, Knee, TimeOptions};
 use ridelab::{Evaluator, HiFi, LoFi};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -36,7 +36,9 @@ commands:
             [--predict grid:20] [--json]
   study     [car/road options] --json|--markdown
   simulate  --model quarter|full [car/road options] [--ks] [--cs] [--duration 20] [--dt 0.001] [--seed 1]
-            [--bump Ns/m --rebound Ns/m] [--decimate 10] [--json|--csv]
+            [--bump Ns/m --rebound Ns/m [--knee m/s --bump-high Ns/m --rebound-high Ns/m]]
+            [--decimate 10] [--json|--csv]
+            (with --bump and --rebound the design's Cs is their mean; leave --cs out)
   presets   [--json]
 car: a JSON file or a preset name (sedan, compact, suv); default sedan (the datum car)
 --svg: optimize writes the front chart to FILE; map writes PREFIX-bacc.svg, PREFIX-dtl.svg and
@@ -434,35 +436,92 @@ fn optimize(args: &[String]) -> Result<String> {
     ))
 }
 
+/// The front damper law of `--bump --rebound [--knee --bump-high --rebound-high]`.
+fn damper_law(o: &Opts) -> Result<Option<Damper>> {
+    let knee = match (o.num("knee")?, o.num("bump-high")?, o.num("rebound-high")?) {
+        (None, None, None) => None,
+        (Some(velocity), Some(bump), Some(rebound)) => Some(Knee {
+            velocity,
+            bump,
+            rebound,
+        }),
+        _ => {
+            return Err(RideError::field(
+                "knee",
+                "give --knee m/s with both --bump-high and --rebound-high",
+            ))
+        }
+    };
+    match (o.num("bump")?, o.num("rebound")?) {
+        (None, None) if knee.is_some() => Err(RideError::field(
+            "bump",
+            "a knee needs the low-speed --bump and --rebound rates",
+        )),
+        (None, None) => Ok(None),
+        (Some(bump), Some(rebound)) => {
+            let law = Damper {
+                bump,
+                rebound,
+                knee,
+            };
+            // Errors name the option: knee.bump is --bump-high, and so on.
+            law.validate().map_err(|e| match e {
+                RideError::Field { field, reason } => {
+                    let option = match field.as_str() {
+                        "knee.velocity" => "knee",
+                        "knee.bump" => "bump-high",
+                        "knee.rebound" => "rebound-high",
+                        other => other,
+                    };
+                    RideError::field(option, reason)
+                }
+                other => other,
+            })?;
+            Ok(Some(law))
+        }
+        _ => Err(RideError::field("bump", "give both --bump and --rebound")),
+    }
+}
+
 fn simulate_cmd(args: &[String]) -> Result<String> {
     let mut values = vec![
-        "model", "duration", "dt", "seed", "bump", "rebound", "decimate",
+        "model",
+        "duration",
+        "dt",
+        "seed",
+        "bump",
+        "rebound",
+        "knee",
+        "bump-high",
+        "rebound-high",
+        "decimate",
     ];
     values.extend(CAR_ROAD);
     let o = Opts::parse(args, &["json", "csv"], &values)?;
     let kind = model_kind(&o)?;
-    let (mut car, road) = car_and_road(&o)?;
+    let (car, road) = car_and_road(&o)?;
     let mut opt = TimeOptions::default();
     if let Some(v) = o.num("duration")? {
         opt.duration = v;
     }
     if let Some(v) = o.num("dt")? {
-        opt.dt = v;
-        opt.f_max = opt.f_max.min(0.4 / v);
+        opt = opt.with_step(v);
     }
     opt.seed = o.count("seed", 1)? as u64;
     opt.decimate = o.count("decimate", 10)?;
-    match (o.num("bump")?, o.num("rebound")?) {
-        (None, None) => {}
-        (Some(b), Some(r)) => {
-            opt.asymmetric = Some((b, r));
-            // The linear part of the model carries the mean rate (Csb + Csr) / 2.
-            car = car.with_front(car.front.spring, 0.5 * (b + r))?;
+    opt.damper = damper_law(&o)?;
+    if let (Some(law), Some(cs)) = (opt.damper, o.num("cs")?) {
+        if cs != law.linear_rate() {
+            return Err(RideError::field(
+                "cs",
+                format!(
+                    "with --bump and --rebound the design's Cs is their mean {} Ns/m: leave --cs out",
+                    law.linear_rate()
+                ),
+            ));
         }
-        _ => return Err(RideError::field("bump", "give both --bump and --rebound")),
     }
-    let model = kind.build(&car);
-    let r = simulate(&model, &road, &opt)?;
+    let r = simulate(kind, &car, &road, &opt)?;
     if o.flag("json") {
         return json(&r);
     }
@@ -476,8 +535,22 @@ fn simulate_cmd(args: &[String]) -> Result<String> {
         }
         return Ok(s);
     }
+    let damper = match opt.damper {
+        None => format!("linear front damper Cs {} Ns/m", r.damper_rate),
+        Some(law) => format!(
+            "front damper bump {} / rebound {} Ns/m{}: Cs = their mean {} Ns/m, energy-equivalent rate over the run {:.1} Ns/m",
+            law.bump,
+            law.rebound,
+            law.knee.map_or(String::new(), |k| format!(
+                " (knee {} m/s, then {} / {} Ns/m)",
+                k.velocity, k.bump, k.rebound
+            )),
+            r.damper_rate,
+            r.equivalent_rate
+        ),
+    };
     Ok(format!(
-        "{} s at {} s steps: RMS BAcc {:.5} m/s^2, DTL {:.3} N, SWS {:.4} mm\n",
+        "{} s at {} s steps: RMS BAcc {:.5} m/s^2, DTL {:.3} N, SWS {:.4} mm\n{damper}\n",
         opt.duration,
         opt.dt,
         r.rms[0],

@@ -13,7 +13,7 @@ use crate::optimize::{
     study::{run_study, Method, Study},
     suspension::SuspensionProblem,
 };
-use crate::time_domain::{simulate, TimeOptions, TimeResponse};
+use crate::time_domain::{simulate, Damper, TimeOptions, TimeResponse};
 use serde::Serialize;
 
 /// STM grid of the page's LoFi front (a few ms).
@@ -227,6 +227,11 @@ pub fn spectra(s: &Scenario, nfreq: usize) -> Result<Spectra> {
 #[derive(Debug, Clone, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct TimeResult {
+    /// The front damper's law of the run (`None`: the design's linear damper).
+    pub damper: Option<Damper>,
+    /// The design's front Cs of the run, N s/m: the state's Cs for a linear damper,
+    /// the law's equivalent linear rate `(Csb + Csr) / 2` otherwise (the rule of [`Damper`]).
+    pub damper_rate: f64,
     /// Quarter car (positions: zs, zu).
     pub lofi: TimeResponse,
     /// Full car (positions: z, theta, phi, zu1..zu4).
@@ -237,11 +242,13 @@ pub struct TimeResult {
     pub b: f64,
 }
 
-/// Simulates the design with both models.
+/// Simulates the design with both models, as `ridelab simulate` does.
 pub fn time_response(s: &Scenario, opt: &TimeOptions) -> Result<TimeResult> {
-    let lofi = simulate(&ModelKind::Quarter.build(&s.design), &s.road, opt)?;
-    let hifi = simulate(&ModelKind::Full.build(&s.design), &s.road, opt)?;
+    let lofi = simulate(ModelKind::Quarter, &s.design, &s.road, opt)?;
+    let hifi = simulate(ModelKind::Full, &s.design, &s.road, opt)?;
     Ok(TimeResult {
+        damper: opt.damper,
+        damper_rate: hifi.damper_rate,
         lofi,
         hifi,
         a: s.design.a,

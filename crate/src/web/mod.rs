@@ -68,6 +68,7 @@ fn ui_field(core: &str) -> String {
         "bounce_band" => "bounceBand".into(),
         "damping_band" => "dampingBand".into(),
         "approach" | "scheme" => "surrogate".into(),
+        f if f.starts_with("damper.") => "damper".into(),
         f if CAR_FIELDS.contains(&f)
             || f.starts_with("front.")
             || f.starts_with("rear.")
@@ -371,9 +372,12 @@ pub fn spectra_js(state: JsValue, nfreq: usize) -> Result<JsValue, JsValue> {
 }
 
 /// Seeded time responses of the design by both models: `options` is
-/// `{duration, dt, seed, f_min, f_max, asymmetric: [bump, rebound] | null, decimate}`
-/// (s, s, -, Hz, Hz, N s/m, -; missing fields take the core defaults). Returns
-/// `{lofi, hifi, a, b}` with `{t, road, outputs, positions, rms}` each.
+/// `{duration, dt, seed, f_min, f_max, damper: {bump, rebound, knee: {velocity, bump,
+/// rebound} | null} | null, decimate}` (s, s, -, Hz, Hz, N s/m and m/s, -; missing fields
+/// take the core defaults). With a damper law the run's Cs is its equivalent linear rate
+/// `(bump + rebound) / 2`, as in `ridelab simulate --bump --rebound`. Returns
+/// `{damper, damperRate, lofi, hifi, a, b}` with `{t, road, outputs, positions,
+/// accelerations, rms, damper_rate, equivalent_rate}` per model.
 #[wasm_bindgen(js_name = timeResponse)]
 pub fn time_response_js(state: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
     let s = scenario(state)?;
