@@ -52,6 +52,16 @@ pub struct LoFi {
     pub road: Road,
 }
 
+impl LoFi {
+    /// The LoFi evaluator of `car` on `road`.
+    pub fn new(car: &Car, road: &Road) -> LoFi {
+        LoFi {
+            car: car.clone(),
+            road: *road,
+        }
+    }
+}
+
 /// LoFi criteria of any quarter car on `road`: the closed forms for an undamped tyre,
 /// the exact Lyapunov route otherwise.
 pub fn quarter_criteria(q: &QuarterCar, road: &Road) -> Result<Criteria> {

@@ -363,12 +363,7 @@ fn optimize(args: &[String]) -> Result<String> {
     };
     let hifi = HiFi::new(&car, &road)?;
     let datum = hifi.evaluate(car.front.spring, car.front.damper)?;
-    let q = car.quarter();
-    let ctx = DosContext {
-        sprung_mass: q.ms,
-        tire_stiffness: q.kt,
-        datum,
-    };
+    let ctx = DosContext::new(&car, datum);
     let design_box = DesignBox::default();
     let evaluator: Box<dyn Evaluator> = match o.str("evaluator").unwrap_or("full") {
         "full" | "hifi" => Box::new(hifi.clone()),

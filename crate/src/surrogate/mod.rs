@@ -157,7 +157,7 @@ impl Setting {
 
 /// A fitted surrogate: predicts the criteria (through [`Evaluator::evaluate`]) and reports
 /// how it was tuned.
-pub trait Surrogate: Evaluator {
+pub trait Surrogate: Evaluator + Send + Sync {
     /// What was fitted (approach and scheme).
     fn spec(&self) -> SurrogateSpec;
 
