@@ -327,6 +327,7 @@ fn symmetric_asymmetric_damper_reproduces_linear_run() {
 
 #[test]
 fn evaluators_and_bad_inputs() {
+    use ridelab::surrogate::{sample_plan, LmOptions, PlanSpec, Setting, SurrogateSpec};
     let car = Car::datum();
     let road = Road::default();
     let lofi = LoFi {
@@ -334,23 +335,66 @@ fn evaluators_and_bad_inputs() {
         road,
     };
     let hifi = HiFi::new(&car, &road).unwrap();
-    for e in [&lofi as &dyn Evaluator, &hifi] {
-        assert!(
-            e.evaluate(0.0, 1000.0)
-                .unwrap_err()
-                .to_string()
-                .contains("spring")
-                || e.name() == "quarter"
-        );
-        let msg = e.evaluate(20_000.0, 0.0).unwrap_err().to_string();
-        assert!(msg.contains("unbounded"), "{msg}");
-        assert!(e.evaluate(f64::NAN, 1000.0).is_err());
+    let warp = HiFi::new(
+        &car,
+        &Road {
+            tracks: Tracks::Independent,
+            ..road
+        },
+    )
+    .unwrap();
+    // Every kind of evaluator: both models (the HiFi on both of its routes) and a surrogate
+    // of each approach (response-, variable- and parameter-based, and a pure data fit).
+    let box_ = ridelab::DesignBox::default();
+    let setting = Setting::new(&car, &road, &box_).unwrap();
+    let plan = PlanSpec::parse("grid:3").unwrap().plan().unwrap();
+    let samples = sample_plan(&hifi, &plan, &box_).unwrap();
+    let surrogates: Vec<Box<dyn ridelab::surrogate::Surrogate>> = [
+        "rba-mul-poly2",
+        "vba-qts",
+        "pba-smts-umts",
+        "data-quad",
+        "data-rbf-gauss",
+    ]
+    .iter()
+    .map(|name| {
+        SurrogateSpec::parse(name)
+            .unwrap()
+            .fit(&setting, &samples, &LmOptions::default())
+            .unwrap()
+    })
+    .collect();
+    let mut evaluators: Vec<&dyn Evaluator> = vec![&lofi, &hifi, &warp];
+    evaluators.extend(surrogates.iter().map(|s| s.as_ref() as &dyn Evaluator));
+    let (ks, cs) = (car.front.spring, car.front.damper);
+    let bad: [(f64, f64, &str, &str); 9] = [
+        (0.0, cs, "ks", "must be > 0"),
+        (-1.0, cs, "ks", "must be > 0"),
+        (f64::NAN, cs, "ks", "finite"),
+        (f64::INFINITY, cs, "ks", "finite"),
+        (ks, 0.0, "cs", "unbounded"),
+        (ks, -5.0, "cs", ""),
+        (ks, f64::NAN, "cs", "finite"),
+        (ks, f64::INFINITY, "cs", "finite"),
+        (ks, f64::NEG_INFINITY, "cs", "finite"),
+    ];
+    let mut failures = Vec::new();
+    for e in &evaluators {
+        assert!(e.evaluate(ks, cs).is_ok(), "{}", e.name());
+        for (k, c, field, why) in bad {
+            let msg = match e.evaluate(k, c) {
+                Err(err) => err.to_string(),
+                Ok(v) => format!("accepted: {v:?}"),
+            };
+            if !(msg.starts_with(&format!("{field}: ")) && msg.contains(why)) {
+                failures.push(format!(
+                    "{} at ks {k}, cs {c}: '{msg}' (want '{field}: ...{why}...')",
+                    e.name()
+                ));
+            }
+        }
     }
-    assert!(lofi
-        .evaluate(-1.0, 1000.0)
-        .unwrap_err()
-        .to_string()
-        .starts_with("ks"));
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
     let bad = Road {
         speed: -5.0,
         ..road
