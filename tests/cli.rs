@@ -302,7 +302,7 @@ fn simulate_json_and_csv_equal_the_library() {
             "--duration",
             "3",
             "--dt",
-            "0.002",
+            "0.004",
             "--seed",
             "9",
             "--decimate",
@@ -317,11 +317,11 @@ fn simulate_json_and_csv_equal_the_library() {
         };
         let opt = TimeOptions {
             duration: 3.0,
-            dt: 0.002,
+            dt: 0.004,
             seed: 9,
             decimate: 5,
-            // The CLI keeps the road below 0.4 / dt (80 % of the Nyquist frequency).
-            f_max: TimeOptions::default().f_max.min(0.4 / 0.002),
+            // The CLI keeps the road below 0.4 / dt (80 % of the Nyquist frequency): 100 Hz.
+            f_max: TimeOptions::default().f_max.min(0.4 / 0.004),
             ..TimeOptions::default()
         };
         let lib = simulate(&kind.build(&car), &road, &opt).unwrap();
@@ -329,7 +329,7 @@ fn simulate_json_and_csv_equal_the_library() {
         json_args.push("--json");
         let v = json(&json_args);
         assert_same_json(&v, &to_json(&lib), &format!("simulate {model}"));
-        assert_eq!(v["t"].as_array().unwrap().len(), 1500 / 5);
+        assert_eq!(v["t"].as_array().unwrap().len(), 750 / 5);
         for k in 0..3 {
             assert!(v["rms"][k].as_f64().unwrap() > 0.0);
         }
