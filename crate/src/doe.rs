@@ -30,7 +30,8 @@ pub const EXHAUSTIVE_MAX_POINTS: usize = 14;
 
 /// Optimal Audze-Eglais plans found by [`exhaustive`]: for `N = k + 2`, entry `k` holds the
 /// row level of each column `0..N-1` and the energy `E` in lattice units^-2.
-/// `tests::table_matches_exhaustive_search` re-derives `N = 2..8` on every test run.
+/// `tests::table_matches_exhaustive_search` re-derives `N = 2..12` on every test run; `N = 13`
+/// (about 28 s in the test profile) and `N = 14` (minutes) are not re-derived by the tests.
 const OPTIMAL: [(&[usize], f64); 13] = [
     (&[1, 0], 0.5),
     (&[1, 2, 0], 0.8999999999999999),
@@ -782,11 +783,11 @@ mod tests {
     }
 
     /// Every tabulated optimum, N = 2..12, re-derived by the exact search on every test run
-    /// (about 3 s in the test profile, nearly all of it N = 12). The search starts with no
-    /// plan and an energy ceiling 1e-9 above the table's (far above the 1e-15 rounding of the
-    /// sums), so it must find a plan at the table's energy by itself and prove that none is
-    /// lower: a table entry that is not optimal, or that no plan attains, fails, and so does a
-    /// search that prunes the optimum.
+    /// (3 to 5 s in the test profile on a busy 2-core machine, nearly all of it N = 12). The
+    /// search starts with no plan and an energy ceiling 1e-9 above the table's (far above the
+    /// 1e-15 rounding of the sums), so it must find a plan at the table's energy by itself and
+    /// prove that none is lower: a table entry that is not optimal, or that no plan attains,
+    /// fails, and so does a search that prunes the optimum.
     #[test]
     fn table_matches_exhaustive_search() {
         assert!(
