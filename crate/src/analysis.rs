@@ -142,6 +142,7 @@ impl Evaluator for HiFi {
         let mut front = self.car.front;
         front.spring = ks;
         front.damper = cs;
+        crate::car::check_design(ks, cs)?;
         front.validate("front")?;
         let mut m = self.base.clone();
         m.k += ks * &self.dk;
