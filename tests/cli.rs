@@ -324,7 +324,7 @@ fn simulate_json_and_csv_equal_the_library() {
             f_max: TimeOptions::default().f_max.min(0.4 / 0.004),
             ..TimeOptions::default()
         };
-        let lib = simulate(&kind.build(&car), &road, &opt).unwrap();
+        let lib = simulate(kind, &car, &road, &opt).unwrap();
         let mut json_args = args.to_vec();
         json_args.push("--json");
         let v = json(&json_args);

@@ -291,7 +291,7 @@ fn road_warp_time_domain_record_agrees_within_its_statistical_error() {
         decimate: 10_000,
         ..Default::default()
     };
-    let td = simulate(&model, &road, &opt).unwrap();
+    let td = simulate(ModelKind::Full, &car, &road, &opt).unwrap();
     // The record's expected mean square and the standard deviation of its cross-track part,
     // over the frequencies it realises.
     let sp = Spectrum::new(&model, &road).unwrap();
