@@ -20,6 +20,13 @@ pub enum ModelKind {
     Full,
 }
 
+impl std::str::FromStr for ModelKind {
+    type Err = RideError;
+    fn from_str(s: &str) -> Result<ModelKind> {
+        ModelKind::parse(s)
+    }
+}
+
 impl ModelKind {
     /// Parses "quarter" or "full".
     pub fn parse(s: &str) -> Result<ModelKind> {
