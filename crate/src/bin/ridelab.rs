@@ -18,6 +18,7 @@ use ridelab::maps::{map_csv, map_report, Axis, Grid, MapSettings, Scale};
 use ridelab::optimize::{
     optimize_report, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, StmParams,
 };
+use ridelab::report::{build, ReportInputs, SECTIONS};
 use ridelab::road::{Road, RoadClass, Tracks};
 use ridelab::surrogate::{study, surrogate_report_in, PlanSpec, SurrogateSpec};
 use ridelab::time_domain::{simulate, Damper, Knee, TimeOptions, TimeResponse};
@@ -50,6 +51,9 @@ enum Command {
     Simulate(SimulateArgs),
     /// The shipped cars with their literature sources.
     Presets(PresetsArgs),
+    /// The study report: the method end to end as one HTML file, its Markdown twin,
+    /// the figures as SVG and the data as JSON and CSV.
+    Report(ReportArgs),
 }
 
 /// The car, the road and the front design.
@@ -231,6 +235,34 @@ struct SimulateArgs {
 }
 
 #[derive(Args)]
+struct ReportArgs {
+    #[command(flatten)]
+    car: CarRoad,
+    /// Ks range of the design box, min:max (N/m).
+    #[arg(long, value_name = "MIN:MAX", default_value = "10000:40000", value_parser = |s: &str| DesignBox::parse_range("ks-range", s))]
+    ks_range: (f64, f64),
+    /// Cs range of the design box, min:max (N s/m).
+    #[arg(long, value_name = "MIN:MAX", default_value = "500:4000", value_parser = |s: &str| DesignBox::parse_range("cs-range", s))]
+    cs_range: (f64, f64),
+    /// RMS SWS limit, m [default: 0.007].
+    #[arg(long, value_name = "M", value_parser = number, allow_negative_numbers = true)]
+    sws_limit: Option<f64>,
+    /// The surrogate of sections 4 and 5 [default: the study's best at 10 HiFi samples].
+    #[arg(long, requires = "plan")]
+    approach: Option<SurrogateSpec>,
+    /// Its HiFi sampling plan: ae:N or grid:n.
+    #[arg(long, requires = "approach")]
+    plan: Option<PlanSpec>,
+    /// Seed of the time-domain record and of NSGA-II.
+    #[arg(long, default_value_t = 1, value_parser = count_u64)]
+    seed: u64,
+    /// Directory for report.html, report.md, figures/, report.json and the CSV tables
+    /// (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "report")]
+    out: PathBuf,
+}
+
+#[derive(Args)]
 struct PresetsArgs {
     #[arg(long)]
     json: bool,
@@ -377,6 +409,7 @@ fn run(command: Command) -> Result<String> {
         Command::Study(a) => study_cmd(a),
         Command::Simulate(a) => simulate_cmd(a),
         Command::Presets(a) => presets(a),
+        Command::Report(a) => report_cmd(a),
     }
 }
 
@@ -537,7 +570,15 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
             ..Nsga2Params::default()
         })
     };
-    let out = optimize_report(&car, &road, a.evaluator, a.plan, &method, objectives)?;
+    let out = optimize_report(
+        &car,
+        &road,
+        &DesignBox::default(),
+        a.evaluator,
+        a.plan,
+        &method,
+        objectives,
+    )?;
     if let Some(path) = &svg {
         write_svg(
             path,
@@ -744,4 +785,76 @@ fn study_cmd(a: StudyArgs) -> Result<String> {
     } else {
         json(&r)
     }
+}
+
+fn report_cmd(a: ReportArgs) -> Result<String> {
+    let (car, road) = car_and_road(&a.car)?;
+    let design_box = DesignBox {
+        ks_min: a.ks_range.0,
+        ks_max: a.ks_range.1,
+        cs_min: a.cs_range.0,
+        cs_max: a.cs_range.1,
+    };
+    design_box.validate()?;
+    let inputs = ReportInputs {
+        design_box,
+        objectives: DesignObjectives {
+            sws_limit: a.sws_limit.or(DesignObjectives::default().sws_limit),
+            ..DesignObjectives::default()
+        },
+        surrogate: a.approach.zip(a.plan),
+        seed: a.seed,
+        ..ReportInputs::new(car, road)
+    };
+    let figures_dir = a.out.join("figures");
+    std::fs::create_dir_all(&figures_dir).map_err(|e| {
+        RideError::field(
+            "out",
+            format!("cannot create '{}': {e}", figures_dir.display()),
+        )
+    })?;
+    // Progress on stderr, one line per section with its time.
+    let start = std::time::Instant::now();
+    let mut last = (start, None::<usize>);
+    let report = build(&inputs, |k| {
+        let now = std::time::Instant::now();
+        if let Some(prev) = last.1 {
+            eprintln!(
+                "report: {} took {:.2} s",
+                SECTIONS[prev],
+                (now - last.0).as_secs_f64()
+            );
+        }
+        if k < SECTIONS.len() {
+            eprintln!("report: {} ...", SECTIONS[k]);
+        }
+        last = (now, Some(k));
+    })?;
+    let render = std::time::Instant::now();
+    let docs = report.documents()?;
+    let write = |name: &Path, text: &str| {
+        std::fs::write(name, text)
+            .map_err(|e| RideError::field("out", format!("cannot write '{}': {e}", name.display())))
+    };
+    write(&a.out.join("report.html"), &docs.html)?;
+    write(&a.out.join("report.md"), &docs.markdown)?;
+    write(&a.out.join("report.json"), &json(&report)?)?;
+    for (name, text) in report.csv_files() {
+        write(&a.out.join(name), &text)?;
+    }
+    for f in &docs.figures {
+        write(&figures_dir.join(format!("{}.svg", f.key)), &f.svg)?;
+    }
+    eprintln!(
+        "report: rendering {} figures took {:.2} s; {:.2} s in all",
+        docs.figures.len(),
+        render.elapsed().as_secs_f64(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(format!(
+        "{}: {} (and report.md, report.json, {} figures, CSV tables)\n",
+        report.title(),
+        a.out.join("report.html").display(),
+        docs.figures.len()
+    ))
 }

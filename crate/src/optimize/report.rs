@@ -84,11 +84,12 @@ pub struct OptimizeReport {
     pub hifi_recheck: Recheck,
 }
 
-/// Optimises `car`'s front spring and damper on `road` over the default design box by
-/// `method` on `evaluator` (a surrogate fitted at `plan`) under `objectives`.
+/// Optimises `car`'s front spring and damper on `road` over `design_box` by `method` on
+/// `evaluator` (a surrogate fitted at `plan`) under `objectives`.
 pub fn optimize_report(
     car: &Car,
     road: &Road,
+    design_box: &DesignBox,
     evaluator: EvaluatorSpec,
     plan: PlanSpec,
     method: &Method,
@@ -97,10 +98,9 @@ pub fn optimize_report(
     objectives.validate()?;
     let hifi = HiFi::new(car, road)?;
     let datum = hifi.evaluate(car.front.spring, car.front.damper)?;
-    let design_box = DesignBox::default();
-    let model = evaluator.build(car, road, &design_box, plan)?;
+    let model = evaluator.build(car, road, design_box, plan)?;
     let problem =
-        SuspensionProblem::new(model, design_box, objectives, DosContext::new(car, datum))?;
+        SuspensionProblem::new(model, *design_box, objectives, DosContext::new(car, datum))?;
     let study = run_study(&problem, method, None)?;
     let hifi_recheck = recheck(&study.pick, &hifi, &datum)?;
     Ok(OptimizeReport {
