@@ -196,3 +196,28 @@ fn an_infeasible_scenario_says_why_and_reports_are_deterministic() {
     );
     assert_eq!(docs.html, again.documents().unwrap().html);
 }
+
+/// The page's "Download report" is the same report: the explorer session's study report
+/// of a view equals `build` on that view's car, road, box, objectives and surrogate.
+#[test]
+fn the_page_session_builds_the_same_report() {
+    use ridelab::explorer::{Session, State};
+    let state = State {
+        car: "suv".into(),
+        class: "C".into(),
+        ..State::default()
+    };
+    let session = Session::new(state).unwrap();
+    let page = session.study_report().unwrap();
+    let s = session.scenario();
+    let inputs = ReportInputs {
+        surrogate: Some((s.surrogate, s.plan)),
+        ..suv_on_class_c()
+    };
+    let lib = build(&inputs, |_| {}).unwrap();
+    assert_eq!(
+        serde_json::to_string(&page).unwrap(),
+        serde_json::to_string(&lib).unwrap()
+    );
+    assert!(page.optimisation.infeasible.is_some());
+}
