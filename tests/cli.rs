@@ -121,12 +121,30 @@ fn eval_json_equals_the_library() {
             "--json",
         ]);
         let r = report(kind, &Car::datum(), &Road::default()).unwrap();
-        for (k, x) in [("bacc", r.bacc), ("dtl", r.dtl), ("sws", r.sws)] {
+        for (k, x) in [
+            ("bacc", r.bacc),
+            ("dtl", r.dtl),
+            ("sws", r.sws),
+            ("bacc_wk", r.bacc_wk),
+        ] {
             // JSON carries the shortest round-trip decimal; the same code gives the same number.
             let y = v[k].as_f64().unwrap();
             assert!((y / x - 1.0).abs() < 1e-14, "{model} {k}: {y} vs {x}");
         }
         assert!(!v["modes"].as_array().unwrap().is_empty());
+        // The weighted comfort by the frequency route (an independent computation).
+        let wk = ridelab::criteria::bacc_wk_spectral(
+            &kind.build(&Car::datum()),
+            &Road::default(),
+            1e-11,
+        )
+        .unwrap();
+        assert!(
+            (r.bacc_wk / wk - 1.0).abs() < 1e-8,
+            "{model}: {} vs {wk}",
+            r.bacc_wk
+        );
+        assert_eq!(v["comfort"], ridelab::criteria::comfort_label(r.bacc_wk));
     }
     // --ks/--cs override the front corner.
     let v = json(&[

@@ -494,7 +494,8 @@ fn eval(a: EvalArgs) -> Result<String> {
 fn text_report(r: &Report) -> String {
     let mut s = format!(
         "{} model, {} on ISO class {:?} at {} m/s ({:?} tracks)\nKs {:.1} N/m, Cs {:.1} N s/m\n\
-         BAcc {:.5} m/s^2\nDTL  {:.3} N ({:.2} % of static wheel load)\nSWS  {:.4} mm\n\
+         BAcc {:.5} m/s^2 (ISO 2631-1 Wk-weighted {:.5} m/s^2: {})\n\
+         DTL  {:.3} N ({:.2} % of static wheel load)\nSWS  {:.4} mm\n\
          route {} (frequency route differs by {:.1e})\n",
         match r.model {
             ModelKind::Quarter => "Quarter-car (LoFi)",
@@ -507,6 +508,8 @@ fn text_report(r: &Report) -> String {
         r.ks,
         r.cs,
         r.bacc,
+        r.bacc_wk,
+        r.comfort,
         r.dtl,
         100.0 * r.dtl_relative,
         1e3 * r.sws,
