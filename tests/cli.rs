@@ -303,6 +303,7 @@ fn optimize_by_library(evaluator: &str, method: Method) -> Value {
         sprung_mass: q.ms,
         tire_stiffness: q.kt,
         datum,
+        static_wheel_load: car.front_wheel_load(),
     };
     let design_box = ridelab::DesignBox::default();
     let eval: Box<dyn Evaluator> = match evaluator {
@@ -611,6 +612,28 @@ fn bad_input_is_one_line_naming_the_option_with_exit_code_2() {
         (&["eval", "--model", "full", "--ks", "inf"], "ks"),
         (&["frobnicate"], "command"),
         (&["report", "--ks-range", "40000:10000"], "ks-range"),
+        (&["optimize", "--dtl-margin", "0"], "dtl_margin"),
+        (&["optimize", "--travel", "25"], "travel"),
+        (
+            &["map", "--model", "quarter", "--travel", "0.025:-3"],
+            "travel",
+        ),
+        // Class C: RMS DTL is about 770 N at the datum; F_static / 10 = 498 N is out of reach
+        // in the whole box.
+        (
+            &[
+                "optimize",
+                "--evaluator",
+                "quarter",
+                "--class",
+                "C",
+                "--sws-limit",
+                "1",
+                "--dtl-margin",
+                "10",
+            ],
+            "dtl_margin",
+        ),
         (&["report", "--seed", "-1"], "seed"),
         (&["report", "--approach", "pba-ml"], "approach"),
         (&["report", "--out", "/proc/ridelab-report"], "out"),
@@ -939,4 +962,33 @@ fn report_writes_the_library_report() {
     for (name, text) in lib.csv_files() {
         assert_eq!(read(name), text, "{name}");
     }
+}
+
+/// The tyre-load margin and the travel budget shape the front: every front point and the
+/// pick meet both (RMS DTL <= F_static / 14, 3 RMS SWS <= 20 mm), while the default front
+/// has points that break them.
+#[test]
+fn optimize_meets_the_tyre_load_margin_and_the_travel_budget() {
+    let f_static = Car::datum().front_wheel_load();
+    let ok = |p: &Value| {
+        p["dtl"].as_f64().unwrap() * 14.0 <= f_static * (1.0 + 1e-12)
+            && 3.0 * p["sws"].as_f64().unwrap() <= 0.02 * (1.0 + 1e-12)
+    };
+    let base = json(&["optimize", "--evaluator", "quarter", "--json"]);
+    let front = base["front"].as_array().unwrap();
+    assert!(front.iter().any(|p| !ok(p)), "the limits should bind");
+    let v = json(&[
+        "optimize",
+        "--evaluator",
+        "quarter",
+        "--dtl-margin",
+        "14",
+        "--travel",
+        "0.02:3",
+        "--json",
+    ]);
+    let front = v["front"].as_array().unwrap();
+    assert!(front.len() > 10);
+    assert!(front.iter().all(ok));
+    assert!(ok(&v["pick"]["criteria"]));
 }

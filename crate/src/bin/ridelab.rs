@@ -114,9 +114,8 @@ struct OptimizeArgs {
     /// stm (space transformation) or nsga2.
     #[arg(long, default_value = "stm", value_parser = ["stm", "nsga2"])]
     method: String,
-    /// RMS SWS limit, m [default: 0.007].
-    #[arg(long, value_name = "M", value_parser = number, allow_negative_numbers = true)]
-    sws_limit: Option<f64>,
+    #[command(flatten)]
+    objectives: ObjectiveArgs,
     /// STM grid points per variable, 2..2001.
     #[arg(long, default_value_t = StmParams::default().grid, value_parser = count, allow_negative_numbers = true)]
     grid: usize,
@@ -162,6 +161,36 @@ struct MapArgs {
     /// Also write PREFIX-bacc.svg, PREFIX-dtl.svg and PREFIX-sws.svg.
     #[arg(long, value_name = "PREFIX")]
     svg: Option<String>,
+    #[command(flatten)]
+    objectives: ObjectiveArgs,
+}
+
+/// Design objectives beyond the defaults (optimize, report, map).
+#[derive(Args)]
+struct ObjectiveArgs {
+    /// RMS SWS limit, m [default: 0.007].
+    #[arg(long, value_name = "M", value_parser = number, allow_negative_numbers = true)]
+    sws_limit: Option<f64>,
+    /// Tyre-load margin K: RMS DTL at most the static wheel load / K (e.g. 3) [default: off].
+    #[arg(long, value_name = "K", value_parser = number, allow_negative_numbers = true)]
+    dtl_margin: Option<f64>,
+    /// Travel budget M:N: N x RMS SWS within M metres of bump travel (e.g. 0.025:3) [default: off].
+    #[arg(long, value_name = "M:N", value_parser = |s: &str| DesignBox::parse_range("travel", s), allow_negative_numbers = true)]
+    travel: Option<(f64, f64)>,
+}
+
+impl ObjectiveArgs {
+    /// The objectives: the defaults with these options applied, validated.
+    fn objectives(&self) -> Result<DesignObjectives> {
+        let o = DesignObjectives {
+            sws_limit: self.sws_limit.or(DesignObjectives::default().sws_limit),
+            dtl_margin: self.dtl_margin,
+            travel: self.travel,
+            ..DesignObjectives::default()
+        };
+        o.validate()?;
+        Ok(o)
+    }
 }
 
 #[derive(Args)]
@@ -244,9 +273,8 @@ struct ReportArgs {
     /// Cs range of the design box, min:max (N s/m).
     #[arg(long, value_name = "MIN:MAX", default_value = "500:4000", value_parser = |s: &str| DesignBox::parse_range("cs-range", s))]
     cs_range: (f64, f64),
-    /// RMS SWS limit, m [default: 0.007].
-    #[arg(long, value_name = "M", value_parser = number, allow_negative_numbers = true)]
-    sws_limit: Option<f64>,
+    #[command(flatten)]
+    objectives: ObjectiveArgs,
     /// The surrogate of sections 4 and 5 [default: the study's best at 10 HiFi samples].
     #[arg(long, requires = "plan")]
     approach: Option<SurrogateSpec>,
@@ -556,10 +584,7 @@ fn doe(a: DoeArgs) -> Result<String> {
 fn optimize(a: OptimizeArgs) -> Result<String> {
     let svg = svg_target(a.svg.as_deref())?;
     let (car, road) = car_and_road(&a.car)?;
-    let objectives = DesignObjectives {
-        sws_limit: a.sws_limit.or(DesignObjectives::default().sws_limit),
-        ..DesignObjectives::default()
-    };
+    let objectives = a.objectives.objectives()?;
     let method = if a.method == "stm" {
         Method::Stm(StmParams {
             grid: a.grid,
@@ -741,6 +766,7 @@ fn map_cmd(a: MapArgs) -> Result<String> {
         } else {
             Scale::Absolute
         },
+        objectives: a.objectives.objectives()?,
         ..MapSettings::default()
     };
     let r = map_report(a.model, &car, &road, &settings)?;
@@ -801,10 +827,7 @@ fn report_cmd(a: ReportArgs) -> Result<String> {
     design_box.validate()?;
     let inputs = ReportInputs {
         design_box,
-        objectives: DesignObjectives {
-            sws_limit: a.sws_limit.or(DesignObjectives::default().sws_limit),
-            ..DesignObjectives::default()
-        },
+        objectives: a.objectives.objectives()?,
         surrogate: a.approach.zip(a.plan),
         seed: a.seed,
         ..ReportInputs::new(car, road)

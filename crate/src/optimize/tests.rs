@@ -13,6 +13,7 @@ fn context() -> DosContext {
         sprung_mass: 467.7,
         tire_stiffness: 175_500.0,
         datum: QuarterCar.evaluate(20_000.0, 1_500.0).unwrap(),
+        static_wheel_load: 4_500.0,
     }
 }
 
