@@ -613,6 +613,7 @@ fn bad_input_is_one_line_naming_the_option_with_exit_code_2() {
         (&["frobnicate"], "command"),
         (&["report", "--ks-range", "40000:10000"], "ks-range"),
         (&["optimize", "--dtl-margin", "0"], "dtl_margin"),
+        (&["optimize", "--pick", "asf:2"], "pick"),
         (&["optimize", "--travel", "25"], "travel"),
         (
             &["map", "--model", "quarter", "--travel", "0.025:-3"],
@@ -991,4 +992,37 @@ fn optimize_meets_the_tyre_load_margin_and_the_travel_budget() {
     assert!(front.len() > 10);
     assert!(front.iter().all(ok));
     assert!(ok(&v["pick"]["criteria"]));
+}
+
+/// `--pick knee` and `--pick asf:W` print the library's repick of the same front with its
+/// HiFi re-check.
+#[test]
+fn optimize_pick_rules_equal_the_library() {
+    use ridelab::optimize::{optimize_report, EvaluatorSpec, PickRule};
+    for rule in ["knee", "asf:0.8"] {
+        let v = json(&[
+            "optimize",
+            "--evaluator",
+            "quarter",
+            "--pick",
+            rule,
+            "--json",
+        ]);
+        let car = Car::datum();
+        let road = Road::default();
+        let mut lib = optimize_report(
+            &car,
+            &road,
+            &ridelab::DesignBox::default(),
+            EvaluatorSpec::Model(ModelKind::Quarter),
+            PlanSpec::parse("ae:10").unwrap(),
+            &Method::Stm(StmParams::default()),
+            ridelab::dos::DesignObjectives::default(),
+        )
+        .unwrap();
+        lib.repick(rule.parse::<PickRule>().unwrap(), &car, &road)
+            .unwrap();
+        assert_same_json(&v, &to_json(&lib), rule);
+        assert_eq!(v["pick"]["rule"], rule);
+    }
 }

@@ -16,7 +16,7 @@ use ridelab::dos::DesignObjectives;
 use ridelab::error::{Result, RideError};
 use ridelab::maps::{map_csv, map_report, Axis, Grid, MapSettings, Scale};
 use ridelab::optimize::{
-    optimize_report, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, StmParams,
+    optimize_report, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, PickRule, StmParams,
 };
 use ridelab::report::{build, ReportInputs, SECTIONS};
 use ridelab::road::{Road, RoadClass, Tracks};
@@ -116,6 +116,9 @@ struct OptimizeArgs {
     method: String,
     #[command(flatten)]
     objectives: ObjectiveArgs,
+    /// The pick: minmax (the thesis's), knee, or asf:W (weighted, comfort weight W in 0..1).
+    #[arg(long, default_value = "minmax")]
+    pick: PickRule,
     /// STM grid points per variable, 2..2001.
     #[arg(long, default_value_t = StmParams::default().grid, value_parser = count, allow_negative_numbers = true)]
     grid: usize,
@@ -598,7 +601,7 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
             ..Nsga2Params::default()
         })
     };
-    let out = optimize_report(
+    let mut out = optimize_report(
         &car,
         &road,
         &DesignBox::default(),
@@ -607,6 +610,9 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
         &method,
         objectives,
     )?;
+    if a.pick != PickRule::MinMax {
+        out.repick(a.pick, &car, &road)?;
+    }
     if let Some(path) = &svg {
         write_svg(
             path,
@@ -628,7 +634,7 @@ fn optimize_text(out: &OptimizeReport) -> String {
     let p = &study.pick;
     format!(
         "front: {} points on {} ({} evaluations), hypervolume {:.4} (m/s^2) N against [{:.4}, {:.2}]\n\
-         min-max pick: Ks {:.1} N/m, Cs {:.1} N s/m\n  BAcc {:+.2} %, DTL {:+.2} %, SWS {:+.2} % against the datum\n\
+         {} pick: Ks {:.1} N/m, Cs {:.1} N s/m (pseudo-weights comfort {:.2}, road holding {:.2})\n  BAcc {:+.2} %, DTL {:+.2} %, SWS {:+.2} % against the datum\n\
          HiFi re-check: BAcc {:+.2} %, DTL {:+.2} %, SWS {:+.2} % (prediction error {:.3} / {:.3} / {:.3} %)\n",
         study.front.len(),
         study.evaluator,
@@ -636,8 +642,11 @@ fn optimize_text(out: &OptimizeReport) -> String {
         study.hypervolume,
         study.reference_point[0],
         study.reference_point[1],
+        p.rule,
         p.ks,
         p.cs,
+        p.pseudo_weights[0],
+        p.pseudo_weights[1],
         p.change_percent[0],
         p.change_percent[1],
         p.change_percent[2],
