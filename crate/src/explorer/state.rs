@@ -14,7 +14,7 @@ use crate::LoFi;
 use serde::{Deserialize, Serialize};
 
 /// The JS names of the [`State`] fields.
-pub const STATE_FIELDS: [&str; 17] = [
+pub const STATE_FIELDS: [&str; 19] = [
     "car",
     "carJson",
     "ks",
@@ -30,6 +30,8 @@ pub const STATE_FIELDS: [&str; 17] = [
     "bounceBand",
     "dampingBand",
     "noWorse",
+    "dtlMargin",
+    "travel",
     "surrogate",
     "plan",
 ];
