@@ -12,9 +12,14 @@ mod closed_form;
 mod exact;
 mod hqr;
 mod modal;
+mod poly;
+mod residue;
 mod spectral;
 
 pub use closed_form::quarter_car_rms;
 pub use exact::criteria_exact;
 pub use modal::{criteria_fast_exact, criteria_modal};
+pub use residue::{
+    Certified, Decline, Residue, ResidueFamily, ResidueRoute, MAX_DOF, RESIDUE_TOLERANCE,
+};
 pub use spectral::{criteria_spectral, SpectralCriteria, Spectrum};

@@ -16,7 +16,7 @@
 mod full;
 mod quarter;
 
-pub use full::{full_car, symmetric_half};
+pub use full::{antisymmetric_half, full_car, symmetric_half};
 pub use quarter::quarter_car;
 
 use crate::error::{Result, RideError};
