@@ -8,8 +8,8 @@ use crate::criteria::{
 };
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
+use crate::model::Mode;
 use crate::model::{antisymmetric_half, full_car, quarter_car, symmetric_half, LinearModel};
-use crate::modes::Mode;
 use crate::road::{Road, Tracks};
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -22,6 +22,13 @@ pub enum ModelKind {
     Quarter,
     /// HiFi: 7-DOF full car.
     Full,
+}
+
+impl std::str::FromStr for ModelKind {
+    type Err = RideError;
+    fn from_str(s: &str) -> Result<ModelKind> {
+        ModelKind::parse(s)
+    }
 }
 
 impl ModelKind {
@@ -54,6 +61,16 @@ pub struct LoFi {
     pub car: Car,
     /// The road.
     pub road: Road,
+}
+
+impl LoFi {
+    /// The LoFi evaluator of `car` on `road`.
+    pub fn new(car: &Car, road: &Road) -> LoFi {
+        LoFi {
+            car: car.clone(),
+            road: *road,
+        }
+    }
 }
 
 /// LoFi criteria of any quarter car on `road`: the closed forms for an undamped tyre,
@@ -231,12 +248,9 @@ impl HiFi {
     /// residue route, its error bound; counted in [`HiFi::route_counts`].
     pub fn evaluate_routed(&self, ks: f64, cs: f64) -> Result<Routed> {
         // The rest of the car was checked in `new`; a valid design needs no more than
-        // this, and the full check (which formats its field names) names the fault.
+        // these comparisons, and the design check (which formats the field) names a fault.
         if !(ks.is_finite() && cs.is_finite()) || ks <= 0.0 || cs <= 0.0 {
-            let mut front = self.car.front;
-            front.spring = ks;
-            front.damper = cs;
-            front.validate("front")?;
+            crate::car::check_design(ks, cs)?;
         }
         let routed = self.route(ks, cs)?;
         self.tally.add(routed.route);

@@ -1036,7 +1036,8 @@ async function runTime() {
     return;
   }
   const opts = { duration: 10, dt: 0.001, seed: seed.value, f_min: 0.1, f_max: 200, decimate: 10 };
-  if (bump.value !== undefined) opts.asymmetric = [bump.value * 1000, rebound.value * 1000];
+  // With a bump / rebound law the run's Cs is their mean (the core's rule, as in `ridelab simulate`).
+  if (bump.value !== undefined) opts.damper = { bump: bump.value * 1000, rebound: rebound.value * 1000 };
   const status = $('tp-status');
   status.textContent = 'Simulating…';
   $('tp-run').disabled = true;
@@ -1051,7 +1052,7 @@ async function runTime() {
     app.timePanel.draw(r);
     renderTimeStale();
     $('tp-play').disabled = false;
-    status.textContent = `Done in ${fmt(performance.now() - t0, 3)} ms (${opts.asymmetric ? `asymmetric damper ${fmt(bump.value, 3)} / ${fmt(rebound.value, 3)} kNs/m` : 'linear damper'}, seed ${seed.value}).`;
+    status.textContent = `Done in ${fmt(performance.now() - t0, 3)} ms (${opts.damper ? `asymmetric damper ${fmt(bump.value, 3)} / ${fmt(rebound.value, 3)} kNs/m, so Cs = their mean ${fmt(r.damperRate / 1000, 3)} kNs/m` : 'linear damper'}, seed ${seed.value}).`;
   } catch (e) {
     status.textContent = `The time response failed: ${e.message || e}`;
   } finally {

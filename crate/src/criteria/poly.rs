@@ -47,6 +47,7 @@ impl Poly {
     }
 
     /// Number of coefficients in use (degree + 1, or 0).
+    #[cfg(test)]
     pub fn len(&self) -> usize {
         self.len
     }
