@@ -1,9 +1,13 @@
 //! Criteria at one design point: LoFi (closed form) and HiFi by the residue route (the
 //! route the maps use) against the modal route (the reference evaluator) in the same
-//! run, with the Kronecker and frequency routes as baselines.
+//! run, with the Kronecker and frequency routes as baselines; and a 160 x 120 HiFi map
+//! over the default design box by both routes, on one thread (the page's worker) and
+//! on the native threads.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use ridelab::criteria::{criteria_exact, criteria_spectral};
+use ridelab::design::DesignBox;
+use ridelab::maps::{default_threads, Dcs, Grid, Scale};
 use ridelab::model::full_car;
 use ridelab::road::{Road, Tracks};
 use ridelab::{Car, Evaluator, HiFi, LoFi};
@@ -51,6 +55,18 @@ fn bench(c: &mut Criterion) {
         b.iter(|| criteria_spectral(black_box(&full), &road, 1e-6))
     });
     g.finish();
+    let grid = Grid::over_box(&DesignBox::default(), 160, 120).unwrap();
+    let datum = (car.front.spring, car.front.damper);
+    let mut m = c.benchmark_group("hifi_map_160x120");
+    m.sample_size(10);
+    for (name, threads) in [("1_thread", 1), ("threads", default_threads())] {
+        for (route, e) in [("residue", &hifi), ("modal", &modal)] {
+            m.bench_function(format!("{route}_{name}"), |b| {
+                b.iter(|| Dcs::compute_with_threads(e, &grid, datum, Scale::Absolute, threads))
+            });
+        }
+    }
+    m.finish();
     // Every point above went by the route its name says.
     assert_eq!(hifi.route_counts().others(), 0);
     assert_eq!(hifi_indep.route_counts().others(), 0);
