@@ -4,14 +4,15 @@
 use crate::car::{Car, QuarterCar};
 use crate::criteria::{
     bacc_wk_exact, bacc_wk_spectral, comfort_label, criteria_exact, criteria_fast_exact,
-    criteria_spectral, quarter_car_rms,
+    criteria_modal, criteria_spectral, quarter_car_rms, Certified, ResidueFamily, ResidueRoute,
 };
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::model::Mode;
-use crate::model::{full_car, quarter_car, symmetric_half, LinearModel};
+use crate::model::{antisymmetric_half, full_car, quarter_car, symmetric_half, LinearModel};
 use crate::road::{Road, Tracks};
 use serde::{Deserialize, Serialize};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Which vehicle model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -95,12 +96,91 @@ impl Evaluator for LoFi {
     }
 }
 
-/// HiFi evaluator: the full car with both front corners set to `(ks, cs)`, by the
-/// exact modal route (Kronecker route as fallback). With correlated tracks it works on
-/// the left-right symmetric half (8 states, exact for mirror-symmetric cars).
+/// Which route gave a HiFi value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum HiFiRoute {
+    /// The residue route ([`crate::criteria::ResidueRoute`]): its error bound held.
+    Residue,
+    /// The modal route ([`criteria_modal`]): a fallback, or the reference evaluator's route.
+    Modal,
+    /// The Kronecker Lyapunov route ([`criteria_exact`]), where the modal route declines.
+    Kronecker,
+    /// The frequency route with ISO 8608's low cutoff, on a road warp.
+    Spectral,
+}
+
+/// How many points each route has given since a [`HiFi`] was made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct RouteCounts {
+    /// Points by the residue route.
+    pub residue: u64,
+    /// Points by the modal route.
+    pub modal: u64,
+    /// Points by the Kronecker route.
+    pub kronecker: u64,
+    /// Points by the frequency route (road warp).
+    pub spectral: u64,
+}
+
+impl RouteCounts {
+    /// Points not given by the residue route (its fallbacks, or every point of the
+    /// reference evaluator).
+    pub fn others(&self) -> u64 {
+        self.modal + self.kronecker + self.spectral
+    }
+}
+
+/// Thread-safe route counters of a [`HiFi`]: bookkeeping, not part of its value (clones
+/// copy the counts, and any two tallies compare equal).
+#[derive(Debug, Default)]
+struct Tally([AtomicU64; 4]);
+
+impl Tally {
+    fn add(&self, route: HiFiRoute) {
+        self.0[route as usize].fetch_add(1, Ordering::Relaxed);
+    }
+
+    fn counts(&self) -> RouteCounts {
+        let n = |r: HiFiRoute| self.0[r as usize].load(Ordering::Relaxed);
+        RouteCounts {
+            residue: n(HiFiRoute::Residue),
+            modal: n(HiFiRoute::Modal),
+            kronecker: n(HiFiRoute::Kronecker),
+            spectral: n(HiFiRoute::Spectral),
+        }
+    }
+}
+
+impl Clone for Tally {
+    fn clone(&self) -> Self {
+        Tally(std::array::from_fn(|i| {
+            AtomicU64::new(self.0[i].load(Ordering::Relaxed))
+        }))
+    }
+}
+
+impl PartialEq for Tally {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
+}
+
+/// HiFi evaluator: the full car with both front corners set to `(ks, cs)`.
 ///
-/// The model is affine in the design: `K = K0 + ks dK`, `C = C0 + cs dC`, so it is
-/// assembled once and each evaluation only adds two scaled matrices.
+/// Each point goes by the residue route ([`crate::criteria::ResidueRoute`], a few
+/// microseconds) when its first-order error bound is within
+/// [`crate::criteria::RESIDUE_TOLERANCE`], and otherwise by the exact modal route with
+/// the Kronecker route behind it (a road warp goes to the frequency route); which route
+/// gave a point is returned by [`HiFi::evaluate_routed`] and counted in
+/// [`HiFi::route_counts`]. With correlated tracks the model is the left-right symmetric
+/// half (8 states, exact for mirror-symmetric cars); with independent tracks the residue
+/// route sums the symmetric and antisymmetric halves and the fallbacks use the full car.
+/// [`HiFi::with_modal_route`] makes the reference evaluator without the residue route.
+///
+/// The model is affine in the design: `K = K0 + ks dK`, `C = C0 + cs dK`, `dK` the front
+/// suspension's (built from the front spring alone, so it carries no rounding from a
+/// difference), so it is assembled once and each fallback only adds two scaled matrices.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HiFi {
     car: Car,
@@ -108,31 +188,39 @@ pub struct HiFi {
     base: LinearModel,
     dk: nalgebra::DMatrix<f64>,
     dc: nalgebra::DMatrix<f64>,
+    residue: Option<ResidueRoute>,
+    tally: Tally,
 }
 
 impl HiFi {
-    /// Prepares the HiFi evaluator of `car` on `road`.
+    /// Prepares the HiFi evaluator of `car` on `road`, with the residue route where it
+    /// applies (every car on correlated tracks, and on independent tracks unless the
+    /// track widths differ: a road warp).
     pub fn new(car: &Car, road: &Road) -> Result<HiFi> {
+        let mut h = HiFi::with_modal_route(car, road)?;
+        h.residue = residue_route(car, road).ok();
+        Ok(h)
+    }
+
+    /// The reference HiFi evaluator: every point by the modal route (Kronecker behind it).
+    pub fn with_modal_route(car: &Car, road: &Road) -> Result<HiFi> {
         car.validate()?;
         road.validate()?;
-        let model_at = |ks: f64, cs: f64| {
-            let mut c = car.clone();
-            c.front.spring = ks;
-            c.front.damper = cs;
-            let full = full_car(&c);
-            match road.tracks {
-                Tracks::Correlated => symmetric_half(&full),
-                Tracks::Independent => full,
-            }
+        let (free, unit) = front_family(car);
+        let project = |m: &LinearModel| match road.tracks {
+            Tracks::Correlated => symmetric_half(m),
+            Tracks::Independent => m.clone(),
         };
-        let base = model_at(0.0, 0.0);
-        let unit = model_at(1.0, 1.0);
+        let base = project(&full_car(&free));
+        let unit = project(&full_car(&unit));
         Ok(HiFi {
             car: car.clone(),
             road: *road,
-            dk: &unit.k - &base.k,
-            dc: &unit.c - &base.c,
+            dk: unit.k,
+            dc: unit.c,
             base,
+            residue: None,
+            tally: Tally::default(),
         })
     }
 
@@ -145,26 +233,133 @@ impl HiFi {
     pub fn road(&self) -> &Road {
         &self.road
     }
+
+    /// Whether points go by the residue route first.
+    pub fn has_residue_route(&self) -> bool {
+        self.residue.is_some()
+    }
+
+    /// Points given by each route so far (all threads).
+    pub fn route_counts(&self) -> RouteCounts {
+        self.tally.counts()
+    }
+
+    /// The criteria at `(ks, cs)` (N/m, N s/m), the route that gave them and, for the
+    /// residue route, its error bound; counted in [`HiFi::route_counts`].
+    pub fn evaluate_routed(&self, ks: f64, cs: f64) -> Result<Routed> {
+        // The rest of the car was checked in `new`; a valid design needs no more than
+        // these comparisons, and the design check (which formats the field) names a fault.
+        if !(ks.is_finite() && cs.is_finite()) || ks <= 0.0 || cs <= 0.0 {
+            crate::car::check_design(ks, cs)?;
+        }
+        let routed = self.route(ks, cs)?;
+        self.tally.add(routed.route);
+        Ok(routed)
+    }
+
+    fn route(&self, ks: f64, cs: f64) -> Result<Routed> {
+        let by = |criteria: Criteria, route: HiFiRoute| Routed {
+            criteria,
+            route,
+            bound: None,
+        };
+        if let Some(r) = &self.residue {
+            // Anything the residue route cannot certify (or refuses) goes to the exact
+            // routes, which give the value or the verdict.
+            if let Ok(Certified::Exact { criteria, bound }) = r.criteria(ks, cs) {
+                return Ok(Routed {
+                    criteria,
+                    route: HiFiRoute::Residue,
+                    bound: Some(bound),
+                });
+            }
+        }
+        let mut m = self.base.clone();
+        m.k += ks * &self.dk;
+        m.c += cs * &self.dc;
+        let exact = match criteria_modal(&m, &self.road) {
+            Err(RideError::Numerical(msg)) if msg.starts_with("modal:") => {
+                criteria_exact(&m, &self.road).map(|c| by(c, HiFiRoute::Kronecker))
+            }
+            other => other.map(|c| by(c, HiFiRoute::Modal)),
+        };
+        match exact {
+            // A road warp: the frequency route with ISO 8608's low cutoff.
+            Err(RideError::Numerical(msg)) if msg.starts_with("road warp") => Ok(by(
+                criteria_spectral(&m, &self.road, 1e-8)?.criteria,
+                HiFiRoute::Spectral,
+            )),
+            other => other,
+        }
+    }
+}
+
+/// A HiFi value with the route that gave it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Routed {
+    /// The criteria.
+    pub criteria: Criteria,
+    /// The route.
+    pub route: HiFiRoute,
+    /// For the residue route, the bound on the relative error of the variances (the
+    /// criteria's relative error is half of it).
+    pub bound: Option<f64>,
+}
+
+/// The car with the front spring and damper set to zero, and the car that has only a
+/// unit front spring and damper (no masses, rear suspension or tyres): the full-car
+/// matrices of the second are exactly `dK` and `dC` of the front design.
+fn front_family(car: &Car) -> (Car, Car) {
+    let mut free = car.clone();
+    free.front.spring = 0.0;
+    free.front.damper = 0.0;
+    let bare_axle = crate::car::Axle {
+        unsprung_mass: 0.0,
+        spring: 0.0,
+        damper: 0.0,
+        tire_stiffness: 0.0,
+        tire_damping: 0.0,
+    };
+    let mut unit = car.clone();
+    unit.sprung_mass = 0.0;
+    unit.pitch_inertia = 0.0;
+    unit.roll_inertia = 0.0;
+    unit.front = crate::car::Axle {
+        spring: 1.0,
+        damper: 1.0,
+        ..bare_axle
+    };
+    unit.rear = bare_axle;
+    (free, unit)
+}
+
+/// The residue route of `car` on `road`: the symmetric half on correlated tracks; both
+/// halves with weights 1/2 on independent tracks (module doc of
+/// [`crate::model::antisymmetric_half`]), each half driven as one source.
+fn residue_route(car: &Car, road: &Road) -> Result<ResidueRoute> {
+    let one_source = Road {
+        tracks: Tracks::Correlated,
+        ..*road
+    };
+    let (free, unit) = front_family(car);
+    let (free, unit) = (full_car(&free), full_car(&unit));
+    let reference = (car.front.spring, car.front.damper);
+    let family = |half: fn(&LinearModel) -> LinearModel| {
+        let u = half(&unit);
+        ResidueFamily::new(&half(&free), &u.k, &u.c, &one_source, reference)
+    };
+    let symmetric = family(symmetric_half)?;
+    match road.tracks {
+        Tracks::Correlated => ResidueRoute::new(vec![(symmetric, 1.0)]),
+        Tracks::Independent => {
+            ResidueRoute::new(vec![(symmetric, 0.5), (family(antisymmetric_half)?, 0.5)])
+        }
+    }
 }
 
 impl Evaluator for HiFi {
     fn evaluate(&self, ks: f64, cs: f64) -> Result<Criteria> {
-        let mut front = self.car.front;
-        front.spring = ks;
-        front.damper = cs;
-        crate::car::check_design(ks, cs)?;
-        front.validate("front")?;
-        let mut m = self.base.clone();
-        m.k += ks * &self.dk;
-        m.c += cs * &self.dc;
-        match criteria_fast_exact(&m, &self.road) {
-            Ok(c) => Ok(c),
-            // A road warp: the frequency route with ISO 8608's low cutoff.
-            Err(RideError::Numerical(msg)) if msg.starts_with("road warp") => {
-                Ok(criteria_spectral(&m, &self.road, 1e-8)?.criteria)
-            }
-            Err(e) => Err(e),
-        }
+        self.evaluate_routed(ks, cs).map(|r| r.criteria)
     }
     fn name(&self) -> String {
         "full".into()

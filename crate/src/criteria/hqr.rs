@@ -13,7 +13,17 @@ use num_complex::Complex64 as C64;
 pub fn eigenvalues(a: &mut [f64], n: usize) -> Option<Vec<C64>> {
     balance(a, n);
     elmhes(a, n);
-    hqr(a, n)
+    let (mut wr, mut wi) = (vec![0.0; n], vec![0.0; n]);
+    hqr(a, n, &mut wr, &mut wi).then(|| (0..n).map(|i| C64::new(wr[i], wi[i])).collect())
+}
+
+/// Eigenvalues of the row-major upper Hessenberg `n x n` matrix `a` (destroyed), real
+/// parts into `wr[..n]` and imaginary parts into `wi[..n]`, without allocating; a complex
+/// pair is returned as two consecutive entries with `wi` of opposite signs, exactly
+/// conjugate. Returns false if the QR iteration does not converge.
+pub fn hessenberg_eigenvalues(a: &mut [f64], n: usize, wr: &mut [f64], wi: &mut [f64]) -> bool {
+    balance(a, n);
+    hqr(a, n, wr, wi)
 }
 
 /// Diagonal similarity scaling by powers of 2 so that rows and columns have comparable
@@ -104,10 +114,8 @@ fn elmhes(a: &mut [f64], n: usize) {
 }
 
 #[allow(clippy::many_single_char_names)]
-fn hqr(a: &mut [f64], n: usize) -> Option<Vec<C64>> {
+fn hqr(a: &mut [f64], n: usize, wr: &mut [f64], wi: &mut [f64]) -> bool {
     let at = |i: usize, j: usize| i * n + j;
-    let mut wr = vec![0.0; n];
-    let mut wi = vec![0.0; n];
     let mut anorm: f64 = 0.0;
     for i in 0..n {
         for j in i.saturating_sub(1)..n {
@@ -162,7 +170,7 @@ fn hqr(a: &mut [f64], n: usize) -> Option<Vec<C64>> {
                 break;
             }
             if its == 60 {
-                return None;
+                return false;
             }
             let (mut x, mut y, mut w) = (x, y, w);
             if its == 10 || its == 20 {
@@ -265,7 +273,7 @@ fn hqr(a: &mut [f64], n: usize) -> Option<Vec<C64>> {
             }
         }
     }
-    Some((0..n).map(|i| C64::new(wr[i], wi[i])).collect())
+    true
 }
 
 #[cfg(test)]

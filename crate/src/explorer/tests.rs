@@ -74,6 +74,30 @@ fn lofi_and_hifi_maps_equal_point_evaluations() {
 }
 
 #[test]
+fn the_pages_hifi_map_goes_by_the_residue_route_exact_to_1e_8() {
+    // The worker's map path (issue #18): the residue route, every cell within 1e-8
+    // relative of the modal reference route.
+    let mut x = session(|_| {});
+    let s = x.scenario().clone();
+    assert!(s.hifi().unwrap().has_residue_route());
+    let (nx, ny) = (16, 12);
+    let m = x.map(MapModel::HiFi, nx, ny).unwrap();
+    let reference = crate::HiFi::with_modal_route(&s.datum, &s.road).unwrap();
+    let planes = m.planes();
+    let mut worst = 0.0f64;
+    for j in 0..ny {
+        for i in 0..nx {
+            let (ks, cs) = m.grid().point(i, j);
+            let want = reference.evaluate(ks, cs).unwrap().to_array();
+            for (o, w) in want.iter().enumerate() {
+                worst = worst.max((planes[o * nx * ny + j * nx + i] / w - 1.0).abs());
+            }
+        }
+    }
+    assert!(worst <= 1e-8, "{worst:e}");
+}
+
+#[test]
 fn surrogate_map_and_error_map_agree_with_the_hifi() {
     let mut x = session(|_| {});
     let s = x.scenario().clone();

@@ -166,3 +166,64 @@ pub fn symmetric_half(full: &LinearModel) -> LinearModel {
         front_corners: full.front_corners.iter().map(|d| &st * d).collect(),
     }
 }
+
+/// The left-right antisymmetric half of a full-car model, `p = [phi, w_f, w_r]` with
+/// `q = S p`: roll, the front wheels moving by `+w_f` (right) and `-w_f` (left), the rear
+/// ones by `+w_r` and `-w_r`, no heave or pitch; driven by the antisymmetric road
+/// `a = (zr_right - zr_left) / 2`, one input per axle (wheel 0 front, wheel 1 rear at `L`).
+///
+/// A mirror-symmetric car (every car file) splits exactly into this half and the
+/// [`symmetric_half`] (driven by `(zr_right + zr_left) / 2`): with independent tracks
+/// of intensity `W` each, both halves see intensity `W / 2` and are uncorrelated, so
+/// `var = (var_symmetric + var_antisymmetric) / 2` with each half's variance taken with
+/// intensity `W` on one source (correlated tracks). Outputs are those of corner 1
+/// (front right), the input weights `+1` right and `-1` left.
+pub fn antisymmetric_half(full: &LinearModel) -> LinearModel {
+    let mut s = DMatrix::zeros(N, 3);
+    s[(2, 0)] = 1.0;
+    s[(3, 1)] = 1.0;
+    s[(4, 1)] = -1.0;
+    s[(5, 2)] = 1.0;
+    s[(6, 2)] = -1.0;
+    let st = s.transpose();
+    // Wheel inputs: front = right minus left front wheel, rear likewise.
+    let mut w = DMatrix::zeros(4, 2);
+    w[(0, 0)] = 1.0;
+    w[(1, 0)] = -1.0;
+    w[(2, 1)] = 1.0;
+    w[(3, 1)] = -1.0;
+    let wt = w.transpose();
+    let row = |r: &OutputRow| OutputRow {
+        q: &st * &r.q,
+        v: &st * &r.v,
+        a: &st * &r.a,
+        r: &wt * &r.r,
+    };
+    let behind = full.wheels[2].behind;
+    LinearModel {
+        dof_names: vec![
+            "body roll phi",
+            "wheel hop front, antisymmetric",
+            "wheel hop rear, antisymmetric",
+        ],
+        m: &st * &full.m * &s,
+        c: &st * &full.c * &s,
+        k: &st * &full.k * &s,
+        kr: &st * &full.kr * &w,
+        cr: &st * &full.cr * &w,
+        n_body: 1,
+        outputs: [
+            row(&full.outputs[0]),
+            row(&full.outputs[1]),
+            row(&full.outputs[2]),
+        ],
+        wheels: vec![
+            Wheel {
+                track: 0,
+                behind: 0.0,
+            },
+            Wheel { track: 0, behind },
+        ],
+        front_corners: full.front_corners.iter().map(|d| &st * d).collect(),
+    }
+}
