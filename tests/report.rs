@@ -73,6 +73,19 @@ fn verification_tables_are_the_library_numbers() {
         }
         assert!(rows.iter().any(|r| r.route.starts_with("time domain")));
     }
+    // The Wk-weighted comfort rows are the library's eval numbers, both routes within 1e-8.
+    for (row, kind) in r
+        .verification
+        .comfort
+        .iter()
+        .zip([ModelKind::Quarter, ModelKind::Full])
+    {
+        let lib = report(kind, &car, &road).unwrap();
+        assert!(relative(row.exact, lib.bacc_wk) < 1e-14, "{kind:?}");
+        assert!(relative(row.spectral, row.exact) < 1e-8, "{kind:?}");
+        assert_eq!(row.label, lib.comfort);
+        assert!(relative(row.bacc, lib.bacc) < 1e-10);
+    }
 }
 
 /// The before/after table: the datum row is the car's own design; every HiFi row is the
@@ -220,4 +233,29 @@ fn the_page_session_builds_the_same_report() {
         serde_json::to_string(&lib).unwrap()
     );
     assert!(page.optimisation.infeasible.is_some());
+}
+
+/// Another preset on the default road builds in full: fronts, picks and all 17 figures,
+/// its HiFi pick re-checked on that car's HiFi.
+#[test]
+fn the_compact_car_report_builds_with_fronts() {
+    let car = Car::preset("compact").unwrap();
+    let r = build(&ReportInputs::new(car.clone(), Road::default()), |_| {}).unwrap();
+    assert_eq!(r.scenario.car.name, car.name);
+    assert!(
+        r.optimisation.infeasible.is_none(),
+        "{:?}",
+        r.optimisation.infeasible
+    );
+    let docs = r.documents().unwrap();
+    assert_eq!(docs.figures.len(), 17);
+    let hifi = HiFi::new(&car, &Road::default()).unwrap();
+    let own = r
+        .optimisation
+        .table
+        .iter()
+        .find(|p| p.design.starts_with("HiFi STM"))
+        .unwrap();
+    let c = hifi.evaluate(own.ks, own.cs).unwrap();
+    assert!(relative(own.sws, c.sws) < 1e-10);
 }

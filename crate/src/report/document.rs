@@ -213,6 +213,35 @@ pub fn blocks(r: &MethodReport, figures: Vec<(usize, Vec<Figure>)>) -> Vec<Block
     for n in &v.notes {
         out.push(Block::Paragraph(format!("Note: {n}.")));
     }
+    out.push(Block::Paragraph(
+        "ISO 2631-1 frequency-weighted comfort (Wk, Annex A) at the datum design, by the exact \
+         route (the Wk filter appended to the model) and by frequency integration, with Annex \
+         C's likely reaction:"
+            .into(),
+    ));
+    out.push(Block::Table(
+        [
+            "model",
+            "BAcc [m/s^2]",
+            "Wk-weighted, exact [m/s^2]",
+            "Wk-weighted, frequency route [m/s^2]",
+            "ISO 2631-1 Annex C",
+        ]
+        .map(String::from)
+        .to_vec(),
+        v.comfort
+            .iter()
+            .map(|c| {
+                vec![
+                    c.model.clone(),
+                    format!("{:.6}", c.bacc),
+                    format!("{:.6}", c.exact),
+                    format!("{:.6}", c.spectral),
+                    c.label.clone(),
+                ]
+            })
+            .collect(),
+    ));
     out.push(Block::Paragraph("Modes of the LoFi:".into()));
     out.push(modes_table(&v.lofi_modes));
     out.push(Block::Paragraph("Modes of the HiFi:".into()));

@@ -24,7 +24,8 @@ pub mod markdown;
 use crate::analysis::{HiFi, ModelKind};
 use crate::car::{Car, QuarterCar};
 use crate::criteria::{
-    criteria_exact, criteria_modal, criteria_spectral, quarter_car_rms, Spectrum,
+    bacc_wk_exact, bacc_wk_spectral, comfort_label, criteria_exact, criteria_modal,
+    criteria_spectral, quarter_car_rms, Spectrum,
 };
 use crate::design::DesignBox;
 use crate::doe::{audze_eglais, gap_histogram};
@@ -167,6 +168,23 @@ pub struct Verification {
     pub hifi_modes: Vec<Mode>,
     /// FRFs of both models.
     pub frf: Frf,
+    /// ISO 2631-1 Wk-weighted comfort of both models, LoFi first.
+    pub comfort: Vec<ComfortRow>,
+}
+
+/// ISO 2631-1 Wk-weighted RMS body acceleration of one model by both routes.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ComfortRow {
+    /// "LoFi" or "HiFi".
+    pub model: String,
+    /// Unweighted RMS BAcc, m/s^2.
+    pub bacc: f64,
+    /// Wk-weighted, exact route (the frequency route where a road warp rules it out), m/s^2.
+    pub exact: f64,
+    /// Wk-weighted, frequency route, m/s^2.
+    pub spectral: f64,
+    /// ISO 2631-1 Annex C's label of `exact`.
+    pub label: String,
 }
 
 /// The maps of both models over the design box.
@@ -548,6 +566,23 @@ fn verify(car: &Car, road: &Road, seed: u64) -> Result<Verification> {
         format!("time domain, {RECORD_S} s record"),
         Criteria::from_array(simulate(ModelKind::Full, car, road, &hifi_record)?.rms),
     ));
+    let comfort = [
+        ("LoFi", &quarter, &lofi[0].1),
+        ("HiFi", &full, &spectral.criteria),
+    ]
+    .into_iter()
+    .map(|(name, model, plain)| {
+        let spectral = bacc_wk_spectral(model, road, 1e-10)?;
+        let exact = bacc_wk_exact(model, road).unwrap_or(spectral);
+        Ok(ComfortRow {
+            model: name.into(),
+            bacc: plain.bacc,
+            exact,
+            spectral,
+            label: comfort_label(exact).into(),
+        })
+    })
+    .collect::<Result<Vec<_>>>()?;
     let f: Vec<f64> = (0..121)
         .map(|i| 0.1 * 1000f64.powf(i as f64 / 120.0))
         .collect();
@@ -574,6 +609,7 @@ fn verify(car: &Car, road: &Road, seed: u64) -> Result<Verification> {
             hifi: frf(&full)?,
             f,
         },
+        comfort,
     })
 }
 
