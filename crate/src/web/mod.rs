@@ -17,6 +17,7 @@ pub use screen::{draw_line_chart_js, draw_map_frame_js};
 
 use crate::analysis::{report, ModelKind};
 use crate::car::{Car, PRESETS};
+use crate::chart::ColourMap;
 use crate::error::RideError;
 use crate::evaluate::Evaluator;
 use crate::explorer::{
@@ -151,6 +152,25 @@ pub fn presets() -> Result<JsValue, JsValue> {
         });
     }
     to_js(&out)
+}
+
+/// The 256 colours of a map colour scale (`name`: "viridis", "cividis" or "diverging")
+/// as 768 bytes, `r, g, b` per entry: the page paints its map images with the colours
+/// the core's charts use (see [`crate::chart::colour`]).
+#[wasm_bindgen(js_name = colourTable)]
+pub fn colour_table(name: &str) -> Result<Uint8Array, JsValue> {
+    let map: ColourMap = serde_wasm_bindgen::from_value(JsValue::from_str(name)).map_err(|_| {
+        js_error(RideError::field(
+            "colourMap",
+            format!("'{name}' is not 'viridis', 'cividis' or 'diverging'"),
+        ))
+    })?;
+    let mut rgb = Vec::with_capacity(3 * 256);
+    for k in 0..=255u8 {
+        let c = map.entry(k);
+        rgb.extend([c.0, c.1, c.2]);
+    }
+    Ok(Uint8Array::from(rgb.as_slice()))
 }
 
 /// The ISO 8608 classes with `Gd(n0)` in m^3: `[{name, gd}]`.
