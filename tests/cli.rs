@@ -2,8 +2,17 @@
 //! to the library's, one-line errors naming the option, exit code 2, never a panic.
 
 use ridelab::analysis::{report, ModelKind};
+use ridelab::car::PRESETS;
+use ridelab::dos::{DesignObjectives, DosContext};
+use ridelab::maps::{map_csv, map_report, Grid, MapSettings, Scale};
+use ridelab::optimize::{recheck, run_study, Method, Nsga2Params, StmParams, SuspensionProblem};
 use ridelab::road::Road;
-use ridelab::Car;
+use ridelab::surrogate::{
+    sample_plan, study, surrogate_report, LmOptions, PlanSpec, Setting, SurrogateSpec,
+};
+use ridelab::time_domain::{simulate, TimeOptions};
+use ridelab::{Car, Evaluator, HiFi, LoFi};
+use serde_json::Value;
 use std::process::Command;
 
 fn ridelab(args: &[&str]) -> (i32, String, String) {
@@ -18,10 +27,86 @@ fn ridelab(args: &[&str]) -> (i32, String, String) {
     )
 }
 
-fn json(args: &[&str]) -> serde_json::Value {
+fn json(args: &[&str]) -> Value {
     let (code, out, err) = ridelab(args);
     assert_eq!(code, 0, "{args:?}: {err}");
     serde_json::from_str(&out).expect("valid JSON")
+}
+
+/// The page's maps (the explorer's session, cell centres of the design box) and the
+/// CLI's maps over the same points are one computation: equal bit for bit, values and
+/// objective masks.
+#[test]
+fn the_page_and_the_cli_maps_are_the_same_numbers() {
+    use ridelab::explorer::{MapModel, Session, State};
+    let mut session = Session::new(State {
+        no_worse: Some([false, true, false]),
+        ..State::default()
+    })
+    .unwrap();
+    for (model, kind, nx, ny) in [
+        (MapModel::LoFi, "quarter", 16, 12),
+        (MapModel::HiFi, "full", 5, 4),
+    ] {
+        let page = session.map(model, nx, ny).unwrap();
+        let g = page.grid();
+        // Shortest round-trip decimals: the CLI reads back exactly these axes.
+        let range = |a: &ridelab::maps::Axis| format!("{:?}:{:?}:{}", a.min, a.max, a.n);
+        let v = json(&[
+            "map",
+            "--model",
+            kind,
+            "--ks-range",
+            &range(&g.ks),
+            "--cs-range",
+            &range(&g.cs),
+            "--json",
+        ]);
+        let values = &page.values;
+        for (name, field) in [
+            ("bacc", &values.bacc),
+            ("dtl", &values.dtl),
+            ("sws", &values.sws),
+        ] {
+            let cli: Vec<f64> = serde_json::from_value(v[name].clone()).unwrap();
+            assert_eq!(&cli, field, "{kind} {name}");
+        }
+        // The page judges "DTL no worse than the datum" too; the CLI's default objectives
+        // are the SWS limit only, so compare that bit.
+        let cli_mask: Vec<u8> = serde_json::from_value(v["feasibility"]["mask"].clone()).unwrap();
+        let sws_bit: Vec<u8> = page.broken().iter().map(|m| m & 1).collect();
+        assert_eq!(cli_mask, sws_bit, "{kind} mask");
+        assert!(
+            page.broken().iter().any(|m| m & 16 != 0),
+            "{kind}: the DTL objective shows"
+        );
+    }
+}
+
+#[test]
+fn help_and_version_go_to_stdout() {
+    let (code, out, _) = ridelab(&["--help"]);
+    assert_eq!(code, 0);
+    for command in [
+        "eval",
+        "doe",
+        "optimize",
+        "map",
+        "surrogate",
+        "study",
+        "simulate",
+        "presets",
+    ] {
+        assert!(out.contains(command), "{command} in --help");
+    }
+    let (code, out, _) = ridelab(&["simulate", "--help"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("--rebound-high"), "{out}");
+    let (code, out, _) = ridelab(&["--version"]);
+    assert_eq!(
+        (code, out.trim()),
+        (0, format!("ridelab {}", env!("CARGO_PKG_VERSION")).as_str())
+    );
 }
 
 #[test]
@@ -57,56 +142,394 @@ fn eval_json_equals_the_library() {
     assert_eq!(v["ks"].as_f64().unwrap(), 25_000.0);
 }
 
+/// Compares two JSON trees in full: the same keys, lengths, strings and booleans, and
+/// numbers equal to 1e-14 relative (the CLI prints the library's f64s as shortest round-trip
+/// decimals, so equal computations give equal numbers; 1e-14 only allows for the last digit).
+fn assert_same_json(got: &Value, want: &Value, path: &str) {
+    match (got, want) {
+        (Value::Number(a), Value::Number(b)) => {
+            let (x, y) = (a.as_f64().unwrap(), b.as_f64().unwrap());
+            assert!(
+                x == y || (x - y).abs() <= 1e-14 * x.abs().max(y.abs()),
+                "{path}: {x} vs {y}"
+            );
+        }
+        (Value::Array(a), Value::Array(b)) => {
+            assert_eq!(a.len(), b.len(), "{path}: length");
+            for (i, (x, y)) in a.iter().zip(b).enumerate() {
+                assert_same_json(x, y, &format!("{path}[{i}]"));
+            }
+        }
+        (Value::Object(a), Value::Object(b)) => {
+            let mut ka: Vec<&String> = a.keys().collect();
+            let mut kb: Vec<&String> = b.keys().collect();
+            ka.sort();
+            kb.sort();
+            assert_eq!(ka, kb, "{path}: keys");
+            for (k, x) in a {
+                assert_same_json(x, &b[k], &format!("{path}.{k}"));
+            }
+        }
+        _ => assert_eq!(got, want, "{path}"),
+    }
+}
+
+/// Counts the numbers in a JSON tree (to show a comparison covered the data).
+fn numbers_in(v: &Value) -> usize {
+    match v {
+        Value::Number(_) => 1,
+        Value::Array(a) => a.iter().map(numbers_in).sum(),
+        Value::Object(o) => o.values().map(numbers_in).sum(),
+        _ => 0,
+    }
+}
+
+fn to_json<T: serde::Serialize>(v: &T) -> Value {
+    serde_json::to_value(v).unwrap()
+}
+
 #[test]
-fn doe_map_and_optimize_print_their_fields() {
+fn doe_json_equals_the_library() {
     let v = json(&["doe", "--points", "5", "--json"]);
-    assert!((v["energy"].as_f64().unwrap() - 1.298_202_614_379_085).abs() < 1e-12);
-    assert_eq!(v["samples"].as_array().unwrap().len(), 5);
+    // N = 5 optimum [1, 3, 0, 4, 2] by hand: squared gaps 5 (4 pairs), 10 and 17 (2 each),
+    // 8 and 18, so E = 4/5 + 2/10 + 2/17 + 1/8 + 1/18 = 1.298202614379085.
+    let hand = 0.8 + 0.2 + 2.0 / 17.0 + 0.125 + 1.0 / 18.0;
+    assert!((v["energy"].as_f64().unwrap() - hand).abs() < 1e-12);
+    let lib = ridelab::doe::doe_report(5, 1, &ridelab::DesignBox::default()).unwrap();
+    assert_same_json(&v, &to_json(&lib), "doe");
+    let v = json(&["doe", "--points", "17", "--seed", "4", "--json"]);
+    let lib = ridelab::doe::doe_report(17, 4, &ridelab::DesignBox::default()).unwrap();
+    assert_same_json(&v, &to_json(&lib), "doe 17");
+}
 
-    let v = json(&[
-        "map",
-        "--model",
-        "quarter",
-        "--ks-range",
-        "10000:40000:5",
-        "--cs-range",
-        "500:4000:4",
-        "--json",
-    ]);
-    assert_eq!(v["bacc"].as_array().unwrap().len(), 20);
-    let (_, csv, _) = ridelab(&[
-        "map",
-        "--model",
-        "quarter",
-        "--ks-range",
-        "10000:40000:3",
-        "--cs-range",
-        "500:4000:2",
-        "--csv",
-    ]);
-    assert!(csv.starts_with("ks_n_per_m,cs_ns_per_m,bacc_m_per_s2,dtl_n,sws_m,feasible,broken"));
-    assert_eq!(csv.lines().count(), 1 + 6);
+#[test]
+fn map_json_and_csv_equal_the_library() {
+    for (model, kind) in [("quarter", ModelKind::Quarter), ("full", ModelKind::Full)] {
+        for relative in [false, true] {
+            let mut args = vec![
+                "map",
+                "--model",
+                model,
+                "--ks-range",
+                "10000:40000:5",
+                "--cs-range",
+                "500:4000:4",
+                "--class",
+                "c",
+                "--speed",
+                "25",
+            ];
+            if relative {
+                args.push("--relative");
+            }
+            let settings = MapSettings {
+                grid: Grid::parse("10000:40000:5", "500:4000:4").unwrap(),
+                scale: if relative {
+                    Scale::Relative
+                } else {
+                    Scale::Absolute
+                },
+                ..MapSettings::default()
+            };
+            let road = Road {
+                class: ridelab::RoadClass::C,
+                speed: 25.0,
+                ..Road::default()
+            };
+            let lib = map_report(kind, &Car::datum(), &road, &settings).unwrap();
+            let mut json_args = args.clone();
+            json_args.push("--json");
+            let v = json(&json_args);
+            let want = to_json(&lib);
+            assert_same_json(&v, &want, &format!("map {model} {relative}"));
+            // Every field value, the feasible set and the contours are in the comparison.
+            assert_eq!(v["bacc"].as_array().unwrap().len(), 20);
+            assert!(numbers_in(&want) > 3 * 20, "{model}: {}", numbers_in(&want));
+            args.push("--csv");
+            let (code, csv, err) = ridelab(&args);
+            assert_eq!(code, 0, "{err}");
+            assert_eq!(csv, map_csv(&lib), "{model} {relative}");
+            // The CSV's numbers are the map's: row k is Ks index k % 5, Cs index k / 5.
+            let rows: Vec<&str> = csv.lines().skip(1).collect();
+            assert_eq!(rows.len(), 20);
+            for (k, row) in rows.iter().enumerate() {
+                let cells: Vec<f64> = row.split(',').take(5).map(|c| c.parse().unwrap()).collect();
+                let i = lib.grid.index(k % 5, k / 5);
+                let want = [
+                    lib.ks_values[k % 5],
+                    lib.cs_values[k / 5],
+                    lib.bacc[i],
+                    lib.dtl[i],
+                    lib.sws[i],
+                ];
+                for (c, w) in cells.iter().zip(want) {
+                    assert!(
+                        (c - w).abs() <= 1e-14 * w.abs(),
+                        "{model} row {k}: {c} vs {w}"
+                    );
+                }
+            }
+        }
+    }
+}
 
-    let v = json(&[
-        "optimize",
-        "--evaluator",
-        "quarter",
-        "--method",
-        "nsga2",
-        "--population",
-        "20",
-        "--generations",
-        "10",
-        "--json",
-    ]);
-    assert!(!v["front"].as_array().unwrap().is_empty());
-    assert!(v["pick"]["ks"].as_f64().unwrap() >= 10_000.0);
-    assert!(v["hifi_recheck"]["rechecked"]["bacc"].as_f64().unwrap() > 0.0);
+/// The CLI's `optimize` output through the library: the datum on the HiFi, the problem on
+/// the chosen evaluator, the study, and the pick re-checked on the HiFi.
+fn optimize_by_library(evaluator: &str, method: Method) -> Value {
+    let car = Car::datum();
+    let road = Road::default();
+    let hifi = HiFi::new(&car, &road).unwrap();
+    let datum = hifi.evaluate(car.front.spring, car.front.damper).unwrap();
+    let q = car.quarter();
+    let ctx = DosContext {
+        sprung_mass: q.ms,
+        tire_stiffness: q.kt,
+        datum,
+    };
+    let design_box = ridelab::DesignBox::default();
+    let eval: Box<dyn Evaluator> = match evaluator {
+        "quarter" => Box::new(LoFi {
+            car: car.clone(),
+            road,
+        }),
+        "full" => Box::new(hifi.clone()),
+        name => {
+            let plan = PlanSpec::parse("ae:5").unwrap().plan().unwrap();
+            let samples = sample_plan(&hifi, &plan, &design_box).unwrap();
+            let setting = Setting::new(&car, &road, &design_box).unwrap();
+            Box::new(
+                SurrogateSpec::parse(name)
+                    .unwrap()
+                    .fit(&setting, &samples, &LmOptions::default())
+                    .unwrap(),
+            )
+        }
+    };
+    let problem =
+        SuspensionProblem::new(eval, design_box, DesignObjectives::default(), ctx).unwrap();
+    let study = run_study(&problem, &method, None).unwrap();
+    let check = recheck(&study.pick, &hifi, &datum).unwrap();
+    let mut v = to_json(&study);
+    v["datum"] = to_json(&datum);
+    v["hifi_recheck"] = to_json(&check);
+    v
+}
+
+#[test]
+fn optimize_json_equals_the_library() {
+    let nsga = Method::Nsga2(Nsga2Params {
+        population: 20,
+        generations: 10,
+        seed: 3,
+        ..Nsga2Params::default()
+    });
+    let stm = Method::Stm(StmParams {
+        grid: 41,
+        ..StmParams::default()
+    });
+    let cases: [(&[&str], &str, Method); 3] = [
+        (
+            &[
+                "--evaluator",
+                "quarter",
+                "--method",
+                "nsga2",
+                "--population",
+                "20",
+            ],
+            "quarter",
+            nsga,
+        ),
+        (
+            &["--evaluator", "full", "--method", "stm", "--grid", "41"],
+            "full",
+            stm.clone(),
+        ),
+        (
+            &["--evaluator", "vba-qts", "--plan", "ae:5", "--grid", "41"],
+            "vba-qts",
+            stm,
+        ),
+    ];
+    for (extra, evaluator, method) in cases {
+        let mut args = vec!["optimize", "--json"];
+        args.extend(extra);
+        if evaluator == "quarter" {
+            args.extend(["--generations", "10", "--seed", "3"]);
+        }
+        let v = json(&args);
+        let want = optimize_by_library(evaluator, method);
+        assert_same_json(&v, &want, &format!("optimize {evaluator}"));
+        // The whole front, the pick and the re-check are compared, not a length.
+        let front = want["front"].as_array().unwrap().len();
+        assert!(front >= 5, "{evaluator}: {front} front points");
+        assert_eq!(v["evaluator"], evaluator);
+    }
+}
+
+#[test]
+fn simulate_json_and_csv_equal_the_library() {
+    // The linear model only (no --bump/--rebound): the time-domain record and its RMS.
+    for (model, kind) in [("quarter", ModelKind::Quarter), ("full", ModelKind::Full)] {
+        let args = [
+            "simulate",
+            "--model",
+            model,
+            "--duration",
+            "3",
+            "--dt",
+            "0.004",
+            "--seed",
+            "9",
+            "--decimate",
+            "5",
+            "--tracks",
+            "independent",
+        ];
+        let car = Car::datum();
+        let road = Road {
+            tracks: ridelab::Tracks::Independent,
+            ..Road::default()
+        };
+        let opt = TimeOptions {
+            duration: 3.0,
+            dt: 0.004,
+            seed: 9,
+            decimate: 5,
+            // The CLI keeps the road below 0.4 / dt (80 % of the Nyquist frequency): 100 Hz.
+            f_max: TimeOptions::default().f_max.min(0.4 / 0.004),
+            ..TimeOptions::default()
+        };
+        let lib = simulate(kind, &car, &road, &opt).unwrap();
+        let mut json_args = args.to_vec();
+        json_args.push("--json");
+        let v = json(&json_args);
+        assert_same_json(&v, &to_json(&lib), &format!("simulate {model}"));
+        assert_eq!(v["t"].as_array().unwrap().len(), 750 / 5);
+        for k in 0..3 {
+            assert!(v["rms"][k].as_f64().unwrap() > 0.0);
+        }
+        let mut csv_args = args.to_vec();
+        csv_args.push("--csv");
+        let (code, csv, err) = ridelab(&csv_args);
+        assert_eq!(code, 0, "{err}");
+        let mut lines = csv.lines();
+        assert_eq!(lines.next(), Some("t_s,road_m,bacc_m_per_s2,dtl_n,sws_m"));
+        let rows: Vec<Vec<f64>> = lines
+            .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+            .collect();
+        assert_eq!(rows.len(), lib.t.len());
+        for (i, row) in rows.iter().enumerate() {
+            let want = [
+                lib.t[i],
+                lib.road[i],
+                lib.outputs[0][i],
+                lib.outputs[1][i],
+                lib.outputs[2][i],
+            ];
+            for (c, w) in row.iter().zip(want) {
+                assert!(
+                    (c - w).abs() <= 1e-14 * w.abs(),
+                    "{model} row {i}: {c} vs {w}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn surrogate_json_equals_the_library() {
+    for (approach, plan) in [
+        ("vba-qts", "ae:5"),
+        ("pba-smts", "grid:3"),
+        ("rba-mul-poly2", "ae:10"),
+    ] {
+        let v = json(&[
+            "surrogate",
+            "--approach",
+            approach,
+            "--plan",
+            plan,
+            "--predict",
+            "grid:4",
+            "--speed",
+            "15",
+        ]);
+        let road = Road {
+            speed: 15.0,
+            ..Road::default()
+        };
+        let lib = surrogate_report(approach, plan, &Car::datum(), &road, Some(4)).unwrap();
+        let want = to_json(&lib);
+        assert_same_json(&v, &want, &format!("surrogate {approach}"));
+        // Metrics and tuning are part of it; spelled out so a renamed key cannot slip by.
+        assert_same_json(&v["metrics"], &to_json(&lib.metrics), "metrics");
+        assert_same_json(&v["tuning"], &to_json(&lib.tuning), "tuning");
+        assert!(!lib.tuning.is_empty());
+    }
+}
+
+#[test]
+fn study_json_equals_the_library_and_its_rows_the_single_fits() {
+    // The whole study is about 2 s in the test profile (300 fits on 400 + 155 HiFi runs).
+    let v = json(&["study", "--json"]);
+    let lib = study(&Car::datum(), &Road::default()).unwrap();
+    assert_same_json(&v, &to_json(&lib), "study");
+    // A few rows again through `ridelab surrogate`'s library route (the same plan, fit and
+    // 20 x 20 validation grid): the same metrics.
+    let rows = v["rows"].as_array().unwrap();
+    let mut checked = 0;
+    for (approach, plan) in [
+        ("vba-qts", "ae:10"),
+        ("rba-mul-rbf-gauss", "grid:3"),
+        ("pba-smts", "ae:4"),
+    ] {
+        let row = rows
+            .iter()
+            .find(|r| r["surrogate"] == approach && r["plan"] == plan)
+            .unwrap_or_else(|| panic!("{approach} {plan} missing"));
+        assert_eq!(row["outcome"]["status"], "fitted", "{approach} {plan}");
+        let single =
+            surrogate_report(approach, plan, &Car::datum(), &Road::default(), None).unwrap();
+        assert_same_json(
+            &row["outcome"]["metrics"],
+            &to_json(&single.metrics),
+            &format!("{approach} {plan}"),
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 3);
+    let (code, md, _) = ridelab(&["study", "--markdown"]);
+    assert_eq!((code, md), (0, lib.to_markdown()));
+}
+
+#[test]
+fn presets_list_every_preset_with_its_name_and_source() {
+    let v = json(&["presets", "--json"]);
+    let cars = v.as_array().unwrap();
+    assert_eq!(cars.len(), PRESETS.len());
+    let (code, text, _) = ridelab(&["presets"]);
+    assert_eq!(code, 0);
+    for ((stem, file), car) in PRESETS.iter().zip(cars) {
+        let lib = Car::preset(stem).unwrap();
+        assert_same_json(car, &to_json(&lib), stem);
+        // The file's own name and source, read here from the shipped JSON text.
+        let raw: Value = serde_json::from_str(file).unwrap();
+        assert_eq!(car["name"], raw["name"], "{stem}");
+        assert_eq!(car["source"], raw["source"], "{stem}");
+        assert!(!lib.source.is_empty(), "{stem} has no source");
+        assert!(
+            text.contains(&format!("{stem:<8} {}\n", lib.name))
+                && text.contains(&format!("source: {}\n", lib.source)),
+            "{stem} missing from:\n{text}"
+        );
+    }
+    assert_eq!(text.lines().count(), 2 * PRESETS.len());
 }
 
 #[test]
 fn bad_input_is_one_line_naming_the_option_with_exit_code_2() {
-    let cases: [(&[&str], &str); 12] = [
+    let cases: &[(&[&str], &str)] = &[
         (&["eval", "--model", "full", "--speed", "-5"], "speed"),
         (&["eval", "--model", "full", "--speed", "fast"], "speed"),
         (&["eval", "--model", "hexa"], "model"),
@@ -125,8 +548,157 @@ fn bad_input_is_one_line_naming_the_option_with_exit_code_2() {
             &["optimize", "--evaluator", "quarter", "--class", "C"],
             "sws_limit",
         ),
+        (&["optimize", "--method", "simplex"], "method"),
+        (&["optimize", "--evaluator", "oracle"], "evaluator"),
+        (
+            &["optimize", "--evaluator", "quarter", "--grid", "x"],
+            "grid",
+        ),
+        (
+            &["map", "--model", "quarter", "--cs-range", "1:2"],
+            "cs-range",
+        ),
+        (&["map", "--ks-range", "10000:40000:5"], "model"),
+        (&["simulate"], "model"),
+        (
+            &["simulate", "--model", "full", "--duration", "-1"],
+            "duration",
+        ),
+        (
+            &["simulate", "--model", "full", "--duration", "5000"],
+            "duration",
+        ),
+        (&["simulate", "--model", "full", "--dt", "0.5"], "dt"),
+        (
+            &["simulate", "--model", "full", "--decimate", "0"],
+            "decimate",
+        ),
+        (&["simulate", "--model", "full", "--seed", "x"], "seed"),
+        (&["simulate", "--model", "quarter", "--ks", "0"], "ks"),
+        (&["simulate", "--model", "full", "--cs", "nan"], "cs"),
+        (&["surrogate"], "approach"),
+        (&["surrogate", "--approach", "nonsense"], "approach"),
+        (
+            &["surrogate", "--approach", "vba-qts", "--plan", "ae:1"],
+            "plan",
+        ),
+        (
+            &["surrogate", "--approach", "vba-qts", "--predict", "grid:x"],
+            "predict",
+        ),
+        (&["study", "--class", "Z"], "class"),
+        (&["study", "--tracks", "both"], "tracks"),
+        (&["presets", "--wat"], "--wat"),
+        (&["presets", "extra"], "extra"),
+        (&["eval", "--model", "full", "--ks", "inf"], "ks"),
+        (&["frobnicate"], "command"),
+        // Every size has a bound with a message (this one once aborted on a 14 GB allocation).
+        (
+            &["optimize", "--method", "nsga2", "--population", "100000000"],
+            "population",
+        ),
+        (
+            &["optimize", "--method", "nsga2", "--generations", "100000"],
+            "generations",
+        ),
+        (&["optimize", "--grid", "5000"], "grid"),
+        (&["doe", "--points", "5000"], "points"),
+        (
+            &["map", "--model", "quarter", "--ks-range", "1:2:2000"],
+            "ks-range",
+        ),
+        (
+            &[
+                "surrogate",
+                "--approach",
+                "vba-qts",
+                "--predict",
+                "grid:1000",
+            ],
+            "predict",
+        ),
+        (
+            &["surrogate", "--approach", "vba-qts", "--plan", "ae:5000"],
+            "plan",
+        ),
+        (
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--duration",
+                "3600",
+                "--dt",
+                "0.0001",
+            ],
+            "dt",
+        ),
+        // The asymmetric damper: rates come together, and the design's Cs is their mean.
+        (&["simulate", "--model", "full", "--bump", "500"], "rebound"),
+        (
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--bump",
+                "500",
+                "--rebound",
+                "-1",
+            ],
+            "rebound",
+        ),
+        (
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--bump",
+                "500",
+                "--rebound",
+                "900",
+                "--cs",
+                "1000",
+            ],
+            "cs",
+        ),
+        (
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--bump",
+                "1",
+                "--rebound",
+                "2",
+                "--knee",
+                "0.1",
+            ],
+            "bump-high",
+        ),
+        (
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--bump",
+                "1",
+                "--rebound",
+                "2",
+                "--knee",
+                "-0.1",
+                "--bump-high",
+                "1",
+                "--rebound-high",
+                "1",
+            ],
+            "knee",
+        ),
+        (
+            &["eval", "--model", "full", "--speed", "3", "--speed", "4"],
+            "speed",
+        ),
     ];
-    for (args, field) in cases {
+    for &(args, field) in cases {
         let (code, out, err) = ridelab(args);
         assert_eq!(code, 2, "{args:?}");
         assert!(out.is_empty(), "{args:?}");

@@ -1,23 +1,22 @@
 //! Timings of what the page does on an edit, natively (the page measures the same calls
-//! in wasm with performance.now()): the surrogate's fit, a 160 x 160 map of it computed
+//! in wasm with performance.now()): the surrogate's fit, a 160 x 120 map of it computed
 //! afresh and with its values kept (an objective edit), and the STM front on it against
-//! the same front on the LoFi (the baseline).
+//! the same front on the LoFi (the baseline). All through the page's [`Session`].
 //!
 //! Run: `cargo bench -p ridelab --bench explorer`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use ridelab::explorer::{fitted, front, map_of, FrontModel, MapModel, Scenario, State};
+use ridelab::explorer::{FrontModel, MapModel, Session, State};
 use std::cell::Cell;
 use std::hint::black_box;
 
-/// The default view at a speed of `20 + i / 1000` m/s: a new speed per iteration defeats
-/// the core's kept fit and map values where a fresh computation is timed.
-fn at_speed(i: u64) -> Scenario {
-    State {
+/// A session on the default view at a speed of `20 + i / 1000` m/s: a new speed per
+/// iteration defeats the session's kept fit and map values where a fresh computation is timed.
+fn at_speed(i: u64) -> Session {
+    Session::new(State {
         speed: 20.0 + i as f64 * 1e-3,
         ..State::default()
-    }
-    .scenario()
+    })
     .unwrap()
 }
 
@@ -28,30 +27,33 @@ fn explorer(c: &mut Criterion) {
         at_speed(n.get())
     };
     c.bench_function("fit rba-mul-rbf-mq on ae:10 (10 HiFi runs included)", |b| {
-        b.iter(|| black_box(fitted(&next()).unwrap()))
+        b.iter(|| black_box(next().surrogate().unwrap()))
     });
     c.bench_function("surrogate map 160x120, fresh (fit included)", |b| {
-        b.iter(|| black_box(map_of(&next(), MapModel::Surrogate, 160, 120).unwrap()))
+        b.iter(|| black_box(next().map(MapModel::Surrogate, 160, 120).unwrap()))
     });
-    let s = at_speed(0);
+    let mut s = at_speed(0);
     let mut limit = 0.007;
     c.bench_function("surrogate map 160x120, values kept, new SWS limit", |b| {
         b.iter(|| {
             limit += 1e-7;
-            let mut s = s.clone();
-            s.objectives.sws_limit = Some(limit);
-            black_box(map_of(&s, MapModel::Surrogate, 160, 120).unwrap())
+            s.set_state(State {
+                sws_limit: Some(limit),
+                ..s.state().clone()
+            })
+            .unwrap();
+            black_box(s.map(MapModel::Surrogate, 160, 120).unwrap())
         })
     });
     c.bench_function("lofi map 160x120, fresh", |b| {
-        b.iter(|| black_box(map_of(&next(), MapModel::LoFi, 160, 120).unwrap()))
+        b.iter(|| black_box(next().map(MapModel::LoFi, 160, 120).unwrap()))
     });
     c.bench_function(
         "front stm 61x61 + 2 levels on the surrogate (fit kept)",
-        |b| b.iter(|| black_box(front(&s, "stm", FrontModel::Surrogate).unwrap())),
+        |b| b.iter(|| black_box(s.front("stm", FrontModel::Surrogate).unwrap())),
     );
     c.bench_function("front stm 61x61 + 2 levels on the LoFi (baseline)", |b| {
-        b.iter(|| black_box(front(&s, "stm", FrontModel::LoFi).unwrap()))
+        b.iter(|| black_box(s.front("stm", FrontModel::LoFi).unwrap()))
     });
 }
 

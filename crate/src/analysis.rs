@@ -5,8 +5,8 @@ use crate::car::{Car, QuarterCar};
 use crate::criteria::{criteria_exact, criteria_fast_exact, criteria_spectral, quarter_car_rms};
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
+use crate::model::Mode;
 use crate::model::{full_car, quarter_car, symmetric_half, LinearModel};
-use crate::modes::Mode;
 use crate::road::{Road, Tracks};
 use serde::{Deserialize, Serialize};
 
@@ -18,6 +18,13 @@ pub enum ModelKind {
     Quarter,
     /// HiFi: 7-DOF full car.
     Full,
+}
+
+impl std::str::FromStr for ModelKind {
+    type Err = RideError;
+    fn from_str(s: &str) -> Result<ModelKind> {
+        ModelKind::parse(s)
+    }
 }
 
 impl ModelKind {
@@ -50,6 +57,16 @@ pub struct LoFi {
     pub car: Car,
     /// The road.
     pub road: Road,
+}
+
+impl LoFi {
+    /// The LoFi evaluator of `car` on `road`.
+    pub fn new(car: &Car, road: &Road) -> LoFi {
+        LoFi {
+            car: car.clone(),
+            road: *road,
+        }
+    }
 }
 
 /// LoFi criteria of any quarter car on `road`: the closed forms for an undamped tyre,
@@ -132,6 +149,7 @@ impl Evaluator for HiFi {
         let mut front = self.car.front;
         front.spring = ks;
         front.damper = cs;
+        crate::car::check_design(ks, cs)?;
         front.validate("front")?;
         let mut m = self.base.clone();
         m.k += ks * &self.dk;

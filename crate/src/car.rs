@@ -175,17 +175,7 @@ impl Axle {
         check_positive(&format!("{prefix}.unsprung_mass"), self.unsprung_mass)?;
         check_positive(&format!("{prefix}.spring"), self.spring)?;
         check_positive(&format!("{prefix}.tire_stiffness"), self.tire_stiffness)?;
-        let d = format!("{prefix}.damper");
-        check_finite(&d, self.damper)?;
-        if self.damper < 0.0 {
-            return Err(RideError::field(d, "must not be negative (N s/m)"));
-        }
-        if self.damper == 0.0 {
-            return Err(RideError::field(
-                d,
-                "must be > 0: with no suspension damping the RMS response to a white road velocity is unbounded",
-            ));
-        }
+        check_damper(&format!("{prefix}.damper"), self.damper)?;
         let t = format!("{prefix}.tire_damping");
         check_finite(&t, self.tire_damping)?;
         if self.tire_damping < 0.0 {
@@ -234,6 +224,29 @@ impl QuarterCar {
     pub fn critical_damping(&self) -> f64 {
         2.0 * (self.ks * self.ms).sqrt()
     }
+}
+
+/// Checks a front design `(ks, cs)` as every evaluator takes it (same rules as a car
+/// file's front axle): `ks` finite and > 0, `cs` finite and > 0 (with no suspension damping
+/// the RMS is unbounded). Errors name `ks` or `cs`.
+pub fn check_design(ks: f64, cs: f64) -> Result<()> {
+    check_positive("ks", ks)?;
+    check_damper("cs", cs)
+}
+
+/// A suspension damper rate: finite, not negative, not zero (unbounded RMS).
+fn check_damper(field: &str, v: f64) -> Result<()> {
+    check_finite(field, v)?;
+    if v < 0.0 {
+        return Err(RideError::field(field, "must not be negative (N s/m)"));
+    }
+    if v == 0.0 {
+        return Err(RideError::field(
+            field,
+            "must be > 0: with no suspension damping the RMS response to a white road velocity is unbounded",
+        ));
+    }
+    Ok(())
 }
 
 fn check_finite(field: &str, v: f64) -> Result<()> {

@@ -1,8 +1,9 @@
 //! Design objective space (DOS): the design objectives that make a point of the
 //! design criteria space feasible, and which objective each infeasible point breaks.
 
+use crate::car::Car;
 use crate::error::{Result, RideError};
-use crate::evaluate::Criteria;
+use crate::evaluate::{Criteria, Evaluator};
 use serde::{Deserialize, Serialize};
 
 /// Editable design objectives (METHOD.md section 3). `None` switches an objective off.
@@ -39,6 +40,28 @@ pub struct DosContext {
     pub tire_stiffness: f64,
     /// The datum car's criteria (for "no worse than datum").
     pub datum: Criteria,
+}
+
+impl DosContext {
+    /// The context of `car` (its quarter car's sprung mass and front tyre rate) with
+    /// the datum's criteria `datum`.
+    pub fn new(car: &Car, datum: Criteria) -> DosContext {
+        let q = car.quarter();
+        DosContext {
+            sprung_mass: q.ms,
+            tire_stiffness: q.kt,
+            datum,
+        }
+    }
+
+    /// The context of `car` with the datum's criteria by `model` at the car's own front
+    /// spring and damper (each map and front compares a model with its own datum).
+    pub fn of_model<E: Evaluator + ?Sized>(car: &Car, model: &E) -> Result<DosContext> {
+        Ok(DosContext::new(
+            car,
+            model.evaluate(car.front.spring, car.front.damper)?,
+        ))
+    }
 }
 
 /// One design objective, as named in messages and on the overlay.

@@ -639,7 +639,7 @@ test('the JS API refuses bad input with messages naming the field, and keeps wor
     ks: ['ks', /^front\.spring: must be > 0/],
     cs: ['cs', /^front\.damper: must not be negative/],
     model: ['model', /^model: 'bicycle' is not 'quarter' or 'full'/],
-    grid: ['nx', /^nx: grid size must be 1\.\.1024/],
+    grid: ['nx', /^nx: grid size must be 2\.\.=1001/],
     hugeGrid: ['nx', /^nx:/],
     car: ['car', /missing field/],
     json: ['car', /./],

@@ -637,7 +637,7 @@ test('front, spectra, timeResponse: bad arguments name the field', { timeout: TI
       method: err(() => a.api.front(s, 'simplex')),
       nfreq: err(() => a.api.spectra(s, 1)),
       dt: err(() => a.api.timeResponse(s, { dt: 0.5 })),
-      asym: err(() => a.api.timeResponse(s, { asymmetric: [-1, 2] })),
+      asym: err(() => a.api.timeResponse(s, { damper: { bump: -1, rebound: 2 } })),
       unknown: err(() => a.api.front({ ...s, bogus: 1 }, 'stm')),
       classC: err(() => a.api.front({ ...s, class: 'C' }, 'stm')),
       colour: err(() => a.api.colourTable('rainbow')),
@@ -646,7 +646,7 @@ test('front, spectra, timeResponse: bad arguments name the field', { timeout: TI
   assert.equal(r.method.field, 'method');
   assert.equal(r.nfreq.field, 'nfreq');
   assert.equal(r.dt.field, 'dt');
-  assert.equal(r.asym.field, 'asymmetric');
+  assert.equal(r.asym.field, 'damper');
   assert.equal(r.unknown.field, 'state');
   assert.equal(r.classC.field, 'swsLimit', `class C: ${r.classC.message}`);
   assert.equal(r.colour.field, 'colourMap');

@@ -316,8 +316,9 @@ function wireTime({ controller: ctl, controls, ui }) {
       return;
     }
     const opts = { seed: seed.value };
-    if (bump.value !== undefined) opts.asymmetric = [bump.value * 1000, rebound.value * 1000];
-    const what = opts.asymmetric ? `asymmetric damper ${fmtInput(bump.value, 4)} / ${fmtInput(rebound.value, 4)} kNs/m` : 'linear damper';
+    // With a bump / rebound law the run's Cs is their mean (the core's rule, as in `ridelab simulate`).
+    if (bump.value !== undefined) opts.damper = { bump: bump.value * 1000, rebound: rebound.value * 1000 };
+    const what = opts.damper ? `asymmetric damper ${fmtInput(bump.value, 4)} / ${fmtInput(rebound.value, 4)} kNs/m, so Cs = their mean ${fmtInput((bump.value + rebound.value) / 2, 4)} kNs/m` : 'linear damper';
     ctl.runTime(opts, `${what}, seed ${seed.value}`);
   });
   $('tp-play').addEventListener('click', () => ui.time.toggle());

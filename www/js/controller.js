@@ -446,7 +446,7 @@ export class Controller {
     try {
       const [result, linear] = await Promise.all([
         this.compute.time(s, opts),
-        opts.asymmetric ? this.compute.time(s, { seed: opts.seed }) : null,
+        opts.damper ? this.compute.time(s, { seed: opts.seed }) : null,
       ]);
       st.time = { result, linear, key: JSON.stringify(s), opts };
       this.render.time(`Done in ${fmt(performance.now() - t0, 3)} ms (${describeRun}).`);

@@ -1,21 +1,16 @@
 //! Design maps of any model for the explorer: LoFi, HiFi, the fitted surrogate, and the
-//! surrogate's error against the HiFi.
-//!
-//! A map's values depend on the car, road, design box and (for the surrogate) its fit,
-//! not on the design objectives, which only judge them. Editing an objective (the SWS
-//! limit dragged, a band typed) is the commonest edit, so the last values of each model
-//! and grid are kept per thread and only the objective mask is recomputed: a 240 x 180
-//! LoFi map then costs its mask (about 1 ms in the page) instead of 43 200 evaluations.
+//! surrogate's error against the HiFi, on the cell-centre grid of the design box
+//! ([`Grid::cells`]). They go through the one map pipeline of [`crate::maps`], as the CLI's
+//! maps do: [`Dcs`] computes the criteria, [`DosMap`] judges the design objectives.
 
-use super::state::{broken_mask, check_grid, dos_context, map_values, ModelMap, Scenario};
-use super::surrogate::{fitted, FitKey};
 use crate::error::{Result, RideError};
-use crate::evaluate::Evaluator;
-use std::cell::RefCell;
+use crate::maps::{Dcs, DosMap, Grid};
+use serde::Serialize;
 use std::rc::Rc;
 
 /// Which model a map shows.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum MapModel {
     /// The quarter car.
     LoFi,
@@ -24,6 +19,7 @@ pub enum MapModel {
     /// The fitted surrogate.
     Surrogate,
     /// The surrogate's signed relative error against the HiFi, %.
+    #[serde(rename = "error")]
     SurrogateError,
 }
 
@@ -43,104 +39,51 @@ impl MapModel {
     }
 }
 
-/// What a map's values depend on.
+/// A design map of one model: the criteria on the grid and the objectives judged there.
 #[derive(Debug, Clone, PartialEq)]
-struct ValuesKey {
-    model: MapModel,
-    fit: FitKey,
-    nx: usize,
-    ny: usize,
+pub struct ModelMap {
+    /// The model's criteria (kept between objective edits, hence shared). For
+    /// [`MapModel::SurrogateError`], the fields hold `100 (surrogate / HiFi - 1)`, %.
+    pub values: Rc<Dcs>,
+    /// The design objectives on it; for the error map, the HiFi's.
+    pub dos: DosMap,
 }
 
-/// Maps kept: one per model and grid in use (the page shows one model at 240 x 180, its
-/// objective plane uses the surrogate at 120 x 90, the worker the HiFi at 41 x 41).
-const KEPT_MAPS: usize = 6;
+impl ModelMap {
+    /// The grid.
+    pub fn grid(&self) -> &Grid {
+        &self.values.grid
+    }
 
-thread_local! {
-    static LAST_VALUES: RefCell<Vec<(ValuesKey, Rc<Vec<f64>>)>> = const { RefCell::new(Vec::new()) };
+    /// `[bacc plane, dtl plane, sws plane]` in one vector: index `c nx ny + j nx + i`
+    /// (the page's layout; each plane is the [`Dcs`] field, Cs rows, Ks columns).
+    pub fn planes(&self) -> Vec<f64> {
+        let v = &self.values;
+        [v.bacc.as_slice(), &v.dtl, &v.sws].concat()
+    }
+
+    /// The objectives each cell breaks as a bitmask ([`crate::maps::OBJECTIVE_BITS`]);
+    /// 0 where the design is feasible.
+    pub fn broken(&self) -> &[u8] {
+        &self.dos.mask
+    }
+
+    /// 1 where the cell meets every active objective, 0 where not.
+    pub fn feasible(&self) -> Vec<u8> {
+        self.dos.mask.iter().map(|&b| u8::from(b == 0)).collect()
+    }
 }
 
-/// The values of `model` on the grid, from the cache or from `compute`.
-fn values(
-    s: &Scenario,
-    model: MapModel,
-    nx: usize,
-    ny: usize,
-    compute: impl FnOnce() -> Result<Vec<f64>>,
-) -> Result<Rc<Vec<f64>>> {
-    let key = ValuesKey {
-        model,
-        fit: FitKey::of(s),
-        nx,
-        ny,
+/// The error map's fields, `100 (surrogate / HiFi - 1)` %, on the HiFi map's grid.
+pub fn error_values(surrogate: &Dcs, hifi: &Dcs) -> Dcs {
+    let pct = |p: &[f64], h: &[f64]| -> Vec<f64> {
+        p.iter().zip(h).map(|(p, h)| 100.0 * (p - h) / h).collect()
     };
-    let hit = LAST_VALUES.with_borrow(|kept| {
-        kept.iter()
-            .find(|(k, _)| *k == key)
-            .map(|(_, v)| Rc::clone(v))
-    });
-    if let Some(v) = hit {
-        return Ok(v);
+    Dcs {
+        evaluator: format!("{} error vs {}", surrogate.evaluator, hifi.evaluator),
+        bacc: pct(&surrogate.bacc, &hifi.bacc),
+        dtl: pct(&surrogate.dtl, &hifi.dtl),
+        sws: pct(&surrogate.sws, &hifi.sws),
+        ..hifi.clone()
     }
-    let v = Rc::new(compute()?);
-    LAST_VALUES.with_borrow_mut(|kept| {
-        kept.retain(|(k, _)| !(k.model == model && k.nx == nx && k.ny == ny));
-        if kept.len() >= KEPT_MAPS {
-            kept.remove(0);
-        }
-        kept.push((key, Rc::clone(&v)));
-    });
-    Ok(v)
-}
-
-/// The map of `model` with its objectives judged against `model`'s own datum.
-fn judged<E: Evaluator + ?Sized>(
-    s: &Scenario,
-    kind: MapModel,
-    model: &E,
-    nx: usize,
-    ny: usize,
-) -> Result<ModelMap> {
-    let v = values(s, kind, nx, ny, || map_values(s, model, nx, ny))?;
-    let ctx = dos_context(&s.datum, model)?;
-    Ok(ModelMap {
-        nx,
-        ny,
-        broken: broken_mask(s, &ctx, &v, nx, ny),
-        values: v.as_ref().clone(),
-    })
-}
-
-/// The map of `model` over the scenario's design box. For [`MapModel::SurrogateError`]
-/// the planes hold `100 (surrogate / HiFi - 1)`, %, and the objectives are the HiFi's.
-pub fn map_of(s: &Scenario, model: MapModel, nx: usize, ny: usize) -> Result<ModelMap> {
-    check_grid(nx, ny)?;
-    match model {
-        MapModel::LoFi => judged(s, model, &s.lofi(), nx, ny),
-        MapModel::HiFi => judged(s, model, &s.hifi()?, nx, ny),
-        MapModel::Surrogate => judged(s, model, &*fitted(s)?.model, nx, ny),
-        MapModel::SurrogateError => {
-            let hifi = s.hifi()?;
-            let h = values(s, MapModel::HiFi, nx, ny, || map_values(s, &hifi, nx, ny))?;
-            let e = values(s, model, nx, ny, || {
-                let p = map_values(s, &*fitted(s)?.model, nx, ny)?;
-                Ok(p.iter()
-                    .zip(h.iter())
-                    .map(|(p, h)| 100.0 * (p - h) / h)
-                    .collect())
-            })?;
-            let ctx = dos_context(&s.datum, &hifi)?;
-            Ok(ModelMap {
-                nx,
-                ny,
-                broken: broken_mask(s, &ctx, &h, nx, ny),
-                values: e.as_ref().clone(),
-            })
-        }
-    }
-}
-
-/// The LoFi map of `scenario` on an `nx` x `ny` grid.
-pub fn lofi_map(s: &Scenario, nx: usize, ny: usize) -> Result<ModelMap> {
-    map_of(s, MapModel::LoFi, nx, ny)
 }

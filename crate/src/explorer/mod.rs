@@ -1,16 +1,21 @@
 //! The explorer's logic behind the page, in plain Rust (the wasm shell in `crate::web`
-//! only converts to and from JS): the state a view is defined by, design maps of any
-//! model, fronts with their HiFi re-check, spectra, time responses and the fitted
-//! surrogate. Everything here builds and is tested natively.
+//! only converts to and from JS): the state a view is defined by, and the [`Session`]
+//! that owns it with its parsed scenario, fitted surrogate and kept maps, giving design
+//! maps of any model, fronts with their HiFi re-check, spectra and time responses.
+//! Everything here builds and is tested natively.
 
+pub mod fields;
 pub mod maps;
+pub mod session;
 pub mod state;
 pub mod studies;
 pub mod surrogate;
 #[cfg(test)]
 mod tests;
 
-pub use maps::{lofi_map, map_of, MapModel};
-pub use state::{dos_context, model_map, ModelMap, Scenario, State, MAX_GRID, STATE_FIELDS};
-pub use studies::{front, spectra, time_response, FrontModel, FrontResult, Spectra, TimeResult};
-pub use surrogate::{fit_report, fitted, FittedSurrogate};
+pub use fields::ui_field;
+pub use maps::{MapModel, ModelMap};
+pub use session::{EvaluatorKind, Session};
+pub use state::{Scenario, State, STATE_FIELDS};
+pub use studies::{FrontModel, FrontResult, Spectra, TimeResult};
+pub use surrogate::{fit, fit_report, FitKey, FittedSurrogate};

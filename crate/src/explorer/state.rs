@@ -6,10 +6,8 @@
 
 use crate::car::Car;
 use crate::design::DesignBox;
-use crate::dos::{DesignObjectives, DosContext};
+use crate::dos::DesignObjectives;
 use crate::error::{Result, RideError};
-use crate::evaluate::Evaluator;
-use crate::maps::dos_mask::objective_bit;
 use crate::road::{Road, RoadClass, Tracks};
 use crate::surrogate::{PlanSpec, SurrogateSpec};
 use crate::LoFi;
@@ -221,10 +219,32 @@ impl State {
 
     /// Everything at once; the first error names its field.
     pub fn scenario(&self) -> Result<Scenario> {
-        let datum = self.datum_car()?;
-        let road = self.road()?;
+        self.scenario_after(None)
+    }
+
+    /// The scenario of this state, re-using the parts of `previous` (a state and its
+    /// scenario) whose fields did not change: a slider move re-parses neither a custom
+    /// car's file nor the surrogate's name. The first error names its field.
+    pub fn scenario_after(&self, previous: Option<(&State, &Scenario)>) -> Result<Scenario> {
+        let datum = match previous {
+            Some((p, s)) if p.car == self.car && p.car_json == self.car_json => s.datum.clone(),
+            _ => self.datum_car()?,
+        };
+        let road = match previous {
+            Some((p, s))
+                if p.class == self.class && p.speed == self.speed && p.tracks == self.tracks =>
+            {
+                s.road
+            }
+            _ => self.road()?,
+        };
         let design = datum.with_front(self.ks, self.cs)?;
-        let (surrogate, plan) = self.surrogate()?;
+        let (surrogate, plan) = match previous {
+            Some((p, s)) if p.surrogate == self.surrogate && p.plan == self.plan => {
+                (s.surrogate, s.plan)
+            }
+            _ => self.surrogate()?,
+        };
         Ok(Scenario {
             datum,
             design,
@@ -240,151 +260,11 @@ impl State {
 impl Scenario {
     /// The LoFi evaluator of the datum car on the road.
     pub fn lofi(&self) -> LoFi {
-        LoFi {
-            car: self.datum.clone(),
-            road: self.road,
-        }
-    }
-
-    /// What the design objectives need besides the criteria (datum by the LoFi model).
-    pub fn lofi_dos_context(&self) -> Result<DosContext> {
-        dos_context(&self.datum, &self.lofi())
+        LoFi::new(&self.datum, &self.road)
     }
 
     /// The HiFi evaluator of the datum car on the road.
     pub fn hifi(&self) -> Result<crate::HiFi> {
         crate::HiFi::new(&self.datum, &self.road)
     }
-}
-
-/// What the design objectives need besides the criteria, with the datum's criteria
-/// taken from `model` (each map and front compares a model with its own datum).
-pub fn dos_context<E: Evaluator + ?Sized>(datum: &Car, model: &E) -> Result<DosContext> {
-    let q = datum.quarter();
-    Ok(DosContext {
-        sprung_mass: q.ms,
-        tire_stiffness: q.kt,
-        datum: model.evaluate(q.ks, q.cs)?,
-    })
-}
-
-/// A design map of one model: the three criteria and the broken design objectives over
-/// an `nx` x `ny` grid of cell centres,
-/// `ks_i = ks_min + (i + 1/2) (ks_max - ks_min) / nx` (likewise `cs_j`).
-#[derive(Debug, Clone, PartialEq)]
-pub struct ModelMap {
-    /// Cells along Ks.
-    pub nx: usize,
-    /// Cells along Cs.
-    pub ny: usize,
-    /// `[bacc plane, dtl plane, sws plane]`, each row-major with `j` (Cs) slow and
-    /// `i` (Ks) fast, j = 0 at the lowest Cs: index `c nx ny + j nx + i`.
-    pub values: Vec<f64>,
-    /// The objectives each cell breaks as a bitmask
-    /// ([`crate::maps::dos_mask::OBJECTIVE_BITS`]); 0 where the design is feasible.
-    pub broken: Vec<u8>,
-}
-
-impl ModelMap {
-    /// 1 where the cell meets every active objective, 0 where not; index `j nx + i`.
-    pub fn feasible(&self) -> Vec<u8> {
-        self.broken.iter().map(|&b| u8::from(b == 0)).collect()
-    }
-
-    /// The `(ks, cs)` of cell `(i, j)`.
-    pub fn point(dbox: &DesignBox, nx: usize, ny: usize, i: usize, j: usize) -> (f64, f64) {
-        dbox.scale((i as f64 + 0.5) / nx as f64, (j as f64 + 0.5) / ny as f64)
-    }
-}
-
-/// Largest grid side accepted from the page (a 1024 x 1024 map is 1 M LoFi evaluations).
-pub const MAX_GRID: usize = 1024;
-
-/// Checks a map's grid size (errors name `nx` or `ny`).
-pub fn check_grid(nx: usize, ny: usize) -> Result<()> {
-    for (name, n) in [("nx", nx), ("ny", ny)] {
-        if n == 0 || n > MAX_GRID {
-            return Err(RideError::field(
-                name,
-                format!("grid size must be 1..{MAX_GRID} (got {n})"),
-            ));
-        }
-    }
-    Ok(())
-}
-
-/// The criteria of `model` over the `nx` x `ny` grid of `scenario`'s design box as
-/// `[bacc plane, dtl plane, sws plane]` (the [`ModelMap::values`] layout).
-pub fn map_values<E: Evaluator + ?Sized>(
-    scenario: &Scenario,
-    model: &E,
-    nx: usize,
-    ny: usize,
-) -> Result<Vec<f64>> {
-    check_grid(nx, ny)?;
-    let cells = nx * ny;
-    let mut values = vec![0.0; 3 * cells];
-    for j in 0..ny {
-        for i in 0..nx {
-            let (ks, cs) = ModelMap::point(&scenario.dbox, nx, ny, i, j);
-            let c = model.evaluate(ks, cs)?;
-            let k = j * nx + i;
-            values[k] = c.bacc;
-            values[cells + k] = c.dtl;
-            values[2 * cells + k] = c.sws;
-        }
-    }
-    Ok(values)
-}
-
-/// The objectives each cell of a map's `values` breaks, judged with `ctx` (a bitmask
-/// per cell, [`ModelMap::broken`]).
-pub fn broken_mask(
-    scenario: &Scenario,
-    ctx: &DosContext,
-    values: &[f64],
-    nx: usize,
-    ny: usize,
-) -> Vec<u8> {
-    let cells = nx * ny;
-    let mut broken = vec![0u8; cells];
-    for j in 0..ny {
-        for i in 0..nx {
-            let (ks, cs) = ModelMap::point(&scenario.dbox, nx, ny, i, j);
-            let k = j * nx + i;
-            let c = crate::Criteria {
-                bacc: values[k],
-                dtl: values[cells + k],
-                sws: values[2 * cells + k],
-            };
-            let mut bits = 0;
-            scenario
-                .objectives
-                .each_constraint(ctx, ks, cs, &c, |o, g| {
-                    if g > 0.0 {
-                        bits |= objective_bit(o);
-                    }
-                });
-            broken[k] = bits;
-        }
-    }
-    broken
-}
-
-/// Evaluates `model` over the `nx` x `ny` grid of `scenario`'s design box, with the
-/// objectives judged against `model`'s own datum.
-pub fn model_map<E: Evaluator + ?Sized>(
-    scenario: &Scenario,
-    model: &E,
-    nx: usize,
-    ny: usize,
-) -> Result<ModelMap> {
-    let values = map_values(scenario, model, nx, ny)?;
-    let ctx = dos_context(&scenario.datum, model)?;
-    Ok(ModelMap {
-        nx,
-        ny,
-        broken: broken_mask(scenario, &ctx, &values, nx, ny),
-        values,
-    })
 }

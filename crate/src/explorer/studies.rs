@@ -1,9 +1,10 @@
 //! Fronts, spectra and time responses for the page's objective plane, FRF/PSD plots and
 //! time panel: thin layers over `optimize`, `criteria::Spectrum` and `time_domain`.
 
-use super::state::{dos_context, Scenario};
-use super::surrogate::fitted;
+use super::state::Scenario;
+use super::surrogate::FittedSurrogate;
 use crate::analysis::ModelKind;
+use crate::dos::DosContext;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::optimize::{
@@ -13,7 +14,7 @@ use crate::optimize::{
     study::{run_study, Method, Study},
     suspension::SuspensionProblem,
 };
-use crate::time_domain::{simulate, TimeOptions, TimeResponse};
+use crate::time_domain::{simulate, Damper, TimeOptions, TimeResponse};
 use serde::Serialize;
 
 /// STM grid of the page's LoFi front (a few ms).
@@ -78,20 +79,18 @@ pub struct FrontResult {
     pub recheck: Recheck,
 }
 
-/// Runs `method` on `model` for scenario `s` and re-checks the pick on the HiFi model.
-pub fn front(s: &Scenario, method_name: &str, model: FrontModel) -> Result<FrontResult> {
+/// Runs the front method `method_name` on `model` for scenario `s` and re-checks the
+/// pick on the HiFi model.
+pub fn front<E: Evaluator + ?Sized>(
+    s: &Scenario,
+    method_name: &str,
+    model: &E,
+) -> Result<FrontResult> {
     let m = method(method_name)?;
-    match model {
-        FrontModel::LoFi => front_on(s, &m, s.lofi()),
-        FrontModel::Surrogate => front_on(s, &m, &*fitted(s)?.model),
-    }
-}
-
-fn front_on<E: Evaluator>(s: &Scenario, m: &Method, model: E) -> Result<FrontResult> {
-    let ctx = dos_context(&s.datum, &model)?;
+    let ctx = DosContext::of_model(&s.datum, model)?;
     let datum = ctx.datum;
     let problem = SuspensionProblem::new(model, s.dbox, s.objectives.clone(), ctx)?;
-    let study = run_study(&problem, m, None)?;
+    let study = run_study(&problem, &m, None)?;
     let hifi = s.hifi()?;
     let datum_hifi = hifi.evaluate(s.datum.front.spring, s.datum.front.damper)?;
     let recheck = recheck(&study.pick, &hifi, &datum_hifi)?;
@@ -167,10 +166,10 @@ fn model_spectra(kind: ModelKind, s: &Scenario, f: &[f64]) -> Result<ModelSpectr
 /// that the PSD's area is `S_k^2` as the LoFi's is `f_k^2`.
 pub fn surrogate_spectra(
     s: &Scenario,
+    fit: &FittedSurrogate,
     f: &[f64],
     lofi: &ModelSpectra,
 ) -> Result<(ModelSpectra, String)> {
-    let fit = fitted(s)?;
     let (ks, cs) = (s.design.front.spring, s.design.front.damper);
     let mut out = ModelSpectra {
         frf: Default::default(),
@@ -201,8 +200,9 @@ pub fn surrogate_spectra(
 /// Largest frequency count of [`spectra`].
 pub const MAX_NFREQ: usize = 4000;
 
-/// FRFs and PSDs of the design by the three models (0.1..100 Hz, `nfreq` log-spaced points).
-pub fn spectra(s: &Scenario, nfreq: usize) -> Result<Spectra> {
+/// FRFs and PSDs of the design by the LoFi, the HiFi and the fitted surrogate `fit`
+/// (0.1..100 Hz, `nfreq` log-spaced points).
+pub fn spectra(s: &Scenario, fit: &FittedSurrogate, nfreq: usize) -> Result<Spectra> {
     if !(2..=MAX_NFREQ).contains(&nfreq) {
         return Err(RideError::field(
             "nfreq",
@@ -213,7 +213,7 @@ pub fn spectra(s: &Scenario, nfreq: usize) -> Result<Spectra> {
         .map(|i| 0.1 * 1000f64.powf(i as f64 / (nfreq - 1) as f64))
         .collect();
     let lofi = model_spectra(ModelKind::Quarter, s, &f)?;
-    let (surrogate, surrogate_route) = surrogate_spectra(s, &f, &lofi)?;
+    let (surrogate, surrogate_route) = surrogate_spectra(s, fit, &f, &lofi)?;
     Ok(Spectra {
         hifi: model_spectra(ModelKind::Full, s, &f)?,
         lofi,
@@ -227,6 +227,11 @@ pub fn spectra(s: &Scenario, nfreq: usize) -> Result<Spectra> {
 #[derive(Debug, Clone, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct TimeResult {
+    /// The front damper's law of the run (`None`: the design's linear damper).
+    pub damper: Option<Damper>,
+    /// The design's front Cs of the run, N s/m: the state's Cs for a linear damper,
+    /// the law's equivalent linear rate `(Csb + Csr) / 2` otherwise (the rule of [`Damper`]).
+    pub damper_rate: f64,
     /// Quarter car (positions: zs, zu).
     pub lofi: TimeResponse,
     /// Full car (positions: z, theta, phi, zu1..zu4).
@@ -237,11 +242,13 @@ pub struct TimeResult {
     pub b: f64,
 }
 
-/// Simulates the design with both models.
+/// Simulates the design with both models, as `ridelab simulate` does.
 pub fn time_response(s: &Scenario, opt: &TimeOptions) -> Result<TimeResult> {
-    let lofi = simulate(&ModelKind::Quarter.build(&s.design), &s.road, opt)?;
-    let hifi = simulate(&ModelKind::Full.build(&s.design), &s.road, opt)?;
+    let lofi = simulate(ModelKind::Quarter, &s.design, &s.road, opt)?;
+    let hifi = simulate(ModelKind::Full, &s.design, &s.road, opt)?;
     Ok(TimeResult {
+        damper: opt.damper,
+        damper_rate: hifi.damper_rate,
         lofi,
         hifi,
         a: s.design.a,

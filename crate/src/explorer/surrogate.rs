@@ -1,11 +1,10 @@
 //! The explorer's surrogate: the tuned LoFi of the state's approach and plan, fitted to
 //! HiFi samples over the state's design box.
 //!
-//! The page asks for the surrogate's readout, maps and front in separate calls; each
-//! would refit (HiFi samples plus a Levenberg-Marquardt or RBF fit, a few ms). So the
-//! last fit is kept per thread, keyed by everything it depends on: car, road, design box,
-//! approach, scheme and plan. The key leaves out the design point and the objectives,
-//! so dragging a slider or the SWS limit reuses the fit.
+//! A fit (HiFi samples plus a Levenberg-Marquardt or RBF fit, a few ms) depends on the
+//! car, road, design box, approach, scheme and plan ([`FitKey`]), not on the design point
+//! or the objectives: the [`super::Session`] keeps it until one of those changes, so
+//! dragging a slider or the SWS limit reuses it.
 
 use super::state::Scenario;
 use crate::car::Car;
@@ -16,8 +15,6 @@ use crate::surrogate::{
     sample_plan, surrogate_report_in, LmOptions, PlanSpec, Sample, Setting, Surrogate,
     SurrogateReport, SurrogateSpec,
 };
-use std::cell::RefCell;
-use std::rc::Rc;
 
 /// A fitted surrogate with the samples it was fitted to.
 pub struct FittedSurrogate {
@@ -31,7 +28,7 @@ pub struct FittedSurrogate {
 
 /// Everything a fit depends on (and a map's values: the objectives only judge them).
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct FitKey {
+pub struct FitKey {
     car: Car,
     road: Road,
     dbox: DesignBox,
@@ -40,7 +37,8 @@ pub(crate) struct FitKey {
 }
 
 impl FitKey {
-    pub(crate) fn of(s: &Scenario) -> FitKey {
+    /// The key of a scenario.
+    pub fn of(s: &Scenario) -> FitKey {
         FitKey {
             car: s.datum.clone(),
             road: s.road,
@@ -51,32 +49,17 @@ impl FitKey {
     }
 }
 
-thread_local! {
-    static LAST_FIT: RefCell<Option<(FitKey, Rc<FittedSurrogate>)>> = const { RefCell::new(None) };
-}
-
-/// Fits the scenario's surrogate, or returns the last fit when nothing it depends on
-/// has changed. Errors name `approach` or `plan`.
-pub fn fitted(s: &Scenario) -> Result<Rc<FittedSurrogate>> {
-    let key = FitKey::of(s);
-    if let Some(hit) = LAST_FIT.with_borrow(|last| {
-        last.as_ref()
-            .filter(|(k, _)| *k == key)
-            .map(|(_, f)| Rc::clone(f))
-    }) {
-        return Ok(hit);
-    }
+/// Fits the scenario's surrogate to HiFi samples at its plan. Errors name `approach` or `plan`.
+pub fn fit(s: &Scenario) -> Result<FittedSurrogate> {
     let setting = Setting::new(&s.datum, &s.road, &s.dbox)?;
     let hifi = s.hifi()?;
     let samples = sample_plan(&hifi, &s.plan.plan()?, &s.dbox)?;
     let model = s.surrogate.fit(&setting, &samples, &LmOptions::default())?;
-    let fit = Rc::new(FittedSurrogate {
+    Ok(FittedSurrogate {
         model,
         plan: s.plan,
         samples,
-    });
-    LAST_FIT.with_borrow_mut(|last| *last = Some((key, Rc::clone(&fit))));
-    Ok(fit)
+    })
 }
 
 /// The surrogate's fit report over the scenario's design box: samples, tuning,

@@ -1,36 +1,43 @@
 //! The explorer's maps, fronts and surrogate against point evaluations and the HiFi.
 
 use super::*;
-use crate::dos::Objective;
+use crate::dos::{DosContext, Objective};
 use crate::evaluate::Evaluator;
 use crate::maps::dos_mask::objective_bit;
 use std::rc::Rc;
 
-fn scenario(patch: impl FnOnce(&mut State)) -> Scenario {
+fn session(patch: impl FnOnce(&mut State)) -> Session {
     let mut s = State::default();
     patch(&mut s);
-    s.scenario().unwrap()
+    Session::new(s).unwrap()
 }
 
-/// Every cell of a map equals the model's point evaluation at the cell centre, and its
-/// mask equals `DesignObjectives::broken` there (exact: the same arithmetic).
+/// Every cell of a map equals the model's point evaluation at the cell centre
+/// `ks_min + (i + 1/2) (ks_max - ks_min) / nx` (to rounding of the centre), and its mask
+/// equals `DesignObjectives::broken` there (exact: the same arithmetic).
 fn check_map_cells<E: Evaluator + ?Sized>(s: &Scenario, model: &E, m: &ModelMap) {
-    let ctx = dos_context(&s.datum, model).unwrap();
-    let cells = m.nx * m.ny;
-    for j in 0..m.ny {
-        for i in 0..m.nx {
-            let (ks, cs) = ModelMap::point(&s.dbox, m.nx, m.ny, i, j);
+    let ctx = DosContext::of_model(&s.datum, model).unwrap();
+    let (nx, ny) = (m.grid().ks.n, m.grid().cs.n);
+    let (planes, broken) = (m.planes(), m.broken());
+    let cells = nx * ny;
+    for j in 0..ny {
+        for i in 0..nx {
+            let (ks, cs) = m.grid().point(i, j);
+            let (u, v) = s
+                .dbox
+                .scale((i as f64 + 0.5) / nx as f64, (j as f64 + 0.5) / ny as f64);
+            assert!((ks / u - 1.0).abs() < 1e-15 && (cs / v - 1.0).abs() < 1e-15);
             let c = model.evaluate(ks, cs).unwrap();
-            let k = j * m.nx + i;
-            assert_eq!(m.values[k], c.bacc);
-            assert_eq!(m.values[cells + k], c.dtl);
-            assert_eq!(m.values[2 * cells + k], c.sws);
+            let k = j * nx + i;
+            assert_eq!(planes[k], c.bacc);
+            assert_eq!(planes[cells + k], c.dtl);
+            assert_eq!(planes[2 * cells + k], c.sws);
             let mask = s
                 .objectives
                 .broken(&ctx, ks, cs, &c)
                 .into_iter()
                 .fold(0, |b, o| b | objective_bit(o));
-            assert_eq!(m.broken[k], mask, "cell ({i}, {j})");
+            assert_eq!(broken[k], mask, "cell ({i}, {j})");
         }
     }
 }
@@ -38,14 +45,15 @@ fn check_map_cells<E: Evaluator + ?Sized>(s: &Scenario, model: &E, m: &ModelMap)
 #[test]
 fn lofi_and_hifi_maps_equal_point_evaluations() {
     // Bands on, so that more than one bit shows: bounce 1.0..1.3 Hz, damping 0.25..0.45.
-    let s = scenario(|s| {
+    let mut x = session(|s| {
         s.bounce_band = Some([1.0, 1.3]);
         s.damping_band = Some([0.25, 0.45]);
         s.no_worse = Some([false, true, false]);
     });
-    let lofi = map_of(&s, MapModel::LoFi, 17, 13).unwrap();
+    let s = x.scenario().clone();
+    let lofi = x.map(MapModel::LoFi, 17, 13).unwrap();
     check_map_cells(&s, &s.lofi(), &lofi);
-    let hifi = map_of(&s, MapModel::HiFi, 6, 5).unwrap();
+    let hifi = x.map(MapModel::HiFi, 6, 5).unwrap();
     check_map_cells(&s, &s.hifi().unwrap(), &hifi);
     // Each of the four objectives is broken somewhere and met somewhere on the LoFi map.
     for o in [
@@ -55,32 +63,34 @@ fn lofi_and_hifi_maps_equal_point_evaluations() {
         Objective::DtlDatum,
     ] {
         let b = objective_bit(o);
-        let n = lofi.broken.iter().filter(|&&m| m & b != 0).count();
-        assert!(n > 0 && n < lofi.broken.len(), "{o:?}: {n} cells");
+        let n = lofi.broken().iter().filter(|&&m| m & b != 0).count();
+        assert!(n > 0 && n < lofi.broken().len(), "{o:?}: {n} cells");
     }
     let feasible = lofi.feasible();
     assert!(feasible
         .iter()
-        .zip(&lofi.broken)
+        .zip(lofi.broken())
         .all(|(&f, &b)| (f == 1) == (b == 0)));
 }
 
 #[test]
 fn surrogate_map_and_error_map_agree_with_the_hifi() {
-    let s = scenario(|_| {});
-    let fit = fitted(&s).unwrap();
-    let sur = map_of(&s, MapModel::Surrogate, 7, 6).unwrap();
+    let mut x = session(|_| {});
+    let s = x.scenario().clone();
+    let fit = x.surrogate().unwrap();
+    let sur = x.map(MapModel::Surrogate, 7, 6).unwrap();
     check_map_cells(&s, &*fit.model, &sur);
-    let hifi = map_of(&s, MapModel::HiFi, 7, 6).unwrap();
-    let err = map_of(&s, MapModel::SurrogateError, 7, 6).unwrap();
+    let hifi = x.map(MapModel::HiFi, 7, 6).unwrap();
+    let err = x.map(MapModel::SurrogateError, 7, 6).unwrap();
     // The error planes are 100 (S / HiFi - 1) from the two maps, to rounding.
     let mut worst = 0.0f64;
-    for k in 0..sur.values.len() {
-        let expect = 100.0 * (sur.values[k] / hifi.values[k] - 1.0);
-        assert!((err.values[k] - expect).abs() < 1e-9, "cell {k}");
-        worst = worst.max(err.values[k].abs());
+    let (sur, hifi_v, err_v) = (sur.planes(), hifi.planes(), err.planes());
+    for k in 0..sur.len() {
+        let expect = 100.0 * (sur[k] / hifi_v[k] - 1.0);
+        assert!((err_v[k] - expect).abs() < 1e-9, "cell {k}");
+        worst = worst.max(err_v[k].abs());
     }
-    assert_eq!(err.broken, hifi.broken);
+    assert_eq!(err.broken(), hifi.broken());
     // rba-mul-rbf-mq on ae:10 stays within 0.7 % of the HiFi in the fidelity study;
     // asserted with margin: 1.5 %.
     assert!(worst < 1.5, "worst error {worst} %");
@@ -92,29 +102,47 @@ fn surrogate_map_and_error_map_agree_with_the_hifi() {
 
 #[test]
 fn the_fit_is_reused_until_what_it_depends_on_changes() {
-    let a = fitted(&scenario(|_| {})).unwrap();
+    let mut x = session(|_| {});
+    let a = x.surrogate().unwrap();
+    let at = |patch: fn(&mut State)| {
+        let mut s = State::default();
+        patch(&mut s);
+        s
+    };
     // A new design point or SWS limit keeps the fit.
-    let b = fitted(&scenario(|s| {
+    x.set_state(at(|s| {
         s.ks = 25_000.0;
         s.sws_limit = Some(0.008);
     }))
     .unwrap();
+    let b = x.surrogate().unwrap();
     assert!(Rc::ptr_eq(&a, &b));
     assert_eq!(a.samples.len(), 10);
     // A new plan, road or surrogate refits.
-    let c = fitted(&scenario(|s| s.plan = Some("grid:3".into()))).unwrap();
+    x.set_state(at(|s| s.plan = Some("grid:3".into()))).unwrap();
+    let c = x.surrogate().unwrap();
     assert!(!Rc::ptr_eq(&a, &c));
     assert_eq!(c.samples.len(), 9);
-    let d = fitted(&scenario(|s| s.speed = 25.0)).unwrap();
+    x.set_state(at(|s| s.speed = 25.0)).unwrap();
+    let d = x.surrogate().unwrap();
     assert!(!Rc::ptr_eq(&c, &d));
-    let e = fitted(&scenario(|s| s.surrogate = Some("vba-qts".into()))).unwrap();
+    x.set_state(at(|s| s.surrogate = Some("vba-qts".into())))
+        .unwrap();
+    let e = x.surrogate().unwrap();
     assert_eq!(e.model.spec().name(), "vba-qts");
+    // A bad state leaves the session as it was (the last good state and its fit).
+    let before = x.state().clone();
+    assert!(x.set_state(at(|s| s.speed = -1.0)).is_err());
+    assert_eq!(x.state(), &before);
+    assert!(Rc::ptr_eq(&e, &x.surrogate().unwrap()));
+    assert!(x.set_design(f64::NAN, 1000.0).is_err());
+    assert_eq!(x.state(), &before);
 }
 
 #[test]
 fn the_surrogate_front_pick_holds_on_the_hifi() {
-    let s = scenario(|_| {});
-    let r = front(&s, "stm", FrontModel::Surrogate).unwrap();
+    let mut x = session(|_| {});
+    let r = x.front("stm", FrontModel::Surrogate).unwrap();
     assert!(r.study.evaluator.contains("rba"), "{}", r.study.evaluator);
     assert!(r.study.front.len() > 50);
     // The pick's prediction error against the HiFi re-check: about 0.1 % (study), < 1 %.
@@ -122,7 +150,7 @@ fn the_surrogate_front_pick_holds_on_the_hifi() {
         assert!(e.abs() < 1.0, "{:?}", r.recheck.error_percent);
     }
     // The LoFi front's pick misses the HiFi by more (the fidelity gap the surrogate closes).
-    let l = front(&s, "stm", FrontModel::LoFi).unwrap();
+    let l = x.front("stm", FrontModel::LoFi).unwrap();
     let gap = |r: &FrontResult| {
         r.recheck
             .error_percent
@@ -164,28 +192,30 @@ fn bad_surrogate_plan_and_bands_name_their_field() {
 fn kept_map_values_are_rejudged_when_only_the_objectives_change() {
     // First map at 7 mm fills the cache; the second, at 6 mm with a damping band, reuses
     // the values and must equal a fresh evaluation cell for cell, mask included.
-    let a = scenario(|_| {});
-    let _ = map_of(&a, MapModel::Surrogate, 9, 8).unwrap();
-    let _ = map_of(&a, MapModel::SurrogateError, 5, 4).unwrap();
-    let b = scenario(|s| {
+    let mut x = session(|_| {});
+    let loose = x.map(MapModel::LoFi, 9, 8).unwrap();
+    let _ = x.map(MapModel::Surrogate, 9, 8).unwrap();
+    let _ = x.map(MapModel::SurrogateError, 5, 4).unwrap();
+    let tighter = |s: &mut State| {
         s.sws_limit = Some(0.006);
         s.damping_band = Some([0.2, 0.3]);
-    });
+    };
+    let mut b = State::default();
+    tighter(&mut b);
+    x.set_state(b).unwrap();
+    let mut fresh = session(tighter);
     for model in [MapModel::LoFi, MapModel::Surrogate] {
-        let kept = map_of(&b, model, 9, 8).unwrap();
-        let fresh = match model {
-            MapModel::LoFi => model_map(&b, &b.lofi(), 9, 8).unwrap(),
-            _ => model_map(&b, &*fitted(&b).unwrap().model, 9, 8).unwrap(),
-        };
-        assert_eq!(kept, fresh, "{model:?}");
+        let kept = x.map(model, 9, 8).unwrap();
+        assert_eq!(kept, fresh.map(model, 9, 8).unwrap(), "{model:?}");
     }
-    let err = map_of(&b, MapModel::SurrogateError, 5, 4).unwrap();
-    let hifi = model_map(&b, &b.hifi().unwrap(), 5, 4).unwrap();
-    assert_eq!(err.broken, hifi.broken);
+    let err = x.map(MapModel::SurrogateError, 5, 4).unwrap();
+    let hifi = fresh.map(MapModel::HiFi, 5, 4).unwrap();
+    assert_eq!(err.broken(), hifi.broken());
     // More of the box breaks the tighter limit than the looser one.
-    let loose = map_of(&a, MapModel::LoFi, 9, 8).unwrap();
-    let tight = map_of(&b, MapModel::LoFi, 9, 8).unwrap();
-    let count = |m: &ModelMap| m.broken.iter().filter(|&&x| x & 1 != 0).count();
+    let tight = x.map(MapModel::LoFi, 9, 8).unwrap();
+    // The kept values are the very same (not recomputed).
+    assert!(Rc::ptr_eq(&loose.values, &tight.values));
+    let count = |m: &ModelMap| m.broken().iter().filter(|&&x| x & 1 != 0).count();
     assert!(
         count(&tight) > count(&loose),
         "{} vs {}",
@@ -198,12 +228,13 @@ fn kept_map_values_are_rejudged_when_only_the_objectives_change() {
 fn surrogate_spectra_carry_the_surrogate_rms() {
     // VBA: each criterion's tuned quarter car has that criterion's surrogate RMS (closed
     // form of the tuned car, an independent route), and its PSD integrates to it.
-    let s = scenario(|s| {
+    let mut x = session(|s| {
         s.surrogate = Some("vba-qts".into());
         s.ks = 26_000.0;
         s.cs = 2_100.0;
     });
-    let fit = fitted(&s).unwrap();
+    let s = x.scenario().clone();
+    let fit = x.surrogate().unwrap();
     let sur = fit.model.evaluate(26_000.0, 2_100.0).unwrap().to_array();
     let quarters = fit
         .model
@@ -221,7 +252,7 @@ fn surrogate_spectra_carry_the_surrogate_rms() {
             sur[k]
         );
     }
-    let sp = spectra(&s, 4000).unwrap();
+    let sp = x.spectra(4000).unwrap();
     assert_eq!(sp.surrogate_route, "tuned quarter car");
     // Trapezoid in ln f over 0.1..100 Hz: the band holds all but the DTL's f^-2 tail
     // beyond 100 Hz (about 1.4 % of its square, see criteria::spectral), so 3 % bounds it.
@@ -238,10 +269,11 @@ fn surrogate_spectra_carry_the_surrogate_rms() {
         );
     }
     // RBA: the LoFi's spectra scaled by S / LoFi.
-    let s = scenario(|_| {});
-    let sp = spectra(&s, 50).unwrap();
+    let mut x = session(|_| {});
+    let s = x.scenario().clone();
+    let sp = x.spectra(50).unwrap();
     assert_eq!(sp.surrogate_route, "LoFi scaled by S / LoFi");
-    let fit = fitted(&s).unwrap();
+    let fit = x.surrogate().unwrap();
     let (ks, cs) = (s.design.front.spring, s.design.front.damper);
     let r = fit.model.evaluate(ks, cs).unwrap().bacc / s.lofi().evaluate(ks, cs).unwrap().bacc;
     for i in 0..50 {

@@ -134,10 +134,13 @@ impl DosMap {
             for i in 0..g.ks.n {
                 let (ks, cs) = g.point(i, j);
                 let c: Criteria = map.criteria_at(i, j);
-                let bits = objectives
-                    .broken(ctx, ks, cs, &c)
-                    .into_iter()
-                    .fold(0u8, |m, o| m | objective_bit(o));
+                // Exactly `objectives.broken(..)`, without allocating per point.
+                let mut bits = 0u8;
+                objectives.each_constraint(ctx, ks, cs, &c, |o, g| {
+                    if g > 0.0 {
+                        bits |= objective_bit(o);
+                    }
+                });
                 if bits == 0 {
                     feasible_set.push(FeasiblePoint {
                         ks,

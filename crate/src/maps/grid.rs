@@ -164,6 +164,26 @@ impl Grid {
         )
     }
 
+    /// The centres of `nx` x `ny` equal cells tiling a design box (the page's maps):
+    /// `ks_i = ks_min + (i + 1/2) (ks_max - ks_min) / nx`, likewise `cs_j`, as the vertex
+    /// grid from the first centre to the last. Errors name `nx` or `ny` (2..=[`Axis::MAX_POINTS`]).
+    pub fn cells(design: &DesignBox, nx: usize, ny: usize) -> Result<Grid> {
+        let axis = |field: &str, lo: f64, hi: f64, n: usize| {
+            if !(2..=Axis::MAX_POINTS).contains(&n) {
+                return Err(RideError::field(
+                    field,
+                    format!("grid size must be 2..={} (got {n})", Axis::MAX_POINTS),
+                ));
+            }
+            let half = 0.5 * (hi - lo) / n as f64;
+            Axis::new(field, lo + half, hi - half, n)
+        };
+        Ok(Grid {
+            ks: axis("nx", design.ks_min, design.ks_max, nx)?,
+            cs: axis("ny", design.cs_min, design.cs_max, ny)?,
+        })
+    }
+
     /// Checks both axes (errors name `ks-range` or `cs-range`).
     pub fn validate(&self) -> Result<()> {
         self.ks.validate("ks-range")?;
@@ -266,5 +286,21 @@ mod tests {
         assert_eq!(g.indices(4), (1, 1));
         assert_eq!(g.point(2, 1), (3.0, 20.0));
         assert_eq!(g.design_box().cs_max, 20.0);
+    }
+
+    #[test]
+    fn cells_tile_the_box() {
+        let b = DesignBox::default();
+        let g = Grid::cells(&b, 4, 2).unwrap();
+        // Cell width 7500 N/m: centres at 13750, 21250, 28750, 36250.
+        assert!((g.ks.value(0) - 13_750.0).abs() < 1e-9);
+        assert!((g.ks.value(3) - 36_250.0).abs() < 1e-9);
+        assert!((g.cs.value(1) - 3_125.0).abs() < 1e-9);
+        let m = Grid::cells(&b, 1, 5).unwrap_err().to_string();
+        assert!(m.starts_with("nx: grid size must be 2..=1001"), "{m}");
+        assert!(Grid::cells(&b, 5, 1002)
+            .unwrap_err()
+            .to_string()
+            .starts_with("ny:"));
     }
 }

@@ -11,15 +11,15 @@
 //! wasm32 runs them on the calling thread.
 //!
 //! ```
-//! use ridelab::maps::{Dcs, DosMap, Grid, Scale, contour, auto_levels, dos_context};
+//! use ridelab::maps::{Dcs, DosMap, Grid, Scale, contour, auto_levels};
 //! use ridelab::{Car, LoFi, Road};
-//! use ridelab::dos::DesignObjectives;
+//! use ridelab::dos::{DesignObjectives, DosContext};
 //!
 //! let car = Car::datum();
-//! let lofi = LoFi { car: car.clone(), road: Road::default() };
+//! let lofi = LoFi::new(&car, &Road::default());
 //! let grid = Grid::parse("10000:40000:31", "500:4000:31")?;
 //! let map = Dcs::compute(&lofi, &grid, (car.front.spring, car.front.damper), Scale::Absolute)?;
-//! let dos = DosMap::new(&map, &DesignObjectives::default(), &dos_context(&car, map.datum.criteria))?;
+//! let dos = DosMap::new(&map, &DesignObjectives::default(), &DosContext::new(&car, map.datum.criteria))?;
 //! assert!(dos.summary.feasible > 0);
 //! let levels = auto_levels(&map.bacc, 8);
 //! let lines = contour(&grid, &map.bacc, levels[0])?;
@@ -41,6 +41,6 @@ pub use dos_mask::{
 };
 pub use grid::{Axis, Grid};
 pub use report::{
-    dos_context, map_csv, map_report, map_report_with, CriteriaContours, Feasibility, MapReport,
-    MapSettings, MaskBit, Units, LAYOUT,
+    map_csv, map_report, map_report_with, CriteriaContours, Feasibility, MapReport, MapSettings,
+    MaskBit, Units, LAYOUT,
 };

@@ -11,7 +11,7 @@ use crate::analysis::{HiFi, LoFi, ModelKind};
 use crate::car::Car;
 use crate::dos::{DesignObjectives, DosContext, Objective};
 use crate::error::{Result, RideError};
-use crate::evaluate::{Criteria, Evaluator};
+use crate::evaluate::Evaluator;
 use crate::road::Road;
 use serde::{Deserialize, Serialize};
 
@@ -151,16 +151,6 @@ pub struct MapReport {
     pub contours: CriteriaContours,
 }
 
-/// The DOS context of `car` with `datum` criteria: quarter-car sprung mass and front tyre rate.
-pub fn dos_context(car: &Car, datum: Criteria) -> DosContext {
-    let q = car.quarter();
-    DosContext {
-        sprung_mass: q.ms,
-        tire_stiffness: q.kt,
-        datum,
-    }
-}
-
 /// The map of `car` on `road` by the LoFi (`quarter`) or HiFi (`full`) model; the datum
 /// design is the car's front spring and damper.
 pub fn map_report(
@@ -172,15 +162,7 @@ pub fn map_report(
     car.validate()?;
     road.validate()?;
     match model {
-        ModelKind::Quarter => map_report_with(
-            &LoFi {
-                car: car.clone(),
-                road: *road,
-            },
-            car,
-            road,
-            settings,
-        ),
+        ModelKind::Quarter => map_report_with(&LoFi::new(car, road), car, road, settings),
         ModelKind::Full => map_report_with(&HiFi::new(car, road)?, car, road, settings),
     }
 }
@@ -201,7 +183,7 @@ pub fn map_report_with<E: Evaluator + Sync + ?Sized>(
         (car.front.spring, car.front.damper),
         Scale::Absolute,
     )?;
-    let ctx = dos_context(car, abs.datum.criteria);
+    let ctx = DosContext::new(car, abs.datum.criteria);
     let dos = DosMap::new(&abs, &settings.objectives, &ctx)?;
     let map = abs.to_scale(settings.scale);
     let lines = |k: usize| -> Result<Vec<Contour>> {

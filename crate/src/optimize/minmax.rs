@@ -169,6 +169,38 @@ mod tests {
     }
 
     #[test]
+    fn pick_has_the_least_score_of_every_point_and_the_first_on_ties() {
+        // bacc 1..2, dtl 300..500 and a unit datum: distances (0, 1), (0.4, 0.5),
+        // (0.5, 0.45), (0.7, 0.25), (1, 0); scores 1, 0.5, 0.5, 0.7, 1: a tie at 0.5.
+        let front = [
+            point(1.0, 500.0),
+            point(1.4, 400.0),
+            point(1.5, 390.0),
+            point(1.7, 350.0),
+            point(2.0, 300.0),
+        ];
+        let datum = Criteria {
+            bacc: 1.0,
+            dtl: 1.0,
+            sws: 0.005,
+        };
+        let want = [1.0, 0.5, 0.5, 0.7, 1.0];
+        let p = min_max_pick(&front, &datum).unwrap();
+        for (k, d) in normalised_distances(&front, &datum).iter().enumerate() {
+            // 1e-12: (1.4 - 1) / 1 is 0.3999999999999999 in binary.
+            assert!((d[0].max(d[1]) - want[k]).abs() < 1e-12, "point {k}: {d:?}");
+            assert!(p.score <= d[0].max(d[1]), "point {k} beats the pick");
+        }
+        assert_eq!(p.index, 1, "the first of the tied points");
+        assert_eq!(p.score, 0.5);
+        // Reversed, the other tied point comes first and is picked.
+        let mut rev = front;
+        rev.reverse();
+        let q = min_max_pick(&rev, &datum).unwrap();
+        assert_eq!((q.index, q.ks), (2, front[2].ks));
+    }
+
+    #[test]
     fn recheck_reports_both_and_the_error() {
         struct Fixed;
         impl Evaluator for Fixed {

@@ -1,7 +1,6 @@
 //! Both optimisers on the closed-form quarter car, against brute-force reference fronts.
 
 use super::hypervolume::{front_distance, hypervolume, reference_point};
-use super::minmax::normalised_distances;
 use super::problem::{dominates, feasible_front, Problem, Solution};
 use super::test_problems::QuarterCar;
 use super::*;
@@ -237,17 +236,40 @@ fn min_max_pick_is_on_the_front_and_balanced() {
     let pick = &s.pick;
     let f = [pick.criteria.bacc, pick.criteria.dtl];
     assert!(front.iter().all(|p| !dominates([p.bacc, p.dtl], f)));
-    let d = normalised_distances(front, &context().datum);
-    let worst = |k: usize| d[k][0].max(d[k][1]);
-    for k in [pick.index.wrapping_sub(1), pick.index + 1] {
-        if let Some(dk) = d.get(k) {
-            assert!(
-                worst(k) >= pick.score,
-                "neighbour {k}: {dk:?} vs {}",
-                pick.score
-            );
-        }
-    }
+    // Every front point's score, computed here from its definition (not by
+    // `normalised_distances`): r_i = f_i / f_i(datum), the distance of each ratio from its
+    // least value over the front in units of its spread, the larger of the two.
+    let datum = context().datum;
+    let ratios: Vec<[f64; 2]> = front
+        .iter()
+        .map(|p| [p.bacc / datum.bacc, p.dtl / datum.dtl])
+        .collect();
+    let lo = [0, 1].map(|k| ratios.iter().map(|r| r[k]).fold(f64::INFINITY, f64::min));
+    let hi = [0, 1].map(|k| {
+        ratios
+            .iter()
+            .map(|r| r[k])
+            .fold(f64::NEG_INFINITY, f64::max)
+    });
+    let score = |r: &[f64; 2]| {
+        [0, 1]
+            .map(|k| (r[k] - lo[k]) / (hi[k] - lo[k]))
+            .into_iter()
+            .fold(0.0, f64::max)
+    };
+    let scores: Vec<f64> = ratios.iter().map(score).collect();
+    let least = scores.iter().copied().fold(f64::INFINITY, f64::min);
+    // The pick's score is the least of all (1e-12: the same arithmetic in another order),
+    // and on ties the pick is the first point with the least score.
+    assert!(
+        (pick.score - least).abs() < 1e-12 && (scores[pick.index] - least).abs() < 1e-12,
+        "pick {} scores {} vs least {least}",
+        pick.index,
+        pick.score
+    );
+    let first = scores.iter().position(|&v| v - least < 1e-12).unwrap();
+    assert_eq!(pick.index, first, "ties: the first of {scores:?}");
+    assert!(front.len() > 50, "a dense front: {} points", front.len());
     // both distances close to balanced on a dense front
     assert!(
         (pick.distance[0] - pick.distance[1]).abs() < 0.02,

@@ -91,6 +91,8 @@ pub struct DataFit {
 
 impl Evaluator for DataFit {
     fn evaluate(&self, ks: f64, cs: f64) -> Result<Criteria> {
+        // A data fit has no physics to refuse a bad design: check it as the models do.
+        crate::car::check_design(ks, cs)?;
         let (u, v) = self.design_box.normalize(ks, cs);
         Ok(Criteria::from_array(std::array::from_fn(|k| {
             self.responses[k].value(u, v)

@@ -32,7 +32,7 @@ const FD_STEP: f64 = 6e-6;
 const START_DRAWS: usize = 100;
 
 /// A parametric tuning of the LoFi quarter car, `a -> p(a)` or `x -> tau(x, a)`.
-pub trait Tuning {
+pub trait Tuning: Send + Sync {
     /// Parameter names, e.g. `["ks.a0", "ks.a1", ...]`.
     fn names(&self) -> Vec<String>;
 

@@ -2,7 +2,7 @@
 //! LoFi (each approach must recover the tuning), the sample-count errors, and the fidelity
 //! study on the real HiFi.
 
-use super::study::{study_specs, Outcome, VALIDATION_LEVELS};
+use super::study::{study_specs, FittedRow, Outcome, StudyRow, VALIDATION_LEVELS};
 use super::*;
 use crate::doe::{audze_eglais, full_factorial};
 use crate::model::quarter_car;
@@ -417,6 +417,12 @@ fn surrogate_report_is_serialisable_and_attachable() {
     );
 }
 
+/// The study's figures on the datum car, class B at 20 m/s (debug build, this run): the
+/// untuned LoFi's worst max RTE is 5.06 % (min R^2 0.984); the best surrogate per budget
+/// (always an RBA with an RBF correction) has worst max RTE 3.61, 2.77, 0.78, 1.50, 0.32, 0.67,
+/// 0.19, 0.093, 0.048 % and min R^2 0.9930, 0.9971, 0.99926, 0.99939, 0.99998, 0.99998,
+/// 0.999997, 0.999999, 0.9999998 at 2, 3, 4, 5, 9, 10, 16, 25, 100 samples. The bounds below
+/// leave a margin of about 1.3 to 2 on each figure (1 - R^2 for R^2).
 #[test]
 fn fidelity_study_on_the_real_hifi() {
     let report = study(&Car::datum(), &Road::default()).unwrap();
@@ -428,38 +434,122 @@ fn fidelity_study_on_the_real_hifi() {
         report.hifi_evaluations,
         VALIDATION_LEVELS.pow(2) + plan_samples
     );
-    for row in &report.rows {
-        match &row.outcome {
-            Outcome::Fitted(f) => {
-                let all = f.metrics.to_array();
-                assert!(all
-                    .iter()
-                    .all(|m| m.r2.is_finite() && m.rte_max.is_finite()));
-            }
+    let lofi = report.lofi.to_array();
+    let lofi_worst = lofi.iter().map(|m| m.rte_max).fold(0.0, f64::max);
+    eprintln!("untuned LoFi: worst max RTE {lofi_worst:.3} %");
+    // The untuned LoFi misses the HiFi by a few per cent (the fidelity gap the study closes).
+    assert!((2.0..10.0).contains(&lofi_worst), "{lofi_worst}");
+    let fitted: Vec<(&StudyRow, &FittedRow)> = report
+        .rows
+        .iter()
+        .filter_map(|r| match &r.outcome {
+            Outcome::Fitted(f) => Some((r, f)),
             Outcome::Skipped { reason } => {
-                assert!(reason.starts_with("plan: "), "{}: {reason}", row.surrogate)
+                assert!(reason.starts_with("plan: "), "{}: {reason}", r.surrogate);
+                None
             }
+        })
+        .collect();
+    for (row, f) in &fitted {
+        let all = f.metrics.to_array();
+        for m in &all {
+            // Consistent measures: an RMS never exceeds the largest error, a mean RTE the
+            // largest RTE, and R^2 = 1 - SS_res / SS_tot is at most 1 (1e-12: rounding).
+            assert!(
+                m.rmse <= m.mae * (1.0 + 1e-12) && m.rte_mean <= m.rte_max * (1.0 + 1e-12),
+                "{} {}: {m:?}",
+                row.surrogate,
+                row.plan
+            );
+            assert!(m.r2 <= 1.0 && m.r2.is_finite(), "{}: {m:?}", row.surrogate);
+        }
+        let worst = all.iter().map(|m| m.rte_max).fold(0.0, f64::max);
+        let min_r2 = all.iter().map(|m| m.r2).fold(f64::INFINITY, f64::min);
+        assert_eq!(
+            (f.worst_rte_max, f.min_r2),
+            (worst, min_r2),
+            "{}",
+            row.surrogate
+        );
+        // A surrogate built on the LoFi (RBA, VBA, PBA) fitted to 5 or more samples stays
+        // within 10 % of the untuned LoFi's error or better: the fit starts from the untuned
+        // model and samples over the box keep it from bending away elsewhere (worst such row
+        // 4.96 %, pba-umts; with 2 to 4 samples vba-lts reaches 37 %, so no bound there).
+        if !row.surrogate.starts_with("data-") && row.samples >= 5 {
+            assert!(
+                f.worst_rte_max <= 1.1 * lofi_worst,
+                "{} on {}: {} % vs LoFi {lofi_worst} %",
+                row.surrogate,
+                row.plan,
+                f.worst_rte_max
+            );
         }
     }
     let md = report.to_markdown();
     assert!(md.contains("| 10 | ") && md.contains("skipped: plan: "));
-    let best = report
-        .best_per_budget
-        .iter()
-        .find(|b| b.samples == 10)
-        .unwrap();
-    for (name, m) in CRITERIA_NAMES.iter().zip(best.fitted.metrics.to_array()) {
+
+    // Per sample budget: (samples, bound on the best worst max RTE %, bound on its min R^2).
+    // With 2 and 3 samples the bound is relative: at least 20 % better than the untuned LoFi.
+    let bounds: [(usize, f64, f64); 9] = [
+        (2, 0.8 * lofi_worst, 0.99),
+        (3, 0.8 * lofi_worst, 0.99),
+        (4, 1.2, 0.999),
+        (5, 2.0, 0.999),
+        (9, 0.5, 0.9999),
+        (10, 1.0, 0.9999),
+        (16, 0.3, 0.99999),
+        (25, 0.15, 0.99999),
+        (100, 0.08, 0.99999),
+    ];
+    assert_eq!(report.best_per_budget.len(), bounds.len());
+    for (b, (samples, rte, r2)) in report.best_per_budget.iter().zip(bounds) {
         eprintln!(
-            "best at 10 samples: {} on {}: {name} R2 {:.5} max RTE {:.3} % mean RTE {:.3} %",
-            best.surrogate, best.plan, m.r2, m.rte_max, m.rte_mean
-        );
-        assert!(m.r2 >= 0.99, "{name}: R2 {}", m.r2);
-        assert!(m.rte_max <= 2.0, "{name}: max RTE {} %", m.rte_max);
-    }
-    for b in &report.best_per_budget {
-        eprintln!(
-            "budget {:>3}: {:<28} {:<8} worst max RTE {:7.3} %  min R2 {:.5}",
+            "budget {:>3}: {:<28} {:<8} worst max RTE {:7.3} %  min R2 {:.7}",
             b.samples, b.surrogate, b.plan, b.fitted.worst_rte_max, b.fitted.min_r2
         );
+        assert_eq!(b.samples, samples);
+        assert!(
+            b.fitted.worst_rte_max <= rte,
+            "{samples}: {} %",
+            b.fitted.worst_rte_max
+        );
+        assert!(b.fitted.min_r2 >= r2, "{samples}: R2 {}", b.fitted.min_r2);
+        // The best is the least worst max RTE of the fitted rows of that budget.
+        let least = fitted
+            .iter()
+            .filter(|(r, _)| r.samples == samples)
+            .map(|(_, f)| f.worst_rte_max)
+            .fold(f64::INFINITY, f64::min);
+        assert_eq!(b.fitted.worst_rte_max, least, "{samples}");
+        // The physics beats a pure data fit of the same samples by far (22x at least here;
+        // 5x asserted): the seed's case for tuning the LoFi rather than replacing it.
+        let best_data = fitted
+            .iter()
+            .filter(|(r, _)| r.samples == samples && r.surrogate.starts_with("data-"))
+            .map(|(_, f)| f.worst_rte_max)
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            5.0 * b.fitted.worst_rte_max <= best_data,
+            "{samples}: best {} % vs data fit {best_data} %",
+            b.fitted.worst_rte_max
+        );
+    }
+    // Within each plan family more samples (a shorter fill distance) give a smaller best
+    // error: each step at least 10 % lower (observed ratios 0.41 to 0.77).
+    for family in ["ae", "grid"] {
+        let best: Vec<f64> = [2, 3, 4, 5, 10]
+            .iter()
+            .map(|n| {
+                let plan = format!("{family}:{n}");
+                fitted
+                    .iter()
+                    .filter(|(r, _)| r.plan == plan)
+                    .map(|(_, f)| f.worst_rte_max)
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .collect();
+        for w in best.windows(2) {
+            assert!(w[1] <= 0.9 * w[0], "{family}: {best:?}");
+        }
     }
 }

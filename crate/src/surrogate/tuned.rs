@@ -52,6 +52,8 @@ impl<T: Tuning> Tuned<T> {
 
 impl<T: Tuning> Evaluator for Tuned<T> {
     fn evaluate(&self, ks: f64, cs: f64) -> Result<Criteria> {
+        // The design first, so errors name ks or cs rather than the transformed design.
+        crate::car::check_design(ks, cs)?;
         if let [a] = self.params.as_slice() {
             return tuned_criteria(&self.tuning, &self.road, a, ks, cs);
         }

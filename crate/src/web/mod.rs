@@ -15,24 +15,23 @@ mod screen;
 pub use charts::{line_chart_svg_js, map_chart_svg_js};
 pub use screen::{draw_line_chart_js, draw_map_frame_js};
 
-use crate::analysis::{report, ModelKind};
+use crate::analysis::ModelKind;
 use crate::car::{Car, PRESETS};
 use crate::chart::ColourMap;
 use crate::error::RideError;
-use crate::evaluate::Evaluator;
 use crate::explorer::{
-    fit_report, fitted, front as model_front, lofi_map, map_of, spectra, time_response, FrontModel,
-    MapModel, ModelMap, Scenario, State, STATE_FIELDS,
+    ui_field, EvaluatorKind, FrontModel, MapModel, ModelMap, Session, State, STATE_FIELDS,
 };
 use crate::road::RoadClass;
 use js_sys::{Float64Array, Object, Reflect, Uint8Array};
 use serde::Serialize;
+use std::cell::RefCell;
 use wasm_bindgen::prelude::*;
 
 /// Converts a core error to a JS `Error` with a `field` property.
 fn js_error(e: RideError) -> JsValue {
     let field = match &e {
-        RideError::Field { field, .. } => ui_field(field),
+        RideError::Field { field, .. } | RideError::Infeasible { field, .. } => ui_field(field),
         // The only JSON the core parses is a car file.
         RideError::Json(_) => "car".into(),
         _ => String::new(),
@@ -41,43 +40,6 @@ fn js_error(e: RideError) -> JsValue {
     // Setting a property on a fresh Error object cannot fail.
     let _ = Reflect::set(&err, &"field".into(), &field.into());
     err.into()
-}
-
-/// The state field a core field path belongs to: the design variables are the car's
-/// front spring and damper; every other car-file field is the car's; the rest are
-/// state fields already ("speed", "class", "tracks", "model", "nx", ...).
-fn ui_field(core: &str) -> String {
-    const CAR_FIELDS: [&str; 12] = [
-        "car",
-        "name",
-        "source",
-        "sprung_mass",
-        "pitch_inertia",
-        "roll_inertia",
-        "a",
-        "b",
-        "track_front",
-        "track_rear",
-        "front",
-        "rear",
-    ];
-    match core {
-        "front.spring" | "ks" => "ks".into(),
-        "front.damper" | "cs" => "cs".into(),
-        "ks-range" | "cs-range" => "box".into(),
-        "sws_limit" => "swsLimit".into(),
-        "bounce_band" => "bounceBand".into(),
-        "damping_band" => "dampingBand".into(),
-        "approach" | "scheme" => "surrogate".into(),
-        f if CAR_FIELDS.contains(&f)
-            || f.starts_with("front.")
-            || f.starts_with("rear.")
-            || !f.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') =>
-        {
-            "car".into()
-        }
-        f => f.into(),
-    }
 }
 
 fn to_js<T: Serialize>(v: &T) -> Result<JsValue, JsValue> {
@@ -110,8 +72,30 @@ fn parse_state(state: JsValue) -> Result<State, JsValue> {
     serde_wasm_bindgen::from_value(state).map_err(|e| state_error(e.to_string()))
 }
 
-fn scenario(state: JsValue) -> Result<Scenario, JsValue> {
-    parse_state(state)?.scenario().map_err(js_error)
+thread_local! {
+    /// The session behind the state-taking functions below: each call moves it to the
+    /// call's state (re-parsing only what changed) and asks it. The page's own
+    /// [`Explorer`] objects are sessions of their own.
+    static SESSION: RefCell<Option<Session>> = const { RefCell::new(None) };
+}
+
+/// Runs `f` on the thread's session moved to `state`.
+fn with_session<T>(
+    state: JsValue,
+    f: impl FnOnce(&mut Session) -> crate::error::Result<T>,
+) -> Result<T, JsValue> {
+    let state = parse_state(state)?;
+    SESSION.with_borrow_mut(|slot| {
+        match slot {
+            Some(s) => s.set_state(state).map_err(js_error)?,
+            None => *slot = Some(Session::new(state).map_err(js_error)?),
+        }
+        // Just set.
+        let s = slot
+            .as_mut()
+            .ok_or_else(|| state_error("no session".into()))?;
+        f(s).map_err(js_error)
+    })
 }
 
 /// The crate version.
@@ -213,27 +197,24 @@ pub fn check_state(state: JsValue) -> Result<JsValue, JsValue> {
     to_js(&s)
 }
 
-/// What the page shows about the scenario besides the criteria: the datum car, its
-/// quarter car, the datum design `{ks, cs}`, the static front wheel load (N), the road
-/// velocity PSD (m^2/s^2/Hz) and the design box.
-#[wasm_bindgen]
-pub fn describe(state: JsValue) -> Result<JsValue, JsValue> {
-    #[derive(Serialize)]
-    #[serde(rename_all = "camelCase")]
-    struct Description {
-        car: Car,
-        quarter: crate::car::QuarterCar,
-        datum_ks: f64,
-        datum_cs: f64,
-        static_wheel_load: f64,
-        road: crate::road::Road,
-        velocity_psd: f64,
-        delay: f64,
-        design_box: crate::design::DesignBox,
-        sws_limit: Option<f64>,
-    }
-    let s = scenario(state)?;
-    to_js(&Description {
+#[derive(Serialize)]
+#[serde(rename_all = "camelCase")]
+struct Description {
+    car: Car,
+    quarter: crate::car::QuarterCar,
+    datum_ks: f64,
+    datum_cs: f64,
+    static_wheel_load: f64,
+    road: crate::road::Road,
+    velocity_psd: f64,
+    delay: f64,
+    design_box: crate::design::DesignBox,
+    sws_limit: Option<f64>,
+}
+
+fn description(s: &Session) -> Description {
+    let s = s.scenario();
+    Description {
         quarter: s.datum.quarter(),
         datum_ks: s.datum.front.spring,
         datum_cs: s.datum.front.damper,
@@ -243,26 +224,32 @@ pub fn describe(state: JsValue) -> Result<JsValue, JsValue> {
         delay: s.road.delay(s.datum.wheelbase()),
         design_box: s.dbox,
         sws_limit: s.objectives.sws_limit,
-        car: s.datum,
-    })
+        car: s.datum.clone(),
+    }
+}
+
+/// What the page shows about the scenario besides the criteria: the datum car, its
+/// quarter car, the datum design `{ks, cs}`, the static front wheel load (N), the road
+/// velocity PSD (m^2/s^2/Hz) and the design box.
+#[wasm_bindgen]
+pub fn describe(state: JsValue) -> Result<JsValue, JsValue> {
+    to_js(&with_session(state, |s| Ok(description(s)))?)
 }
 
 /// The full analysis report of the state's design by one model: `model` is
-/// "quarter" (LoFi) or "full" (HiFi). The same [`report`] as `ridelab eval`.
+/// "quarter" (LoFi) or "full" (HiFi). The same report as `ridelab eval`.
 #[wasm_bindgen]
 pub fn analyse(state: JsValue, model: &str) -> Result<JsValue, JsValue> {
     let kind = ModelKind::parse(model).map_err(js_error)?;
-    let s = scenario(state)?;
-    let r = report(kind, &s.design, &s.road).map_err(js_error)?;
-    to_js(&r)
+    to_js(&with_session(state, |s| s.report(kind))?)
 }
 
 /// Both reports of the state's design: `{lofi, hifi}` (see [`analyse`]).
 #[wasm_bindgen]
 pub fn evaluate(state: JsValue) -> Result<JsValue, JsValue> {
-    let s = scenario(state)?;
-    let lofi = report(ModelKind::Quarter, &s.design, &s.road).map_err(js_error)?;
-    let hifi = report(ModelKind::Full, &s.design, &s.road).map_err(js_error)?;
+    let (lofi, hifi) = with_session(state, |s| {
+        Ok((s.report(ModelKind::Quarter)?, s.report(ModelKind::Full)?))
+    })?;
     let out = Object::new();
     Reflect::set(&out, &"lofi".into(), &to_js(&lofi)?)?;
     Reflect::set(&out, &"hifi".into(), &to_js(&hifi)?)?;
@@ -274,18 +261,8 @@ pub fn evaluate(state: JsValue) -> Result<JsValue, JsValue> {
 /// surrogate).
 #[wasm_bindgen]
 pub fn criteria(state: JsValue, model: &str) -> Result<JsValue, JsValue> {
-    let s = scenario(state)?;
-    let (ks, cs) = (s.design.front.spring, s.design.front.damper);
-    let c = if model == "surrogate" {
-        fitted(&s).and_then(|f| f.model.evaluate(ks, cs))
-    } else {
-        match ModelKind::parse(model).map_err(js_error)? {
-            ModelKind::Quarter => s.lofi().evaluate(ks, cs),
-            ModelKind::Full => s.hifi().and_then(|h| h.evaluate(ks, cs)),
-        }
-    }
-    .map_err(js_error)?;
-    to_js(&c)
+    let kind = EvaluatorKind::parse(model).map_err(js_error)?;
+    to_js(&with_session(state, |s| s.criteria(kind))?)
 }
 
 /// The three LoFi criteria over an `nx` x `ny` grid of cell centres of the design box,
@@ -294,50 +271,46 @@ pub fn criteria(state: JsValue, model: &str) -> Result<JsValue, JsValue> {
 /// index `c nx ny + j nx + i`, `ks_i = ks_min + (i + 1/2) (ks_max - ks_min) / nx`.
 #[wasm_bindgen(js_name = lofiMap)]
 pub fn lofi_map_js(state: JsValue, nx: usize, ny: usize) -> Result<Float64Array, JsValue> {
-    let s = scenario(state)?;
-    let m = lofi_map(&s, nx, ny).map_err(js_error)?;
-    Ok(Float64Array::from(m.values.as_slice()))
+    let m = with_session(state, |s| s.map(MapModel::LoFi, nx, ny))?;
+    Ok(Float64Array::from(m.planes().as_slice()))
 }
 
 /// A map as `{nx, ny, values: Float64Array, feasible: Uint8Array, broken: Uint8Array,
 /// feasibleCount}` (`broken`: the objectives each cell breaks as a bitmask, bit 0 SWS
 /// limit, 1 bounce band, 2 damping band, 3..5 BAcc/DTL/SWS no worse than datum).
 fn map_js(m: &ModelMap) -> Result<JsValue, JsValue> {
-    let feasible = m.feasible();
-    let count = feasible.iter().filter(|&&f| f == 1).count();
     let out = Object::new();
-    Reflect::set(&out, &"nx".into(), &(m.nx as f64).into())?;
-    Reflect::set(&out, &"ny".into(), &(m.ny as f64).into())?;
+    Reflect::set(&out, &"nx".into(), &(m.grid().ks.n as f64).into())?;
+    Reflect::set(&out, &"ny".into(), &(m.grid().cs.n as f64).into())?;
     Reflect::set(
         &out,
         &"values".into(),
-        &Float64Array::from(m.values.as_slice()).into(),
+        &Float64Array::from(m.planes().as_slice()).into(),
     )?;
     Reflect::set(
         &out,
         &"feasible".into(),
-        &Uint8Array::from(feasible.as_slice()).into(),
+        &Uint8Array::from(m.feasible().as_slice()).into(),
     )?;
+    Reflect::set(&out, &"broken".into(), &Uint8Array::from(m.broken()).into())?;
     Reflect::set(
         &out,
-        &"broken".into(),
-        &Uint8Array::from(m.broken.as_slice()).into(),
+        &"feasibleCount".into(),
+        &(m.dos.summary.feasible as f64).into(),
     )?;
-    Reflect::set(&out, &"feasibleCount".into(), &(count as f64).into())?;
     Ok(out.into())
 }
 
 /// [`lofi_map_js`] plus the design objectives (see [`map_js`]).
 #[wasm_bindgen(js_name = lofiMaps)]
 pub fn lofi_maps_js(state: JsValue, nx: usize, ny: usize) -> Result<JsValue, JsValue> {
-    let s = scenario(state)?;
-    map_js(&lofi_map(&s, nx, ny).map_err(js_error)?)
+    map_js(&with_session(state, |s| s.map(MapModel::LoFi, nx, ny))?)
 }
 
 /// The map of one model (same layout as [`lofi_maps_js`]): `model` is "lofi", "hifi",
 /// "surrogate" (the state's surrogate) or "error" (the surrogate's signed relative error
 /// against the HiFi, `100 (S / HiFi - 1)` %, with the HiFi's objectives). The HiFi and
-/// error maps cost about 60 us a cell: the page asks the worker for them.
+/// error maps cost about 30 us a cell: the page asks the worker for them.
 #[wasm_bindgen(js_name = modelMaps)]
 pub fn model_maps_js(
     state: JsValue,
@@ -345,9 +318,8 @@ pub fn model_maps_js(
     nx: usize,
     ny: usize,
 ) -> Result<JsValue, JsValue> {
-    let s = scenario(state)?;
     let m = MapModel::parse(model).map_err(js_error)?;
-    map_js(&map_of(&s, m, nx, ny).map_err(js_error)?)
+    map_js(&with_session(state, |s| s.map(m, nx, ny))?)
 }
 
 /// The state's surrogate fitted to HiFi samples over its design box and validated on
@@ -355,8 +327,7 @@ pub fn model_maps_js(
 /// diagnostics, metrics, error map, predictions).
 #[wasm_bindgen(js_name = surrogateFit)]
 pub fn surrogate_fit_js(state: JsValue, levels: usize) -> Result<JsValue, JsValue> {
-    let s = scenario(state)?;
-    to_js(&fit_report(&s, levels).map_err(js_error)?)
+    to_js(&with_session(state, |s| s.fit_report(levels))?)
 }
 
 /// The surrogate names the state's `surrogate` field takes (`ridelab surrogate` names).
@@ -376,9 +347,8 @@ pub fn surrogates() -> Result<JsValue, JsValue> {
 /// datumHifi, recheck}`. With no feasible design the error names the binding objective.
 #[wasm_bindgen]
 pub fn front(state: JsValue, method: &str, model: Option<String>) -> Result<JsValue, JsValue> {
-    let s = scenario(state)?;
     let on = FrontModel::parse(model.as_deref().unwrap_or("lofi")).map_err(js_error)?;
-    to_js(&model_front(&s, method, on).map_err(js_error)?)
+    to_js(&with_session(state, |s| s.front(method, on))?)
 }
 
 /// |H| from road displacement and the output PSDs of the design by both models at
@@ -386,18 +356,19 @@ pub fn front(state: JsValue, method: &str, model: Option<String>) -> Result<JsVa
 /// each `[bacc, dtl, sws]` (1/s^2, N/m, m/m; (m/s^2)^2/Hz, N^2/Hz, m^2/Hz).
 #[wasm_bindgen(js_name = spectra)]
 pub fn spectra_js(state: JsValue, nfreq: usize) -> Result<JsValue, JsValue> {
-    let s = scenario(state)?;
-    to_js(&spectra(&s, nfreq).map_err(js_error)?)
+    to_js(&with_session(state, |s| s.spectra(nfreq))?)
 }
 
 /// Seeded time responses of the design by both models: `options` is
-/// `{duration, dt, seed, f_min, f_max, asymmetric: [bump, rebound] | null, decimate}`
-/// (s, s, -, Hz, Hz, N s/m, -; missing fields take the core defaults). Returns
-/// `{lofi, hifi, a, b}` with `{t, road, outputs, positions, rms}` each.
+/// `{duration, dt, seed, f_min, f_max, damper: {bump, rebound, knee: {velocity, bump,
+/// rebound} | null} | null, decimate}` (s, s, -, Hz, Hz, N s/m and m/s, -; missing fields
+/// take the core defaults). With a damper law the run's Cs is its equivalent linear rate
+/// `(bump + rebound) / 2`, as in `ridelab simulate --bump --rebound`. Returns
+/// `{damper, damperRate, lofi, hifi, a, b}` with `{t, road, outputs, positions,
+/// accelerations, rms, damper_rate, equivalent_rate}` per model.
 #[wasm_bindgen(js_name = timeResponse)]
 pub fn time_response_js(state: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
-    let s = scenario(state)?;
     let opt: crate::time_domain::TimeOptions = serde_wasm_bindgen::from_value(options)
         .map_err(|e| state_error(format!("time options: {e}")))?;
-    to_js(&time_response(&s, &opt).map_err(js_error)?)
+    to_js(&with_session(state, |s| s.time_response(&opt))?)
 }

@@ -1,0 +1,217 @@
+//! The explorer's session: one object that owns the view's state, its parsed scenario,
+//! the fitted surrogate and the kept map values, updated by small setters. The page's
+//! wasm `Explorer` is this object; the CLI has no session (each command is one run).
+//!
+//! What is kept, and until when:
+//! - the scenario: a new state re-parses only the fields that changed
+//!   ([`State::scenario_after`]), so a slider move never re-reads a custom car's file;
+//! - the fitted surrogate and each model's map values: until the car, road, design box
+//!   or surrogate change ([`FitKey`]). The design objectives only judge a map's values,
+//!   so an objective edit (the SWS limit dragged) re-judges the kept values instead of
+//!   recomputing them: a 160 x 120 LoFi map then costs its mask.
+//!
+//! A setter that fails leaves the session as it was (the last good state).
+
+use super::maps::{error_values, MapModel, ModelMap};
+use super::state::{Scenario, State};
+use super::studies::{self, FrontModel, FrontResult, Spectra, TimeResult};
+use super::surrogate::{fit, fit_report, FitKey, FittedSurrogate};
+use crate::analysis::{report, ModelKind, Report};
+use crate::dos::DosContext;
+use crate::error::Result;
+use crate::evaluate::{Criteria, Evaluator};
+use crate::maps::{Dcs, DosMap, Grid, Scale};
+use crate::surrogate::SurrogateReport;
+use crate::time_domain::TimeOptions;
+use std::rc::Rc;
+
+/// Map values kept at once: one per model and grid in use (the page shows one model's
+/// maps, its objective plane uses the surrogate's feasible set, the worker the HiFi's).
+const KEPT_MAPS: usize = 8;
+
+/// The explorer's session (see the module documentation).
+pub struct Session {
+    state: State,
+    scenario: Scenario,
+    fit: Option<Rc<FittedSurrogate>>,
+    kept: Vec<(MapModel, Grid, Rc<Dcs>)>,
+}
+
+impl Session {
+    /// A session on `state`; errors name the field at fault.
+    pub fn new(state: State) -> Result<Session> {
+        let scenario = state.scenario()?;
+        Ok(Session {
+            state,
+            scenario,
+            fit: None,
+            kept: Vec::new(),
+        })
+    }
+
+    /// The current state.
+    pub fn state(&self) -> &State {
+        &self.state
+    }
+
+    /// The current scenario.
+    pub fn scenario(&self) -> &Scenario {
+        &self.scenario
+    }
+
+    /// Moves to `state`, re-parsing only what changed; the fit and the kept maps go when
+    /// what they depend on changes. On error the session keeps its last good state.
+    pub fn set_state(&mut self, state: State) -> Result<()> {
+        if state == self.state {
+            return Ok(());
+        }
+        let scenario = state.scenario_after(Some((&self.state, &self.scenario)))?;
+        if FitKey::of(&scenario) != FitKey::of(&self.scenario) {
+            self.fit = None;
+            self.kept.clear();
+        }
+        self.state = state;
+        self.scenario = scenario;
+        Ok(())
+    }
+
+    /// Moves the design to front spring `ks` (N/m) and damper `cs` (N s/m); errors name
+    /// `ks` or `cs`.
+    pub fn set_design(&mut self, ks: f64, cs: f64) -> Result<()> {
+        let state = State {
+            ks,
+            cs,
+            ..self.state.clone()
+        };
+        self.set_state(state)
+    }
+
+    /// The scenario's surrogate, fitted once per [`FitKey`].
+    pub fn surrogate(&mut self) -> Result<Rc<FittedSurrogate>> {
+        if let Some(f) = &self.fit {
+            return Ok(Rc::clone(f));
+        }
+        let f = Rc::new(fit(&self.scenario)?);
+        self.fit = Some(Rc::clone(&f));
+        Ok(f)
+    }
+
+    /// The criteria of the design by the fast evaluators the maps and optimisers use.
+    pub fn criteria(&mut self, model: EvaluatorKind) -> Result<Criteria> {
+        let (ks, cs) = self.design();
+        match model {
+            EvaluatorKind::LoFi => self.scenario.lofi().evaluate(ks, cs),
+            EvaluatorKind::HiFi => self.scenario.hifi()?.evaluate(ks, cs),
+            EvaluatorKind::Surrogate => self.surrogate()?.model.evaluate(ks, cs),
+        }
+    }
+
+    /// The full analysis report of the design by one model (as `ridelab eval`).
+    pub fn report(&self, kind: ModelKind) -> Result<Report> {
+        report(kind, &self.scenario.design, &self.scenario.road)
+    }
+
+    /// The map of `model` on the `nx` x `ny` cell-centre grid of the design box, its
+    /// objectives judged against the model's own datum (errors name `nx` or `ny`).
+    pub fn map(&mut self, model: MapModel, nx: usize, ny: usize) -> Result<ModelMap> {
+        let grid = Grid::cells(&self.scenario.dbox, nx, ny)?;
+        if model == MapModel::SurrogateError {
+            let hifi = self.values(MapModel::HiFi, &grid)?;
+            let sur = self.values(MapModel::Surrogate, &grid)?;
+            let dos = self.judge(&hifi)?;
+            return Ok(ModelMap {
+                values: Rc::new(error_values(&sur, &hifi)),
+                dos,
+            });
+        }
+        let values = self.values(model, &grid)?;
+        let dos = self.judge(&values)?;
+        Ok(ModelMap { values, dos })
+    }
+
+    /// The design objectives on a model's absolute map (the datum's criteria are the map's).
+    fn judge(&self, values: &Dcs) -> Result<DosMap> {
+        let ctx = DosContext::new(&self.scenario.datum, values.datum.criteria);
+        DosMap::new(values, &self.scenario.objectives, &ctx)
+    }
+
+    /// A model's values on `grid`, kept or computed.
+    fn values(&mut self, model: MapModel, grid: &Grid) -> Result<Rc<Dcs>> {
+        if let Some((_, _, v)) = self.kept.iter().find(|(m, g, _)| *m == model && g == grid) {
+            return Ok(Rc::clone(v));
+        }
+        let datum = &self.scenario.datum;
+        let at = (datum.front.spring, datum.front.damper);
+        let v = Rc::new(match model {
+            MapModel::LoFi => Dcs::compute(&self.scenario.lofi(), grid, at, Scale::Absolute)?,
+            MapModel::HiFi => Dcs::compute(&self.scenario.hifi()?, grid, at, Scale::Absolute)?,
+            MapModel::Surrogate | MapModel::SurrogateError => {
+                let fit = self.surrogate()?;
+                Dcs::compute(&*fit.model, grid, at, Scale::Absolute)?
+            }
+        });
+        if self.kept.len() >= KEPT_MAPS {
+            self.kept.remove(0);
+        }
+        self.kept.push((model, *grid, Rc::clone(&v)));
+        Ok(v)
+    }
+
+    /// The Pareto front of BAcc and DTL on `model` by `method` ("stm" or "nsga2"), its
+    /// min-max pick re-checked on the HiFi.
+    pub fn front(&mut self, method: &str, model: FrontModel) -> Result<FrontResult> {
+        match model {
+            FrontModel::LoFi => studies::front(&self.scenario, method, &self.scenario.lofi()),
+            FrontModel::Surrogate => {
+                let fit = self.surrogate()?;
+                studies::front(&self.scenario, method, &*fit.model)
+            }
+        }
+    }
+
+    /// FRFs and PSDs of the design by the LoFi, the HiFi and the surrogate.
+    pub fn spectra(&mut self, nfreq: usize) -> Result<Spectra> {
+        let fit = self.surrogate()?;
+        studies::spectra(&self.scenario, &fit, nfreq)
+    }
+
+    /// Seeded time responses of the design by both models (as `ridelab simulate`).
+    pub fn time_response(&self, opt: &TimeOptions) -> Result<TimeResult> {
+        studies::time_response(&self.scenario, opt)
+    }
+
+    /// The surrogate's fit report validated on a `levels x levels` HiFi grid (as
+    /// `ridelab surrogate`; it refits, so the page runs it in a worker).
+    pub fn fit_report(&self, levels: usize) -> Result<SurrogateReport> {
+        fit_report(&self.scenario, levels)
+    }
+
+    fn design(&self) -> (f64, f64) {
+        let f = &self.scenario.design.front;
+        (f.spring, f.damper)
+    }
+}
+
+/// The evaluators behind [`Session::criteria`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EvaluatorKind {
+    /// The quarter car (closed forms).
+    LoFi,
+    /// The full car (the maps' fast exact route).
+    HiFi,
+    /// The fitted surrogate.
+    Surrogate,
+}
+
+impl EvaluatorKind {
+    /// Parses "lofi" / "quarter", "hifi" / "full" or "surrogate" (errors name `model`).
+    pub fn parse(s: &str) -> Result<EvaluatorKind> {
+        match s {
+            "surrogate" => Ok(EvaluatorKind::Surrogate),
+            other => Ok(match ModelKind::parse(other)? {
+                ModelKind::Quarter => EvaluatorKind::LoFi,
+                ModelKind::Full => EvaluatorKind::HiFi,
+            }),
+        }
+    }
+}
