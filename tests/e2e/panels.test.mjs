@@ -347,7 +347,9 @@ test('FRF and PSD: the LoFi equals the quarter car in closed form, the PSD integ
 /** `ridelab simulate` of the default car and road at design (ks, cs): the page's run settings. */
 function simulateCli(model, ks, cs, seed, extra = []) {
   const car = path.join(ROOT, 'assets/cars/sedan.json');
-  const args = ['simulate', '--model', model, '--car', car, '--class', 'B', '--speed', '20', '--ks', String(ks), '--cs', String(cs),
+  // With --bump and --rebound the CLI takes Cs from them (their mean): `cs` null leaves it out.
+  const design = ['--ks', String(ks), ...(cs === null ? [] : ['--cs', String(cs)])];
+  const args = ['simulate', '--model', model, '--car', car, '--class', 'B', '--speed', '20', ...design,
     '--duration', '10', '--dt', '0.001', '--seed', String(seed), '--decimate', '10', ...extra, '--json'];
   return JSON.parse(execFileSync(cli(), args, { encoding: 'utf8', maxBuffer: 64 << 20 }));
 }
@@ -435,6 +437,47 @@ test('time panel: both models equal `ridelab simulate` for the same seed; plots,
   await page.waitForFunction(() => /Done .*asymmetric damper 1 \/ 3 kNs\/m/.test(document.getElementById('tp-status').textContent), null, { timeout: 60_000 });
   const asym = await page.evaluate(() => window.__ridelab.time);
   assert.ok(Math.abs(asym.lofi.rms[2] / r.lofi.rms[2] - 1) > 1e-3, 'the asymmetric damper changes the SWS record');
+  assert.equal(asym.damperRate, 2000, "the run's Cs is the mean of bump and rebound");
+  // The same law in the CLI (Cs left out: the mean), both models: the same records.
+  const law = ['--bump', '1000', '--rebound', '3000'];
+  for (const [model, rec] of [['quarter', asym.lofi], ['full', asym.hifi]]) {
+    const d = recordDiff(rec, simulateCli(model, 24000, null, 7, law));
+    t.diagnostic(`asymmetric: page vs ridelab simulate --model ${model} --bump 1000 --rebound 3000: ${d.toExponential(2)} of the RMS`);
+    assert.ok(d < 1e-9, `asymmetric ${model}: page vs CLI ${d}`);
+  }
+  // The force-velocity chart: the law's slopes, drawn, with the linear rate of the maps.
+  const fv = await page.evaluate(() => window.__ridelab.damperChart.curve);
+  const slope = (v) => {
+    const p = fv.points;
+    const i = p.findIndex((q) => q[0] >= v) || 1;
+    return (p[i][1] - p[i - 1][1]) / (p[i][0] - p[i - 1][0]);
+  };
+  assert.equal(fv.linearRate, 2000);
+  assert.ok(Math.abs(slope(0.5) - 3000) < 1e-9 && Math.abs(slope(-0.5) - 1000) < 1e-9, `F-v slopes ${slope(-0.5)} / ${slope(0.5)}`);
+  assert.ok((await countColour(page, 'tp-fv', HIFI)) > 200, 'the F-v line is drawn');
+  // A digressive damper: a knee at 0.2 m/s with softer slopes above, page and CLI alike.
+  await page.fill('#tp-knee', '0.2');
+  await page.fill('#tp-bump-high', '0.5');
+  await page.click('#tp-run');
+  assert.match(await page.locator('#msg-tpReboundHigh').textContent(), /knee needs/, 'a knee needs every field');
+  await page.fill('#tp-rebound-high', '1.5');
+  await page.click('#tp-run');
+  await page.waitForFunction(() => /Done .*digressive damper 1 \/ 3 kNs\/m to 0\.2 m\/s/.test(document.getElementById('tp-status').textContent), null, { timeout: 60_000 });
+  const dig = await page.evaluate(() => window.__ridelab.time);
+  const knee = [...law, '--knee', '0.2', '--bump-high', '500', '--rebound-high', '1500'];
+  for (const [model, rec] of [['quarter', dig.lofi], ['full', dig.hifi]]) {
+    const d = recordDiff(rec, simulateCli(model, 24000, null, 7, knee));
+    t.diagnostic(`digressive: page vs CLI --model ${model}: ${d.toExponential(2)} of the RMS`);
+    assert.ok(d < 1e-9, `digressive ${model}: page vs CLI ${d}`);
+  }
+  assert.ok(recordDiff(dig.lofi, asym.lofi) > 1e-4, 'the knee changes the record');
+  const fv2 = await page.evaluate(() => window.__ridelab.damperChart.curve.points);
+  assert.equal(fv2.length, 5, 'the knees are corners of the F-v line');
+  // A rate beyond the core's bound: the message beside the field, in kNs/m.
+  await page.fill('#tp-rebound', '5000');
+  await page.click('#tp-run');
+  assert.match(await page.locator('#msg-tpRebound').textContent(), /at most 1000 kNs\/m \(got 5000 kNs\/m\)/);
+  await page.locator('#panel-time').screenshot({ path: path.join(OUT, 'time-damper.png') });
   assertClean(log);
   await context.close();
 });
@@ -620,7 +663,7 @@ test('HiDPI and projector mode: the charts are sized in device pixels and redraw
   await context.close();
 });
 
-test('front, spectra, timeResponse: bad arguments name the field', { timeout: TIMEOUT }, async () => {
+test('front, spectra, timeResponse, damperCurve: bad arguments name the field', { timeout: TIMEOUT }, async () => {
   const { page, context, log } = await open();
   const r = await page.evaluate(() => {
     const a = window.__ridelab;
@@ -641,6 +684,10 @@ test('front, spectra, timeResponse: bad arguments name the field', { timeout: TI
       unknown: err(() => a.api.front({ ...s, bogus: 1 }, 'stm')),
       classC: err(() => a.api.front({ ...s, class: 'C' }, 'stm')),
       colour: err(() => a.api.colourTable('rainbow')),
+      lawBump: err(() => a.api.damperCurve({ bump: 0, rebound: 2000, knee: null }, 1)),
+      lawKnee: err(() => a.api.damperCurve({ bump: 1000, rebound: 2000, knee: { velocity: 0.1, bump: -1, rebound: 0 } }, 1)),
+      lawKey: err(() => a.api.damperCurve({ bump: 1000, rebound: 2000, soft: 1 }, 1)),
+      vMax: err(() => a.api.damperCurve({ bump: 1000, rebound: 2000, knee: null }, NaN)),
     };
   });
   assert.equal(r.method.field, 'method');
@@ -650,6 +697,10 @@ test('front, spectra, timeResponse: bad arguments name the field', { timeout: TI
   assert.equal(r.unknown.field, 'state');
   assert.equal(r.classC.field, 'swsLimit', `class C: ${r.classC.message}`);
   assert.equal(r.colour.field, 'colourMap');
+  assert.equal(r.lawBump.field, 'bump', r.lawBump.message);
+  assert.equal(r.lawKnee.field, 'knee.bump', r.lawKnee.message);
+  assert.equal(r.lawKey.field, 'damper', r.lawKey.message);
+  assert.equal(r.vMax.field, 'vMax', r.vMax.message);
   assertClean(log);
   await context.close();
 });

@@ -113,6 +113,11 @@ test('opening every tab at 1600 x 1000 keeps the first set in view and uncovered
     for (const u of await uncovered(page, ['#ks-range', '#cs-range', '#map-bacc-pick', '#map-dtl-pick', '#map-sws-pick', '#op-overlay'])) {
       assert.ok(u.ok, `tab ${id}: ${u.s} not covered by the drawer`);
     }
+    const wrap = await page.evaluate(() => {
+      const w = document.querySelector('.readout .table-wrap');
+      return { scroll: w.scrollWidth, client: w.clientWidth };
+    });
+    assert.ok(wrap.scroll <= wrap.client, `tab ${id}: the readout table fits beside the drawer (${wrap.scroll} > ${wrap.client})`);
     if (id === 'tab-spectra') await page.screenshot({ path: path.join(OUT, 'workbench-1600-spectra.png') });
   }
   // The same tab again closes the drawer; Escape closes it too.
@@ -517,10 +522,43 @@ test('defect: "PNG of every chart" is one zip of slide-size PNGs', { timeout: TI
   await context.close();
 });
 
-test('known defect (modes.rs, core): the HiFi modes at Ks 40, Cs 4 are labelled once each', { timeout: TIMEOUT, todo: 'the mode labelling is in crate/src/modes.rs (the core)' }, async () => {
+test('defect: the HiFi modes at Ks 40, Cs 4 are labelled once each, one of them pitch', { timeout: TIMEOUT }, async () => {
   const { page, context } = await open('#ks=40000&cs=4000');
   const labels = await page.evaluate(() => window.__ridelab.hifi.design.modes.map((m) => m.label));
   await context.close();
   assert.equal(new Set(labels).size, labels.length, `distinct labels: ${labels.join(', ')}`);
   assert.ok(labels.some((l) => /pitch/.test(l)), `a pitch mode: ${labels.join(', ')}`);
+});
+
+test('saved designs: Keep (and S) keeps up to three, side by side with the readout\'s values; Set restores one', { timeout: TIMEOUT }, async () => {
+  const { page, context, log } = await open('#ks=15000&cs=1000');
+  /** The readout's LoFi and HiFi criteria (SI, from data-value). */
+  const readout = () => page.evaluate(() => Object.fromEntries(['lofi', 'hifi'].flatMap((m) => ['bacc', 'dtl', 'sws'].map((c) =>
+    [`${m}-${c}`, Number(document.querySelector(`#criteria tr[data-crit="${c}"] td[data-model="${m}"]`).dataset.value)]))));
+  const kept = [];
+  for (const [ks, cs] of [[15000, 1000], [30000, 2500], [20000, 1500], [25000, 3000]]) {
+    await page.evaluate(([ks, cs]) => { location.hash = `#ks=${ks}&cs=${cs}`; }, [ks, cs]);
+    await page.waitForFunction(([ks, cs]) => window.__ridelab.state.ks === ks && window.__ridelab.state.cs === cs, [ks, cs]);
+    await settle(page);
+    kept.push({ ks, cs, values: await readout() });
+    if (ks === 20000) await page.keyboard.press('s');
+    else await page.click('#keep');
+    await page.waitForFunction((n) => window.__ridelab.saved.length === n, Math.min(kept.length, 3));
+  }
+  await page.click('#tab-pick');
+  const cols = await page.$$eval('#compare thead th[data-saved]', (ths) => ths.length);
+  assert.equal(cols, 3, 'three designs kept: the oldest dropped');
+  const table = await page.evaluate(() => [...document.querySelectorAll('#compare tbody tr[data-crit]')].map((tr) => ({
+    key: `${tr.dataset.model}-${tr.dataset.crit}`,
+    values: [...tr.querySelectorAll('td')].slice(1).map((td) => Number(td.dataset.value)),
+  })));
+  for (const row of table) {
+    kept.slice(1).forEach((k, i) => assert.equal(row.values[i], k.values[row.key], `${row.key} of design ${i + 1}`));
+  }
+  await page.locator('#compare thead th[data-saved="0"] button', { hasText: 'Set' }).click();
+  await page.waitForFunction(() => window.__ridelab.state.ks === 30000 && window.__ridelab.state.cs === 2500);
+  await page.locator('#compare thead th[data-saved="2"] button[aria-label^="Remove"]').click();
+  assert.equal(await page.$$eval('#compare thead th[data-saved]', (ths) => ths.length), 2, 'one removed');
+  assertClean(log);
+  await context.close();
 });

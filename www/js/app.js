@@ -17,7 +17,7 @@ import { Controls, plainWords } from './controls.js';
 import { MapView, CRITERIA } from './mapview.js';
 import { ObjectivePlane } from './plane.js';
 import { SpectraPanel } from './spectra.js';
-import { TimePanel } from './timepanel.js';
+import { TimePanel, DamperChart, DAMPER_V_MAX } from './timepanel.js';
 import { CarEditor, carFieldMessage } from './careditor.js';
 import { Guide } from './guide.js';
 import { Workbench, bindShortcuts } from './workbench.js';
@@ -28,6 +28,7 @@ import { fmt, fmtInput, parseNumber } from './format.js';
 import { download, mapsCsv, frontCsv, slidePng, zip } from './exports.js';
 import { allSvgs, exportCharts, objectiveChart } from './svgexport.js';
 import { installTestHooks } from './testhooks.js';
+import { keepDesign, renderCompare, MAX_SAVED } from './compare.js';
 
 /** ISO 8608 wording of the classes. */
 const CLASS_WORDS = {
@@ -64,7 +65,7 @@ function numberField(controls, store, id, field, toState) {
 }
 
 /** A number field of the time panel: `{value}` (undefined when empty and `optional`) or null after a message. */
-function readField(controls, id, field, { optional = false, integer = false } = {}) {
+function readField(controls, id, field, { optional = false, integer = false, zeroOk = false } = {}) {
   const text = $(id).value.trim();
   if (optional && text === '') {
     controls.setMsg(field, '');
@@ -79,8 +80,8 @@ function readField(controls, id, field, { optional = false, integer = false } = 
     controls.setMsg(field, 'must be a whole number ≥ 0');
     return null;
   }
-  if (!integer && !(p.value > 0)) {
-    controls.setMsg(field, 'must be > 0');
+  if (!integer && !(p.value > 0 || (zeroOk && p.value === 0))) {
+    controls.setMsg(field, zeroOk ? 'must be ≥ 0' : 'must be > 0');
     return null;
   }
   controls.setMsg(field, '');
@@ -214,6 +215,32 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
   };
   $('reset-datum').addEventListener('click', toDatum);
   $('to-pick').addEventListener('click', toPick);
+  const showSaved = () => renderCompare($('compare'), st.saved, {
+    onSet: (i) => ctl.changeDesign(st.saved[i].ks, st.saved[i].cs, 'ks'),
+    onRemove: (i) => {
+      st.saved = st.saved.filter((_, j) => j !== i);
+      showSaved();
+    },
+  });
+  /** Keeps the design once its HiFi column is current (js/compare.js). */
+  const keep = async () => {
+    while (!ctl.isSettled()) await new Promise((r) => setTimeout(r, 20));
+    const crit = (r) => (r ? { bacc: r.bacc, dtl: r.dtl, sws: r.sws } : null);
+    st.saved = keepDesign(st.saved, {
+      ks: st.state.ks,
+      cs: st.state.cs,
+      lofi: crit(st.lofi.design),
+      hifi: st.hifiCurrent() ? crit(st.hifi.design) : null,
+      datum: {
+        design: { ks: st.desc.datumKs, cs: st.desc.datumCs },
+        lofi: crit(st.lofi.datum),
+        hifi: st.hifiDatumCurrent() ? crit(st.hifi.datum) : null,
+      },
+    });
+    showSaved();
+    $('compare-hint').textContent = `${st.saved.length} of ${MAX_SAVED} designs kept; "Keep" again adds the current one (the oldest goes).`;
+  };
+  $('keep').addEventListener('click', keep);
   $('map-scale').addEventListener('change', (ev) => ctl.setView({ scale: ev.target.value }));
   $('map-model').addEventListener('change', (ev) => ctl.setView({ model: ev.target.value }));
   $('map-palette').addEventListener('change', (ev) => ctl.setView({ palette: ev.target.value }));
@@ -279,13 +306,14 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
   });
   $('banner-close').addEventListener('click', () => controls.banner(''));
   $('keys').addEventListener('click', () => $('shortcuts').showModal());
-  wireTime({ controller: ctl, controls, ui });
+  wireTime({ store, controller: ctl, controls, compute, ui });
   wireExports({ store: st, controller: ctl, controls, ui, compute });
   bindShortcuts({
     help: () => $('shortcuts').showModal(),
     tab: (i) => bench.tabs[i]?.click(),
     datum: toDatum,
     pick: toPick,
+    keep,
     map: () => ui.maps[0].surface.focus(),
     projector: () => ctl.setView({ projector: !st.view.projector }),
     escape: () => (guide.isOpen ? guide.close() : bench.close()),
@@ -305,20 +333,76 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
   window.addEventListener('resize', later);
 }
 
-function wireTime({ controller: ctl, controls, ui }) {
+/** The page's field of each field of the core's damper law. */
+const LAW_FIELDS = { bump: 'tpBump', rebound: 'tpRebound', 'knee.velocity': 'tpKnee', 'knee.bump': 'tpBumpHigh', 'knee.rebound': 'tpReboundHigh' };
+
+/** A core message on the damper law in the page's units (kNs/m rather than N s/m). */
+function lawMessage(msg) {
+  return msg
+    .replace(/^[\w.]+: /, '')
+    .replace(/([-\d.e+]+) N s\/m/g, (_, x) => `${fmtInput(Number(x) / 1000, 4)} kNs/m`)
+    .replace(/\(got ([-\d.e+]+)\)$/, (m, x) => (/N s\/m|kNs\/m/.test(msg) ? `(got ${fmtInput(Number(x) / 1000, 4)} kNs/m)` : m));
+}
+
+/**
+ * The time panel's damper fields as the core's law (N s/m, m/s): `{law}` with `law`
+ * null for the design's linear damper, or null after a message beside the field.
+ * `live` (while the fields are being filled in): a law still incomplete is no error yet.
+ */
+function damperLaw(controls, { live = false } = {}) {
+  const bump = readField(controls, 'tp-bump', 'tpBump', { optional: true });
+  const rebound = readField(controls, 'tp-rebound', 'tpRebound', { optional: true });
+  const knee = readField(controls, 'tp-knee', 'tpKnee', { optional: true });
+  const bumpHigh = readField(controls, 'tp-bump-high', 'tpBumpHigh', { optional: true, zeroOk: true });
+  const reboundHigh = readField(controls, 'tp-rebound-high', 'tpReboundHigh', { optional: true, zeroOk: true });
+  if (!bump || !rebound || !knee || !bumpHigh || !reboundHigh) return null;
+  if ((bump.value === undefined) !== (rebound.value === undefined)) {
+    if (!live) controls.setMsg(bump.value === undefined ? 'tpBump' : 'tpRebound', 'give both bump and rebound, or neither');
+    return null;
+  }
+  const high = [knee, bumpHigh, reboundHigh];
+  const given = high.filter((f) => f.value !== undefined).length;
+  if (given && (given < 3 || bump.value === undefined)) {
+    if (live) return null;
+    const field = bump.value === undefined ? 'tpBump' : ['tpKnee', 'tpBumpHigh', 'tpReboundHigh'][high.findIndex((f) => f.value === undefined)];
+    controls.setMsg(field, 'a knee needs the knee speed, both slopes above it, and bump and rebound');
+    return null;
+  }
+  if (bump.value === undefined) return { law: null };
+  const law = { bump: bump.value * 1000, rebound: rebound.value * 1000, knee: null };
+  if (given) law.knee = { velocity: knee.value, bump: bumpHigh.value * 1000, rebound: reboundHigh.value * 1000 };
+  return { law };
+}
+
+function wireTime({ store, controller: ctl, controls, compute, ui }) {
+  /** The force-velocity chart of the fields' law (the design's Cs when empty); false when there is none to draw. */
+  const showDamper = ({ live = false } = {}) => {
+    const d = damperLaw(controls, { live });
+    if (!d) return false;
+    const law = d.law || { bump: store.state.cs, rebound: store.state.cs, knee: null };
+    try {
+      ui.damper.draw(compute.damperCurve(law, DAMPER_V_MAX), !d.law);
+      return true;
+    } catch (e) {
+      controls.setMsg(LAW_FIELDS[e.field] || 'tpBump', lawMessage(e.message || String(e)));
+      return false;
+    }
+  };
+  ui.damper.refresh = () => showDamper({ live: true });
+  for (const id of ['tp-bump', 'tp-rebound', 'tp-knee', 'tp-bump-high', 'tp-rebound-high']) $(id).addEventListener('change', ui.damper.refresh);
   $('tp-run').addEventListener('click', () => {
     const seed = readField(controls, 'tp-seed', 'tpSeed', { integer: true });
-    const bump = readField(controls, 'tp-bump', 'tpBump', { optional: true });
-    const rebound = readField(controls, 'tp-rebound', 'tpRebound', { optional: true });
-    if (!seed || !bump || !rebound) return;
-    if ((bump.value === undefined) !== (rebound.value === undefined)) {
-      controls.setMsg(bump.value === undefined ? 'tpBump' : 'tpRebound', 'give both bump and rebound, or neither');
-      return;
-    }
+    if (!seed || !showDamper()) return;
+    const { law } = damperLaw(controls);
     const opts = { seed: seed.value };
     // With a bump / rebound law the run's Cs is their mean (the core's rule, as in `ridelab simulate`).
-    if (bump.value !== undefined) opts.damper = { bump: bump.value * 1000, rebound: rebound.value * 1000 };
-    const what = opts.damper ? `asymmetric damper ${fmtInput(bump.value, 4)} / ${fmtInput(rebound.value, 4)} kNs/m, so Cs = their mean ${fmtInput((bump.value + rebound.value) / 2, 4)} kNs/m` : 'linear damper';
+    if (law) opts.damper = law;
+    const kns = (x) => fmtInput(x / 1000, 4);
+    const what = law
+      ? `${law.knee ? 'digressive' : 'asymmetric'} damper ${kns(law.bump)} / ${kns(law.rebound)} kNs/m` +
+        `${law.knee ? ` to ${fmtInput(law.knee.velocity, 4)} m/s, ${kns(law.knee.bump)} / ${kns(law.knee.rebound)} kNs/m above` : ''}` +
+        `, so Cs = their mean ${kns((law.bump + law.rebound) / 2)} kNs/m`
+      : 'linear damper';
     ctl.runTime(opts, `${what}, seed ${seed.value}`);
   });
   $('tp-play').addEventListener('click', () => ui.time.toggle());
@@ -470,6 +554,7 @@ async function main() {
       play: $('tp-play'),
       charts: Object.fromEntries(['bacc', 'dtl', 'sws'].map((k) => [k, { base: $(`tp-${k}`), overlay: $(`tp-${k}-cursor`) }])),
     }),
+    damper: new DamperChart($('tp-fv')),
     carEditor: new CarEditor($('car-fields')),
   };
   const render = new Render(store, ui);

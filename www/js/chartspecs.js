@@ -223,3 +223,32 @@ export function timeSpec(time, key = 'bacc', { width = 720, height = 340, title 
     series,
   };
 }
+
+/**
+ * The front damper's force-velocity line (`curve`: the core's `damperCurve`, v in m/s,
+ * f in N; v > 0 is rebound) in kN, with the equivalent linear rate the maps use as a
+ * grey line underneath; `linear`: the law is the design's own linear damper.
+ */
+export function damperSpec(curve, { width = 360, height = 240, title = '', linear = false } = {}) {
+  if (!curve || !curve.points.length) throw { message: 'no damper law', field: 'damper' };
+  const pts = curve.points.map(([v, f]) => [v, f / 1000]);
+  const [v0, v1] = [pts[0][0], pts[pts.length - 1][0]];
+  const rate = curve.linearRate / 1000;
+  const [lo, hi] = extent(pts.map((p) => p[1]).concat([rate * v0, rate * v1]));
+  const span = hi - lo || 1;
+  const series = [];
+  const kns = (x) => (x / 1000).toPrecision(3);
+  if (!linear) series.push(line(`linear rate of the maps, Cs ${kns(curve.linearRate)} kNs/m`, COL.linear, [[v0, rate * v0], [v1, rate * v1]], 2));
+  series.push(line(linear ? `linear damper, Cs ${kns(curve.linearRate)} kNs/m` : 'bump / rebound law', COL.hifi, pts, 3));
+  return {
+    title,
+    xLabel: 'damper speed [m/s] (bump < 0 < rebound)',
+    yLabel: 'force [kN]',
+    xRange: [v0, v1],
+    yRange: [lo - 0.04 * span, hi + 0.3 * span],
+    width,
+    height,
+    legend: 'upperLeft',
+    series,
+  };
+}

@@ -48,6 +48,11 @@ export class Compute {
     return this.api.colourTable(name);
   }
 
+  /** The damper law's force-velocity line to `vMax` m/s: `{points: [[v m/s, f N]], linearRate N s/m}` (main thread: a few points). */
+  damperCurve(law, vMax) {
+    return this.api.damperCurve(law, vMax);
+  }
+
   describe(s) {
     return this.main.call('describe', s);
   }

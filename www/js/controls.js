@@ -10,7 +10,7 @@ const $ = (id) => document.getElementById(id);
 export const FIELD_INPUT = {
   ks: 'ks-num', cs: 'cs-num', speed: 'speed', class: 'class', tracks: 'tracks', swsLimit: 'sws-limit', car: 'car',
   carFile: 'car-file', carEditor: 'car-apply',
-  tpSeed: 'tp-seed', tpBump: 'tp-bump', tpRebound: 'tp-rebound', tpKnee: 'tp-knee', session: 'session-load',
+  tpSeed: 'tp-seed', tpBump: 'tp-bump', tpRebound: 'tp-rebound', tpKnee: 'tp-knee', tpBumpHigh: 'tp-bump-high', tpReboundHigh: 'tp-rebound-high', session: 'session-load',
   box: 'ks-min', bounceBand: 'bb-lo', dampingBand: 'db-lo', surrogate: 'sur-approach', plan: 'sur-plan',
 };
 

@@ -33,7 +33,7 @@ function brokenText(maps) {
 
 export class Render {
   /**
-   * `store`; `ui`: `{maps: MapView[], plane, spectra, time, carEditor, controls, tables}`
+   * `store`; `ui`: `{maps: MapView[], plane, spectra, time, damper, carEditor, controls, tables}`
    * (`tables`: the colour tables by name).
    */
   constructor(store, ui) {
@@ -103,6 +103,8 @@ export class Render {
     renderModes($('modes-lofi'), lofi.design.modes);
     this.markers();
     this.ui.plane.drawDesign(st.surrogate.design);
+    // The linear damper's force-velocity line follows Cs while the time panel is open.
+    if (this.ui.damper.linear && this.ui.damper.visible()) this.ui.damper.refresh();
     this.timeStale();
     this.controls();
   }
@@ -272,7 +274,7 @@ export class Render {
     const on = this.store.view.projector;
     document.documentElement.classList.toggle('projector', on);
     const thick = on ? 1.8 : 1;
-    for (const v of [...this.ui.maps, this.ui.plane, this.ui.spectra, this.ui.time]) v.setStyle({ thick });
+    for (const v of [...this.ui.maps, this.ui.plane, this.ui.spectra, this.ui.time, this.ui.damper]) v.setStyle({ thick });
     requestAnimationFrame(() => this.redrawAll());
   }
 
@@ -288,5 +290,6 @@ export class Render {
     this.plane();
     if (st.spectra) this.ui.spectra.show(st.spectra);
     if (st.time) this.ui.time.draw(st.time.result, st.state.speed, st.time.linear);
+    if (this.ui.damper.visible()) this.ui.damper.refresh();
   }
 }

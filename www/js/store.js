@@ -63,6 +63,8 @@ export class Store {
     this.surrogate = { design: null, datum: null };
     /** HiFi reports and the state keys they belong to (may lag the state). */
     this.hifi = { design: null, datum: null, key: '', datumKey: '' };
+    /** Designs kept to compare side by side (js/compare.js; not in the link). */
+    this.saved = [];
     /** The LoFi and surrogate maps at the page's grid, each with the scenario key it is for. */
     this.maps = null;
     this.surMaps = null;

@@ -68,6 +68,10 @@ export function installTestHooks({ store, controller, compute, ui, boot, exportD
       return store.spectra;
     },
     /** The time response shown (`timeResponse` result) or null. */
+    /** The designs kept to compare (js/compare.js). */
+    get saved() {
+      return store.saved;
+    },
     get time() {
       return store.time ? store.time.result : null;
     },
@@ -76,6 +80,7 @@ export function installTestHooks({ store, controller, compute, ui, boot, exportD
     objPlane: ui.plane,
     spectraPanel: ui.spectra,
     timePanel: ui.time,
+    damperChart: ui.damper,
     // The controller's measurements.
     metrics: controller.metrics,
     counters: controller.counters,

@@ -1,9 +1,10 @@
 // The time panel: the time response of both models as three charts (plotters), an
 // animated side view of the full car on the road, and a time cursor on the charts while
 // it plays (at real speed or in slow motion). Handed the run's result and the speed.
+// Beside it the front damper's force-velocity chart (DamperChart), handed the core's curve.
 
 import { Plot } from './plot.js';
-import { OUTPUTS, timeSpec } from './chartspecs.js';
+import { OUTPUTS, damperSpec, timeSpec } from './chartspecs.js';
 import { fmt } from './format.js';
 
 export class TimePanel {
@@ -210,5 +211,44 @@ export class TimePanel {
       };
       this.raf = requestAnimationFrame(step);
     } else cancelAnimationFrame(this.raf);
+  }
+}
+
+/** Largest damper speed on the force-velocity chart, m/s (road damper speeds stay under about 1 m/s). */
+export const DAMPER_V_MAX = 1;
+
+/** The front damper's force against its speed (the core's `damperCurve`), with the linear rate the maps use. */
+export class DamperChart {
+  constructor(canvas) {
+    this.plot = new Plot(canvas, { aspect: 0.5 });
+    this.curve = null;
+    this.linear = true;
+    this.thick = 1;
+    /** Set by the page: reads the panel's fields and draws their law. */
+    this.refresh = () => {};
+  }
+
+  setStyle({ thick }) {
+    this.thick = thick;
+  }
+
+  /** Draws `curve` (`{points, linearRate}`); `linear`: the design's own linear damper. */
+  draw(curve, linear) {
+    this.curve = curve;
+    this.linear = linear;
+    this.redraw();
+  }
+
+  /** Is the chart on screen (its panel open)? */
+  visible() {
+    return this.plot.canvas.offsetParent !== null;
+  }
+
+  /** Draws again at the canvas's current size (nothing while its panel is hidden). */
+  redraw() {
+    if (!this.curve || !this.visible()) return;
+    const spec = damperSpec(this.curve, { linear: this.linear });
+    if (this.thick !== 1) for (const s of spec.series) s.size *= this.thick;
+    this.plot.draw(spec);
   }
 }

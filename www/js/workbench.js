@@ -62,7 +62,7 @@ export class Workbench {
 
 /**
  * The page's keyboard shortcuts (`actions`: name -> function), outside text fields:
- * `?` the list, `1`..`9` the tabs, `d` the datum design, `k` the pick, `m` the first
+ * `?` the list, `1`..`9` the tabs, `d` the datum design, `k` the pick, `s` keeps the design, `m` the first
  * map, `p` projector mode, `Escape` closes the drawer.
  */
 export function bindShortcuts(actions) {
@@ -76,6 +76,7 @@ export function bindShortcuts(actions) {
     else if (/^[1-9]$/.test(k)) actions.tab(Number(k) - 1);
     else if (k === 'd' || k === 'D') actions.datum();
     else if (k === 'k' || k === 'K') actions.pick();
+    else if (k === 's' || k === 'S') actions.keep();
     else if (k === 'm' || k === 'M') actions.map();
     else if (k === 'p' || k === 'P') actions.projector();
     else if (k === 'Escape') actions.escape();

@@ -42,6 +42,18 @@ fn js_error(e: RideError) -> JsValue {
     err.into()
 }
 
+/// A core error as a JS `Error` whose `field` is the core's own field name, unmapped
+/// (the damper law's `bump`, `rebound`, `knee.velocity`, ...: the page has a field each).
+fn js_error_verbatim(e: RideError) -> JsValue {
+    let field = match &e {
+        RideError::Field { field, .. } => field.clone(),
+        _ => String::new(),
+    };
+    let err = js_sys::Error::new(&e.to_string());
+    let _ = Reflect::set(&err, &"field".into(), &field.into());
+    err.into()
+}
+
 fn to_js<T: Serialize>(v: &T) -> Result<JsValue, JsValue> {
     v.serialize(&serde_wasm_bindgen::Serializer::json_compatible())
         .map_err(|e| js_sys::Error::new(&format!("serialisation: {e}")).into())
@@ -371,4 +383,34 @@ pub fn time_response_js(state: JsValue, options: JsValue) -> Result<JsValue, JsV
     let opt: crate::time_domain::TimeOptions = serde_wasm_bindgen::from_value(options)
         .map_err(|e| state_error(format!("time options: {e}")))?;
     to_js(&with_session(state, |s| s.time_response(&opt))?)
+}
+
+/// The front damper law's force-velocity line, for the page's chart: `damper` is
+/// `{bump, rebound, knee: {velocity, bump, rebound} | null}` (N s/m and m/s, as in
+/// [`time_response_js`]'s options) and `v_max` the largest speed drawn either way, m/s.
+/// Returns `{points: [[v, f]], linearRate}`: the law's corners and ends (m/s, N; `v > 0`
+/// is rebound) and the equivalent linear rate `(bump + rebound) / 2` the maps use, N s/m.
+/// Errors name the law's field (`bump`, `rebound`, `knee.velocity`, ...) or `vMax`.
+#[wasm_bindgen(js_name = damperCurve)]
+pub fn damper_curve_js(damper: JsValue, v_max: f64) -> Result<JsValue, JsValue> {
+    use crate::time_domain::{Damper, MAX_KNEE_VELOCITY};
+    #[derive(Serialize)]
+    #[serde(rename_all = "camelCase")]
+    struct Curve {
+        points: Vec<(f64, f64)>,
+        linear_rate: f64,
+    }
+    let law: Damper = serde_wasm_bindgen::from_value(damper)
+        .map_err(|e| js_error_verbatim(RideError::field("damper", e.to_string())))?;
+    law.validate().map_err(js_error_verbatim)?;
+    if !(v_max.is_finite() && v_max > 0.0 && v_max <= MAX_KNEE_VELOCITY) {
+        return Err(js_error_verbatim(RideError::field(
+            "vMax",
+            format!("must be in (0, {MAX_KNEE_VELOCITY}] m/s (got {v_max})"),
+        )));
+    }
+    to_js(&Curve {
+        points: law.curve(v_max),
+        linear_rate: law.linear_rate(),
+    })
 }
