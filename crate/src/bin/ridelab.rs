@@ -94,10 +94,10 @@ struct EvalArgs {
 #[derive(Args)]
 struct DoeArgs {
     /// Number of points, 2..1000.
-    #[arg(long, value_parser = count)]
+    #[arg(long, value_parser = count, allow_negative_numbers = true)]
     points: usize,
     /// Seed of the annealing (plans beyond the stored optima).
-    #[arg(long, default_value_t = 1, value_parser = count_u64)]
+    #[arg(long, default_value_t = 1, value_parser = count_u64, allow_negative_numbers = true)]
     seed: u64,
     #[arg(long)]
     json: bool,
@@ -118,16 +118,16 @@ struct OptimizeArgs {
     #[arg(long, value_name = "M", value_parser = number, allow_negative_numbers = true)]
     sws_limit: Option<f64>,
     /// STM grid points per variable, 2..2001.
-    #[arg(long, default_value_t = StmParams::default().grid, value_parser = count)]
+    #[arg(long, default_value_t = StmParams::default().grid, value_parser = count, allow_negative_numbers = true)]
     grid: usize,
     /// NSGA-II population, an even number 4..10000.
-    #[arg(long, default_value_t = Nsga2Params::default().population, value_parser = count)]
+    #[arg(long, default_value_t = Nsga2Params::default().population, value_parser = count, allow_negative_numbers = true)]
     population: usize,
     /// NSGA-II generations, 1..10000.
-    #[arg(long, default_value_t = Nsga2Params::default().generations, value_parser = count)]
+    #[arg(long, default_value_t = Nsga2Params::default().generations, value_parser = count, allow_negative_numbers = true)]
     generations: usize,
     /// NSGA-II seed.
-    #[arg(long, default_value_t = Nsga2Params::default().seed, value_parser = count_u64)]
+    #[arg(long, default_value_t = Nsga2Params::default().seed, value_parser = count_u64, allow_negative_numbers = true)]
     seed: u64,
     #[command(flatten)]
     car: CarRoad,
@@ -204,7 +204,7 @@ struct SimulateArgs {
     #[arg(long, value_name = "S", value_parser = number, allow_negative_numbers = true)]
     dt: Option<f64>,
     /// Seed of the road's random phases.
-    #[arg(long, default_value_t = 1, value_parser = count_u64)]
+    #[arg(long, default_value_t = 1, value_parser = count_u64, allow_negative_numbers = true)]
     seed: u64,
     /// Front damper bump (compression) rate, N s/m; the design's Cs is then the mean
     /// of bump and rebound, so --cs is left out.
@@ -223,7 +223,7 @@ struct SimulateArgs {
     #[arg(long, value_name = "NS/M", value_parser = number, allow_negative_numbers = true, requires = "knee")]
     rebound_high: Option<f64>,
     /// Keep every n-th sample in the output.
-    #[arg(long, default_value_t = 10, value_parser = count)]
+    #[arg(long, default_value_t = 10, value_parser = count, allow_negative_numbers = true)]
     decimate: usize,
     #[command(flatten)]
     car: CarRoad,
@@ -254,7 +254,7 @@ struct ReportArgs {
     #[arg(long, requires = "approach")]
     plan: Option<PlanSpec>,
     /// Seed of the time-domain record and of NSGA-II.
-    #[arg(long, default_value_t = 1, value_parser = count_u64)]
+    #[arg(long, default_value_t = 1, value_parser = count_u64, allow_negative_numbers = true)]
     seed: u64,
     /// Directory for report.html, report.md, figures/, report.json and the CSV tables
     /// (created if missing).
@@ -494,7 +494,8 @@ fn eval(a: EvalArgs) -> Result<String> {
 fn text_report(r: &Report) -> String {
     let mut s = format!(
         "{} model, {} on ISO class {:?} at {} m/s ({:?} tracks)\nKs {:.1} N/m, Cs {:.1} N s/m\n\
-         BAcc {:.5} m/s^2\nDTL  {:.3} N ({:.2} % of static wheel load)\nSWS  {:.4} mm\n\
+         BAcc {:.5} m/s^2 (ISO 2631-1 Wk-weighted {:.5} m/s^2: {})\n\
+         DTL  {:.3} N ({:.2} % of static wheel load)\nSWS  {:.4} mm\n\
          route {} (frequency route differs by {:.1e})\n",
         match r.model {
             ModelKind::Quarter => "Quarter-car (LoFi)",
@@ -507,6 +508,8 @@ fn text_report(r: &Report) -> String {
         r.ks,
         r.cs,
         r.bacc,
+        r.bacc_wk,
+        r.comfort,
         r.dtl,
         100.0 * r.dtl_relative,
         1e3 * r.sws,
