@@ -400,8 +400,14 @@ pub fn damper_curve_js(damper: JsValue, v_max: f64) -> Result<JsValue, JsValue> 
         points: Vec<(f64, f64)>,
         linear_rate: f64,
     }
-    let law: Damper = serde_wasm_bindgen::from_value(damper)
-        .map_err(|e| js_error_verbatim(RideError::field("damper", e.to_string())))?;
+    // Through JSON text: serde_json honours the law's deny_unknown_fields (a misspelt
+    // key is refused, not dropped).
+    let bad = |why: String| js_error_verbatim(RideError::field("damper", why));
+    let text = js_sys::JSON::stringify(&damper)
+        .ok()
+        .and_then(|t| t.as_string())
+        .ok_or_else(|| bad("must be an object {bump, rebound, knee}".into()))?;
+    let law: Damper = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
     law.validate().map_err(js_error_verbatim)?;
     if !(v_max.is_finite() && v_max > 0.0 && v_max <= MAX_KNEE_VELOCITY) {
         return Err(js_error_verbatim(RideError::field(
@@ -413,6 +419,7 @@ pub fn damper_curve_js(damper: JsValue, v_max: f64) -> Result<JsValue, JsValue> 
         points: law.curve(v_max),
         linear_rate: law.linear_rate(),
     })
+}
 
 /// The study report of the view's scenario (as `ridelab report`, seed 1, the view's
 /// surrogate and plan): `{title, html, markdown}`, the HTML one self-contained file.
