@@ -20,11 +20,21 @@ export function launch() {
 }
 
 /**
- * Opens `url` in a fresh browser context and records console errors, page errors and
- * requests to any host other than the local server; resolves when the page reports ready.
+ * Opens `url` in a fresh browser context (a `touch` phone or tablet if asked; the tour
+ * taken unless `tour`) and records console errors, page errors and requests to any host
+ * other than the local server; resolves when the page reports ready.
  */
-export async function openPage(browser, url, { width = 1400, height = 1000, dpr = 1, downloads = false } = {}) {
-  const context = await browser.newContext({ viewport: { width, height }, deviceScaleFactor: dpr, acceptDownloads: downloads });
+export async function openPage(browser, url, { width = 1400, height = 1000, dpr = 1, downloads = false, touch = false, tour = false } = {}) {
+  const context = await browser.newContext({
+    viewport: { width, height },
+    deviceScaleFactor: dpr,
+    acceptDownloads: downloads,
+    hasTouch: touch,
+    isMobile: touch,
+  });
+  // A fresh profile shows the tour on the first visit; tests that are not about it
+  // start with it taken (a returning visitor).
+  if (!tour) await context.addInitScript(() => localStorage.setItem('ridelab.tourDone', '1'));
   const page = await context.newPage();
   const log = { errors: [], foreign: [] };
   page.on('console', (m) => {

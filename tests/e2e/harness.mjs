@@ -64,3 +64,35 @@ export const p95 = (xs) => {
   const s = [...xs].sort((a, b) => a - b);
   return s[Math.min(s.length - 1, Math.ceil(0.95 * s.length) - 1)];
 };
+
+/** CRC-32 (IEEE) of a Buffer. */
+function crc32(buf) {
+  let c = 0xffffffff;
+  for (const b of buf) {
+    c ^= b;
+    for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+  }
+  return (c ^ 0xffffffff) >>> 0;
+}
+
+/** The entries of a stored (uncompressed) zip as `[{name, data}]`; each entry's CRC is checked. */
+export function readZip(buf) {
+  const out = [];
+  let p = 0;
+  while (p + 4 <= buf.length && buf.readUInt32LE(p) === 0x04034b50) {
+    const method = buf.readUInt16LE(p + 8);
+    const crc = buf.readUInt32LE(p + 14);
+    const size = buf.readUInt32LE(p + 18);
+    const nameLen = buf.readUInt16LE(p + 26);
+    const extra = buf.readUInt16LE(p + 28);
+    assert.equal(method, 0, 'zip entries are stored');
+    const name = buf.subarray(p + 30, p + 30 + nameLen).toString('utf8');
+    const data = buf.subarray(p + 30 + nameLen + extra, p + 30 + nameLen + extra + size);
+    assert.equal(crc32(data), crc, `${name}: CRC`);
+    out.push({ name, data });
+    p += 30 + nameLen + extra + size;
+  }
+  assert.equal(buf.readUInt32LE(buf.length - 22), 0x06054b50, 'the zip ends with its directory');
+  assert.equal(buf.readUInt16LE(buf.length - 12), out.length, 'the directory lists every entry');
+  return out;
+}

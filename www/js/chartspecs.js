@@ -1,28 +1,32 @@
 // The page's line charts as chart specs (the wasm core's `LineChart`, camelCase keys):
-// the objective plane, the FRF and PSD plots and the time response. The same spec is
-// drawn on screen (js/plot.js, `drawLineChart`, plotters on the canvas) and exported
-// (js/svgexport.js, `lineChartSvg`, plotters' SVG backend), so an export is the chart
-// on screen with a title. Each builder reads `app` (js/app.js) and throws
-// `{message, field}` when there is nothing to draw.
+// the objective plane, the FRF and PSD plots, the time response and the damper's
+// force-velocity line. The same spec is drawn on screen (js/plot.js, `drawLineChart`,
+// plotters on the canvas) and exported (js/svgexport.js, `lineChartSvg`, plotters' SVG
+// backend), so an export is the chart on screen with a title. Each builder takes plain
+// data (the results the page holds) and throws `{message, field}` when there is nothing
+// to draw.
 
 /** The chart colours, #rrggbb. */
-const COL = {
+export const COL = {
   cloud: '#78a0d2',
   stm: '#c2410c',
   nsga: '#15803d',
   lofi: '#1d4ed8',
   hifi: '#b91c1c',
   pick: '#facc15',
+  linear: '#6b7280',
 };
 
 /** Opacity of the cloud of feasible designs. */
 export const CLOUD_OPACITY = 0.35;
 
 /** The outputs of the spectra and time panels: key, name, FRF and PSD axis labels, time unit. */
+// The FRF is per metre of road displacement (the charts' key and titles say so); the
+// axis labels stay short enough to fit beside the smallest chart's plot.
 export const OUTPUTS = [
-  { key: 'bacc', name: 'BAcc', frf: '|H| BAcc / road displacement [1/s²]', psd: 'PSD BAcc [(m/s²)²/Hz]', time: 'BAcc [m/s²]', scale: 1 },
-  { key: 'dtl', name: 'DTL', frf: '|H| DTL / road displacement [N/m]', psd: 'PSD DTL [N²/Hz]', time: 'DTL [N]', scale: 1 },
-  { key: 'sws', name: 'SWS', frf: '|H| SWS / road displacement [m/m]', psd: 'PSD SWS [m²/Hz]', time: 'SWS [mm]', scale: 1000 },
+  { key: 'bacc', name: 'BAcc', frf: '|H| BAcc [1/s²]', psd: 'PSD BAcc [(m/s²)²/Hz]', time: 'BAcc [m/s²]', scale: 1 },
+  { key: 'dtl', name: 'DTL', frf: '|H| DTL [N/m]', psd: 'PSD DTL [N²/Hz]', time: 'DTL [N]', scale: 1 },
+  { key: 'sws', name: 'SWS', frf: '|H| SWS [m/m]', psd: 'PSD SWS [m²/Hz]', time: 'SWS [mm]', scale: 1000 },
 ];
 
 /** The output `key` ('bacc', 'dtl' or 'sws'); throws `{message, field: 'key'}` for another. */
@@ -57,13 +61,14 @@ function widen([lo, hi]) {
   return [lo - d, hi + d];
 }
 
-export function designText(app) {
-  return `Ks ${(app.state.ks / 1000).toFixed(2)} kN/m, Cs ${(app.state.cs / 1000).toFixed(3)} kNs/m`;
+/** "Ks 19.96 kN/m, Cs 1.290 kNs/m" of a state. */
+export function designText(state) {
+  return `Ks ${(state.ks / 1000).toFixed(2)} kN/m, Cs ${(state.cs / 1000).toFixed(3)} kNs/m`;
 }
 
-/** Objective-plane coordinates: absolute, or divided by the datum's (`ratio`). */
-export function planeXY(app, ratio) {
-  const d = app.front.datum;
+/** Objective-plane coordinates of `front` (a `front` study result): absolute, or over the datum's (`ratio`). */
+export function planeXY(front, ratio) {
+  const d = front.datum;
   return ratio ? (bacc, dtl) => [bacc / d.bacc, dtl / d.dtl] : (bacc, dtl) => [bacc, dtl];
 }
 
@@ -71,47 +76,58 @@ export function planeXY(app, ratio) {
  * The feasible cells of the surrogate's cloud map (every `step`-th cell each way) as
  * `[x, y]` points of the plane.
  */
-export function cloudPoints(app, ratio, step) {
-  const xy = planeXY(app, ratio);
-  const m = app.cloud;
-  const n = m.nx * m.ny;
+export function cloudPoints(cloud, front, ratio, step) {
+  const xy = planeXY(front, ratio);
+  const n = cloud.nx * cloud.ny;
   const out = [];
-  for (let j = 0; j < m.ny; j += step) {
-    for (let i = 0; i < m.nx; i += step) {
-      const k = j * m.nx + i;
-      if (m.feasible[k]) out.push(xy(m.values[k], m.values[n + k]));
+  for (let j = 0; j < cloud.ny; j += step) {
+    for (let i = 0; i < cloud.nx; i += step) {
+      const k = j * cloud.nx + i;
+      if (cloud.feasible[k]) out.push(xy(cloud.values[k], cloud.values[n + k]));
     }
   }
   return out;
 }
 
+/** The legend entries of the objective plane (the page draws them as a key above it). */
+export const PLANE_KEY = [
+  { key: 'cloud', label: 'feasible designs (surrogate)' },
+  { key: 'stm', label: 'Pareto front (STM)' },
+  { key: 'nsga', label: 'NSGA-II front' },
+  { key: 'pick', label: 'min-max pick' },
+  { key: 'recheck', label: 'pick re-checked (HiFi)' },
+  { key: 'datum', label: 'datum' },
+  { key: 'design', label: 'current design' },
+];
+
 /**
- * The objective plane (BAcc against DTL, on the surrogate): its feasible designs, the STM
- * Pareto front, the NSGA-II front when computed, the min-max pick and its HiFi re-check,
- * the datum and the current design; on the datum-ratio axes when `ratio`. On screen
- * (`live`) the cloud and the current design are legend entries only: the page draws the
- * cloud itself (thousands of dots) and the design on a layer of its own (it moves with
- * the sliders). An export has every other cloud cell each way and a `title`.
+ * The objective plane (BAcc against DTL, on the surrogate) of `{front, nsga, cloud,
+ * design}` (`design`: the surrogate's criteria of the current design, or null): the
+ * feasible designs, the STM Pareto front, the NSGA-II front when computed, the min-max
+ * pick and its HiFi re-check, the datum and the current design; on the datum-ratio axes
+ * when `ratio`. On screen (`live`) there is no legend (the page's key above the chart
+ * says it, and nothing in the plot hides under it), the cloud is drawn by the page
+ * (thousands of dots) and the design on a layer of its own (it moves with the sliders).
+ * An export has every other cloud cell each way, the legend and a `title`.
  */
-export function objectiveSpec(app, { ratio = false, width = 720, height = 460, title = '', live = false } = {}) {
-  const fr = app.front;
+export function objectiveSpec({ front: fr, nsga, cloud, design }, { ratio = false, width = 720, height = 460, title = '', live = false } = {}) {
   if (!fr || fr.error) throw { message: `no front to draw${fr ? `: ${fr.error}` : ''}`, field: 'front' };
-  const xy = planeXY(app, ratio);
-  const cloud = live ? [] : cloudPoints(app, ratio, 2);
-  const front = fr.study.front.map((p) => xy(p.bacc, p.dtl));
+  const xy = planeXY(fr, ratio);
+  const cloudPts = live || !cloud ? [] : cloudPoints(cloud, fr, ratio, 2);
+  const frontPts = fr.study.front.map((p) => xy(p.bacc, p.dtl));
   const datum = xy(fr.datum.bacc, fr.datum.dtl);
   // The range: the front and the datum, room to the upper right for the cloud.
-  const [x0, x1] = extent([...front.map((p) => p[0]), datum[0]]);
-  const [y0, y1] = extent([...front.map((p) => p[1]), datum[1]]);
+  const [x0, x1] = extent([...frontPts.map((p) => p[0]), datum[0]]);
+  const [y0, y1] = extent([...frontPts.map((p) => p[1]), datum[1]]);
   const xRange = widen([x0 - 0.05 * (x1 - x0), x1 + 0.6 * (x1 - x0)]);
   const yRange = widen([y0 - 0.05 * (y1 - y0), y1 + 0.6 * (y1 - y0)]);
   const series = [];
-  if (live || cloud.length) {
-    series.push({ name: 'feasible designs (surrogate)', colour: COL.cloud, points: cloud, style: 'dots', size: 1.4, opacity: CLOUD_OPACITY });
+  if (cloudPts.length) {
+    series.push({ name: 'feasible designs (surrogate)', colour: COL.cloud, points: cloudPts, style: 'dots', size: 1.4, opacity: CLOUD_OPACITY });
   }
-  series.push(line(`Pareto front, STM (${front.length} pts)`, COL.stm, front, 2.5));
-  if (app.nsga && !app.nsga.error) {
-    const nf = app.nsga.study.front.map((p) => xy(p.bacc, p.dtl));
+  series.push(line(`Pareto front, STM (${frontPts.length} pts)`, COL.stm, frontPts, 2.5));
+  if (nsga && !nsga.error) {
+    const nf = nsga.study.front.map((p) => xy(p.bacc, p.dtl));
     series.push({ name: `NSGA-II front (${nf.length} pts)`, colour: COL.nsga, points: nf, style: 'dots', size: 2.6 });
   }
   const pk = xy(fr.study.pick.criteria.bacc, fr.study.pick.criteria.dtl);
@@ -122,10 +138,7 @@ export function objectiveSpec(app, { ratio = false, width = 720, height = 460, t
   series.push(marker('pick re-checked (HiFi)', '#ffffff', COL.hifi, 'diamond', [hp], 9));
   series.push(marker(`min-max pick (${fr.study.evaluator})`, COL.pick, '#000000', 'diamond', [pk]));
   series.push(marker('datum', '#ffffff', '#000000', 'square', [datum], 6));
-  const design = app.surrogate && app.surrogate.design;
-  if (live || design) {
-    series.push(marker('current design', '#000000', '#ffffff', 'circle', live ? [] : [xy(design.bacc, design.dtl)], 4.5));
-  }
+  if (!live && design) series.push(marker('current design', '#000000', '#ffffff', 'circle', [xy(design.bacc, design.dtl)], 4.5));
   return {
     title,
     xLabel: ratio ? 'BAcc / datum BAcc (surrogate) [–]' : 'BAcc [m/s²]',
@@ -134,17 +147,17 @@ export function objectiveSpec(app, { ratio = false, width = 720, height = 460, t
     yRange,
     width,
     height,
+    legend: live ? 'none' : 'upperRight',
     series,
   };
 }
 
 /**
- * One FRF (`which` = 'frf') or PSD ('psd') plot of the current design, log-log over
- * 0.1..100 Hz: HiFi, LoFi and the surrogate's tuned LoFi for output `key`. The page
+ * One FRF (`which` = 'frf') or PSD ('psd') plot of `sp` (the `spectra` result), log-log
+ * over 0.1..100 Hz: HiFi, LoFi and the surrogate's tuned LoFi for output `key`. The page
  * draws six of them small under one key of its own (`legend: 'none'`).
  */
-export function spectraSpec(app, which = 'frf', key = 'bacc', { width = 640, height = 440, title = '', legend = 'lowerLeft' } = {}) {
-  const sp = app.spectra;
+export function spectraSpec(sp, which = 'frf', key = 'bacc', { width = 640, height = 440, title = '', legend = 'lowerLeft' } = {}) {
   if (!sp) throw { message: 'no spectra to draw yet', field: 'spectra' };
   if (which !== 'frf' && which !== 'psd') throw { message: `'${which}' is not 'frf' or 'psd'`, field: 'which' };
   const o = output(key);
@@ -178,30 +191,64 @@ export function spectraSpec(app, which = 'frf', key = 'bacc', { width = 640, hei
   };
 }
 
-/** One output (`key`) of the time response, when it has been run: HiFi and LoFi with their RMS. */
-export function timeSpec(app, key = 'bacc', { width = 720, height = 340, title = '' } = {}) {
-  const res = app.time;
-  if (!res) throw { message: 'no time response yet: run it first', field: 'time' };
+/**
+ * One output (`key`) of a time response `time` (the panel's run): HiFi and LoFi with
+ * their RMS; with `linear` (the same road with the linear damper, when the run had a
+ * nonlinear one), its HiFi trace underneath in grey.
+ */
+export function timeSpec(time, key = 'bacc', { width = 720, height = 340, title = '', linear = null } = {}) {
+  if (!time) throw { message: 'no time response yet: run it first', field: 'time' };
   const o = output(key);
   const k = OUTPUTS.indexOf(o);
   const pts = (r) => r.t.map((t, i) => [t, r.outputs[k][i] * o.scale]);
   const rms = (r) => (r.rms[k] * o.scale).toPrecision(3);
-  const a = pts(res.hifi);
-  const b = pts(res.lofi);
+  const a = pts(time.hifi);
+  const b = pts(time.lofi);
+  const c = linear ? pts(linear.hifi) : [];
   // Room above the signals for the legend (a third of their span), none taken below.
-  const [lo, hi] = extent([...a, ...b].map((p) => p[1]));
+  const [lo, hi] = extent([...a, ...b, ...c].map((p) => p[1]));
   const span = hi > lo ? hi - lo : Math.abs(hi) || 1;
+  const series = [];
+  if (linear) series.push(line(`HiFi, linear damper (RMS ${rms(linear.hifi)})`, COL.linear, c, 3.5));
+  series.push(line(`HiFi (RMS ${rms(time.hifi)})`, COL.hifi, a, 2.6));
+  series.push(line(`LoFi (RMS ${rms(time.lofi)})`, COL.lofi, b, 1));
   return {
     title,
     xLabel: 'time [s]',
     yLabel: o.time,
-    xRange: [res.hifi.t[0], res.hifi.t[res.hifi.t.length - 1]],
+    xRange: [time.hifi.t[0], time.hifi.t[time.hifi.t.length - 1]],
     yRange: [lo - 0.04 * span, hi + 0.34 * span],
     width,
     height,
-    series: [
-      line(`HiFi (RMS ${rms(res.hifi)})`, COL.hifi, a, 2.6),
-      line(`LoFi (RMS ${rms(res.lofi)})`, COL.lofi, b, 1),
-    ],
+    series,
+  };
+}
+
+/**
+ * The front damper's force-velocity line (`curve`: the core's `damperCurve`, v in m/s,
+ * f in N; v > 0 is rebound) in kN, with the equivalent linear rate the maps use as a
+ * grey line underneath; `linear`: the law is the design's own linear damper.
+ */
+export function damperSpec(curve, { width = 360, height = 240, title = '', linear = false } = {}) {
+  if (!curve || !curve.points.length) throw { message: 'no damper law', field: 'damper' };
+  const pts = curve.points.map(([v, f]) => [v, f / 1000]);
+  const [v0, v1] = [pts[0][0], pts[pts.length - 1][0]];
+  const rate = curve.linearRate / 1000;
+  const [lo, hi] = extent(pts.map((p) => p[1]).concat([rate * v0, rate * v1]));
+  const span = hi - lo || 1;
+  const series = [];
+  const kns = (x) => (x / 1000).toPrecision(3);
+  if (!linear) series.push(line(`linear rate of the maps, Cs ${kns(curve.linearRate)} kNs/m`, COL.linear, [[v0, rate * v0], [v1, rate * v1]], 2));
+  series.push(line(linear ? `linear damper, Cs ${kns(curve.linearRate)} kNs/m` : 'bump / rebound law', COL.hifi, pts, 3));
+  return {
+    title,
+    xLabel: 'damper speed [m/s] (bump < 0 < rebound)',
+    yLabel: 'force [kN]',
+    xRange: [v0, v1],
+    yRange: [lo - 0.04 * span, hi + 0.3 * span],
+    width,
+    height,
+    legend: 'upperLeft',
+    series,
   };
 }

@@ -1,10 +1,13 @@
-// One design-criteria-space map: a criterion over Ks x Cs as a dense colour image
-// (an RGBA ImageData put on an offscreen canvas, then scaled onto the plot), contour
-// lines, the infeasible area hatched, axes with units, a colour bar, and the design
-// and datum markers on a separate overlay canvas (so moving the design redraws only
-// the markers). Click or drag on the plot picks a design.
+// One design-criteria-space map: a criterion over Ks x Cs as a dense colour image (an
+// RGBA ImageData put on an offscreen canvas, then scaled onto the plot), contour lines,
+// the infeasible area hatched with the values showing through, axes with units and a
+// colour bar drawn by the core, and the design, datum, pick and sample markers on an
+// overlay canvas (so moving the design redraws only the markers). A pick surface over
+// the plot takes the pointer (click, drag, touch: set the design; hover: read a value)
+// and the keyboard (arrows move the design a step). The view is handed plain data
+// (`setData`, `setMarkers`); it never reads the page's state.
 
-import { VIRIDIS, DIVERGING, paint } from './colormap.js';
+import { paint } from './colormap.js';
 import { contourSegments } from './contour.js';
 import { fmt, fmtPct } from './format.js';
 import { drawMapFrame } from '../ridelab.js';
@@ -25,11 +28,14 @@ export const CRITERIA = [
   },
 ];
 
-/** Hatch per group of objectives (bits of a map's `broken` mask). */
-const HATCHES = [
-  { bits: 1, dir: '/', name: 'SWS limit' },
-  { bits: 2 | 4, dir: '\\', name: 'bounce or damping band' },
-  { bits: 8 | 16 | 32, dir: '-', name: 'worse than the datum' },
+/** The caption of an error map. */
+const ERROR_TEACH = 'Surrogate minus HiFi in % of the HiFi: blue where the surrogate is lower, red where higher.';
+
+/** Hatch per group of objectives (bits of a map's `broken` mask): lines, dots, lines. */
+export const HATCHES = [
+  { bits: 1, kind: '/', name: 'SWS limit' },
+  { bits: 2 | 4, kind: 'dots', name: 'bounce or damping band' },
+  { bits: 8 | 16 | 32, kind: '-', name: 'worse than the datum' },
 ];
 
 /** The core's smallest map chart, logical px. */
@@ -47,26 +53,32 @@ export class MapView {
   /**
    * @param {HTMLElement} parent where the figure goes
    * @param {object} crit one of CRITERIA
-   * @param {(ks: number, cs: number) => void} onPick called with N/m and N s/m
+   * @param {{onPick: (ks: number, cs: number) => void, onKey: (ev: KeyboardEvent) => boolean}} hooks
+   *   `onPick` gets N/m and N s/m; `onKey` a key on the focused map (true when it moved the design)
    */
-  constructor(parent, crit, onPick) {
+  constructor(parent, crit, { onPick, onKey }) {
     this.crit = crit;
     this.onPick = onPick;
+    this.onKey = onKey;
     this.data = null;
     this.markers = null;
+    this.thick = 1;
 
     const fig = document.createElement('figure');
     fig.className = 'map-panel';
     fig.dataset.crit = crit.key;
     const cap = document.createElement('figcaption');
     const title = document.createElement('span');
+    title.className = 'map-title';
     title.textContent = `${crit.title}: ${crit.long}`;
     this.atEl = document.createElement('span');
     this.atEl.className = 'at';
     cap.append(title, this.atEl);
-    const teach = document.createElement('p');
-    teach.className = 'teach';
-    teach.textContent = crit.teach;
+    this.teachEl = document.createElement('p');
+    this.teachEl.className = 'teach';
+    this.teachEl.textContent = crit.teach;
+    cap.title = crit.teach;
+    this.capEl = cap;
     const stack = document.createElement('div');
     stack.className = 'map-stack';
     this.base = document.createElement('canvas');
@@ -77,8 +89,19 @@ export class MapView {
     this.overlay.className = 'overlay';
     this.overlay.id = `map-${crit.key}-overlay`;
     this.overlay.setAttribute('aria-hidden', 'true');
-    stack.append(this.base, this.overlay);
-    fig.append(cap, teach, stack);
+    // The plot's pick surface: pointer and keyboard.
+    this.surface = document.createElement('div');
+    this.surface.className = 'pick-surface';
+    this.surface.id = `map-${crit.key}-pick`;
+    this.surface.tabIndex = 0;
+    this.surface.setAttribute('role', 'group');
+    this.surface.setAttribute('aria-roledescription', 'design picker');
+    this.surface.setAttribute('aria-label', `${crit.title} map: click or drag to set Ks and Cs; arrow keys move Ks (left, right) and Cs (up, down) by a step, Page Up and Down by ten`);
+    this.tip = document.createElement('div');
+    this.tip.className = 'map-tip';
+    this.tip.hidden = true;
+    stack.append(this.base, this.overlay, this.surface, this.tip);
+    fig.append(cap, this.teachEl, stack);
     parent.append(fig);
     this.fig = fig;
     this.stack = stack;
@@ -87,6 +110,9 @@ export class MapView {
     this.ro = new ResizeObserver(() => this.resize());
     this.ro.observe(stack);
     this.bindPointer();
+    this.surface.addEventListener('keydown', (ev) => {
+      if (this.onKey(ev)) ev.preventDefault();
+    });
   }
 
   /**
@@ -96,17 +122,16 @@ export class MapView {
   layout() {
     const pl = this.placed;
     if (!pl) return null;
-    const z = pl.zoom;
-    const rect = (f) => ({ x: f.left * z, y: f.top * z, w: (f.right - f.left) * z, h: (f.bottom - f.top) * z });
-    return { fs: 12 * z, plot: rect(pl.frame), bar: rect(pl.bar) };
+    return layoutOf(pl);
   }
 
+  /** Sizes the canvases to the stack; redraws and returns true when the size changed. */
   resize() {
     const r = this.stack.getBoundingClientRect();
     const dpr = window.devicePixelRatio || 1;
     const w = Math.round(r.width);
     const h = Math.round(r.height);
-    if (w === this.size.w && h === this.size.h && dpr === this.size.dpr) return;
+    if (w === this.size.w && h === this.size.h && dpr === this.size.dpr) return false;
     this.size = { w, h, dpr };
     for (const c of [this.base, this.overlay]) {
       c.width = Math.max(1, Math.round(w * dpr));
@@ -114,17 +139,25 @@ export class MapView {
     }
     this.drawBase();
     this.drawOverlay();
+    return true;
+  }
+
+  /** Line widths times `thick` (projector mode: thicker lines), from the next redraw. */
+  setStyle({ thick }) {
+    this.thick = thick;
   }
 
   /**
-   * New map data. `maps`: {nx, ny, values, feasible, feasibleCount} from the engine;
-   * `box`: design box (N/m, N s/m); `swsLimit`: m or null; `scale`: "abs" or "rel";
-   * `datum`: the datum's criteria {bacc, dtl, sws} by the map's model (for "rel");
+   * New map data. `maps`: {nx, ny, values, feasible, broken, feasibleCount} from the
+   * engine; `box`: design box (N/m, N s/m); `swsLimit`: m or null; `scale`: "abs" or
+   * "rel"; `datum`: the datum's criteria {bacc, dtl, sws} by the map's model (for "rel");
    * `kind`: "value" (criteria) or "error" (the planes hold the surrogate's signed error
-   * against the HiFi, %, and `scale` is ignored). `draw` false leaves the drawing to a
-   * later `drawBase()` (the page splits a map's update over two tasks).
+   * against the HiFi, %, and `scale` is ignored); `palette`: the colour map of absolute
+   * values ("viridis" or "cividis") and `tables` the colour tables by name. `draw` false
+   * leaves the drawing to a later `drawBase()` (the page splits a map's update over two
+   * tasks).
    */
-  setData({ maps, box, swsLimit, scale, datum, kind = 'value' }, draw = true) {
+  setData({ maps, box, swsLimit, scale, datum, kind = 'value', palette = 'viridis', tables }, draw = true) {
     const { nx, ny, values } = maps;
     const n = nx * ny;
     const off = this.crit.plane * n;
@@ -137,19 +170,12 @@ export class MapView {
       const v = values[off + k];
       shown[k] = error ? v : scale === 'rel' ? (v / ref - 1) * 100 : v * f;
     }
-    // The colour range spans the feasible designs (those the designer can choose), so
-    // their differences show; values beyond it (in the hatched area) take the end
-    // colours and the bar gets an "and above" / "and below" triangle.
-    const feasible = maps.feasibleCount > 0 ? maps.feasible : null;
+    // The colour range spans every design in the box, the infeasible ones too: their
+    // values show through the hatching.
     let lo = Infinity;
     let hi = -Infinity;
-    let allLo = Infinity;
-    let allHi = -Infinity;
     for (let k = 0; k < n; k++) {
       const v = shown[k];
-      if (v < allLo) allLo = v;
-      if (v > allHi) allHi = v;
-      if (feasible && !feasible[k]) continue;
       if (v < lo) lo = v;
       if (v > hi) hi = v;
     }
@@ -162,10 +188,8 @@ export class MapView {
       lo -= pad;
       hi += pad;
     }
-    const tol = 1e-9 * (hi - lo);
-    const over = allHi > hi + tol;
-    const under = allLo < lo - tol;
-    const table = scale === 'rel' ? DIVERGING : VIRIDIS;
+    const colourMap = scale === 'rel' ? 'diverging' : palette;
+    const table = tables[colourMap];
 
     // The dense colour image: one pixel per grid cell, row 0 at the top (highest Cs).
     const img = new ImageData(nx, ny);
@@ -179,7 +203,7 @@ export class MapView {
     colour.getContext('2d').putImageData(img, 0, 0);
 
     // The infeasible masks, one per hatch: opaque where a design breaks an objective of
-    // that group (bits of `maps.broken`; without it, every infeasible cell is SWS's).
+    // that group (bits of `maps.broken`).
     const masks = [];
     for (const group of HATCHES) {
       const mask = new ImageData(nx, ny);
@@ -187,9 +211,7 @@ export class MapView {
       for (let j = 0; j < ny; j++) {
         const row = (ny - 1 - j) * nx;
         for (let i = 0; i < nx; i++) {
-          const k = j * nx + i;
-          const hit = maps.broken ? maps.broken[k] & group.bits : group.bits & 1 && !maps.feasible[k];
-          if (hit) {
+          if (maps.broken[j * nx + i] & group.bits) {
             mask.data[4 * (row + i) + 3] = 255;
             any = true;
           }
@@ -204,16 +226,19 @@ export class MapView {
     const limitLine = swsLimit && !error ? contourSegments(values, 2 * n, nx, ny, swsLimit) : [];
 
     this.data = {
-      nx, ny, box, lo, hi, table, colour, masks, limitLine, scale, over, under,
+      nx, ny, box, lo, hi, colourMap, colour, masks, limitLine, scale,
       // Contour levels and lines: at the colour bar's ticks, set when it is drawn.
       levels: [], levelsKey: null, contours: [],
       infeasible: maps.feasibleCount < n,
       unit: error ? '% error vs HiFi' : scale === 'rel' ? '% vs datum' : this.crit.unit,
-      shown, kind, feasible: maps.feasible,
+      shown, kind, feasible: maps.feasible, broken: maps.broken,
     };
+    const teach = error ? ERROR_TEACH : this.crit.teach;
+    this.teachEl.textContent = teach;
+    this.capEl.title = teach;
     this.base.setAttribute(
       'aria-label',
-      `${this.crit.long} map over spring rate Ks ${box.ks_min / KS_UNIT} to ${box.ks_max / KS_UNIT} kN/m ` +
+      `${error ? `Surrogate error in ${this.crit.long}` : this.crit.long} map over spring rate Ks ${box.ks_min / KS_UNIT} to ${box.ks_max / KS_UNIT} kN/m ` +
         `and damper rate Cs ${box.cs_min / CS_UNIT} to ${box.cs_max / CS_UNIT} kNs/m; ` +
         `values ${fmt(lo)} to ${fmt(hi)} ${this.data.unit}.`,
     );
@@ -221,73 +246,13 @@ export class MapView {
   }
 
   /**
-   * The design and datum points (N/m, N s/m), the design's value for the caption, and
-   * optionally the surrogate's sample points and the min-max pick ({ks, cs}).
+   * The design and datum points (N/m, N s/m), optionally the surrogate's sample points
+   * and the min-max pick ({ks, cs}), and the caption's text (the design's value).
    */
-  setMarkers(design, datum, valueText, { samples = null, pick = null } = {}) {
+  setMarkers({ design, datum, samples = null, pick = null }, caption) {
     this.markers = { design, datum, samples, pick };
-    this.atEl.textContent = valueText;
+    this.atEl.textContent = caption;
     this.drawOverlay();
-  }
-
-  /** A `w` x `h` scratch canvas of this view (device px), kept between redraws. */
-  scratchCanvas(w, h) {
-    if (!this.scratch || this.scratch.width !== w || this.scratch.height !== h) this.scratch = new OffscreenCanvas(w, h);
-    return this.scratch;
-  }
-
-  /**
-   * The grey wash with hatch lines in direction `dir` ('/', '\\' or '-') on a `w` x `h`
-   * canvas (device px), drawn once per size and direction.
-   */
-  hatchPattern(dir, w, h) {
-    this.patterns = this.patterns || new Map();
-    const key = `${dir} ${w} ${h}`;
-    let c = this.patterns.get(key);
-    if (c) return c;
-    if (this.patterns.size > 6) this.patterns.clear();
-    c = new OffscreenCanvas(w, h);
-    const hg = c.getContext('2d');
-    const dpr = this.size.dpr;
-    hg.fillStyle = 'rgba(150,150,150,0.62)';
-    hg.fillRect(0, 0, w, h);
-    hg.strokeStyle = 'rgb(58,58,58)';
-    hg.lineWidth = 1.1 * dpr;
-    const gap = 7 * dpr;
-    hg.beginPath();
-    if (dir === '-') {
-      for (let y = gap / 2; y < h; y += gap) {
-        hg.moveTo(0, y);
-        hg.lineTo(w, y);
-      }
-    } else {
-      for (let x = -h; x < w; x += gap) {
-        if (dir === '/') {
-          hg.moveTo(x, h);
-          hg.lineTo(x + h, 0);
-        } else {
-          hg.moveTo(x, 0);
-          hg.lineTo(x + h, h);
-        }
-      }
-    }
-    hg.stroke();
-    this.patterns.set(key, c);
-    return c;
-  }
-
-  ctx(canvas) {
-    const g = canvas.getContext('2d');
-    g.setTransform(this.size.dpr, 0, 0, this.size.dpr, 0, 0);
-    return g;
-  }
-
-  toPlot(ks, cs, plot) {
-    const b = this.data.box;
-    return [
-      plot.x + ((ks - b.ks_min) / (b.ks_max - b.ks_min)) * plot.w,
-      plot.y + plot.h - ((cs - b.cs_min) / (b.cs_max - b.cs_min)) * plot.h,
-    ];
   }
 
   /** The map chart spec of the current data for the core (`drawMapFrame`, `mapChartSvg`). */
@@ -299,7 +264,7 @@ export class MapView {
       ny: d.ny,
       values: d.shown,
       designBox: d.box,
-      colourMap: d.scale === 'rel' ? 'diverging' : 'viridis',
+      colourMap: d.colourMap,
       range: [d.lo, d.hi],
       legend: 'none',
       width,
@@ -308,38 +273,59 @@ export class MapView {
   }
 
   /**
-   * The map: plotters draws the frame (axes, ticks, labels, colour bar with its unit) at
-   * the core's layout; the page puts the dense colour image in it, then the contour lines
-   * at the colour bar's ticks, the hatching and the SWS limit.
+   * The map on screen: plotters draws the frame (axes, ticks, labels, colour bar with
+   * its unit) at the core's layout; the page puts the dense colour image in it, then the
+   * contour lines at the colour bar's ticks, the hatching and the SWS limit.
    */
   drawBase() {
     if (!this.size.w) return;
     const { w, h, dpr } = this.size;
     if (!this.data) {
-      this.ctx(this.base).clearRect(0, 0, w, h);
+      const g = this.base.getContext('2d');
+      g.setTransform(dpr, 0, 0, dpr, 0, 0);
+      g.clearRect(0, 0, w, h);
       return;
     }
-    const d = this.data;
     // Logical px: the CSS size over the type zoom, never below the chart's minimum.
     const zoom = Math.min(rootFontPx() / 15, w / MIN_W, h / MIN_H);
+    this.placed = this.paint(this.base, w, h, dpr, zoom);
+    const l = this.layout();
+    if (l) {
+      const st = this.surface.style;
+      st.left = `${l.plot.x}px`;
+      st.top = `${l.plot.y}px`;
+      st.width = `${l.plot.w}px`;
+      st.height = `${l.plot.h}px`;
+    }
+  }
+
+  /**
+   * Paints the map on `canvas` (`w` x `h` CSS px at `dpr` device px each, laid out at
+   * `zoom`); returns where the core placed frame and bar (with `zoom`), or null with the
+   * message drawn when the core refused.
+   */
+  paint(canvas, w, h, dpr, zoom) {
+    const d = this.data;
+    let placed;
     try {
-      const placed = drawMapFrame(this.base, this.chartSpec(Math.max(MIN_W, Math.floor(w / zoom)), Math.max(MIN_H, Math.floor(h / zoom))), dpr * zoom);
-      this.placed = { ...placed, zoom };
+      placed = { ...drawMapFrame(canvas, this.chartSpec(Math.max(MIN_W, Math.floor(w / zoom)), Math.max(MIN_H, Math.floor(h / zoom))), dpr * zoom), zoom };
       this.error = null;
     } catch (e) {
-      this.placed = null;
       this.error = { message: String(e.message || e), field: e.field || '' };
-      const g = this.ctx(this.base);
+      const g = canvas.getContext('2d');
+      g.setTransform(dpr, 0, 0, dpr, 0, 0);
       g.clearRect(0, 0, w, h);
       g.fillStyle = '#a3281d';
       g.font = '13px system-ui, sans-serif';
       g.fillText(`Cannot draw this map: ${this.error.message}`, 8, 20, w - 16);
-      return;
+      return null;
     }
-    const g = this.ctx(this.base);
-    const { plot, bar } = this.layout();
+    const g = canvas.getContext('2d');
+    g.setTransform(dpr, 0, 0, dpr, 0, 0);
+    const { plot } = layoutOf(placed);
     const gx = (x) => plot.x + ((x + 0.5) / d.nx) * plot.w; // grid -> CSS px
     const gy = (y) => plot.y + plot.h - ((y + 0.5) / d.ny) * plot.h;
+    const lw = this.thick;
 
     // Colour image, smoothly scaled from one pixel per cell.
     g.imageSmoothingEnabled = true;
@@ -349,7 +335,7 @@ export class MapView {
     // Contour lines at the colour bar's ticks (kept until the levels change): a dark
     // halo under a light line reads on both ends of the colour map.
     const span = d.hi - d.lo;
-    const levels = this.placed.barTicks.filter((t) => t > d.lo + 1e-9 * span && t < d.hi - 1e-9 * span);
+    const levels = placed.barTicks.filter((t) => t > d.lo + 1e-9 * span && t < d.hi - 1e-9 * span);
     const key = levels.join(' ');
     if (d.levelsKey !== key) {
       d.levelsKey = key;
@@ -371,25 +357,23 @@ export class MapView {
     g.lineCap = 'round';
     for (const segs of d.contours) {
       g.strokeStyle = 'rgba(0,0,0,0.35)';
-      g.lineWidth = 2;
+      g.lineWidth = 2 * lw;
       strokeSegs(segs);
       g.strokeStyle = 'rgba(255,255,255,0.85)';
-      g.lineWidth = 0.8;
+      g.lineWidth = 0.8 * lw;
       strokeSegs(segs);
     }
 
-    // Infeasible area: a grey wash plus hatching per objective group ('/' SWS limit,
-    // '\' frequency bands, '-' worse than the datum), each cut to its mask; an area that
-    // breaks two groups is darker and cross-hatched.
+    // Infeasible area: a pattern per objective group ('/' SWS limit, dots the frequency
+    // bands, '-' worse than the datum), each cut to its mask, over a light wash: the
+    // colours (the values) stay readable underneath.
     const W = Math.ceil(plot.w * dpr);
     const H = Math.ceil(plot.h * dpr);
     for (const m of d.masks) {
-      // One scratch canvas per view, reused: the hatch pattern is copied in, cut to the
-      // mask, and drawn (no new plot-sized canvas per map per redraw).
       const scratch = this.scratchCanvas(W, H);
       const sg = scratch.getContext('2d');
       sg.globalCompositeOperation = 'copy';
-      sg.drawImage(this.hatchPattern(m.dir, W, H), 0, 0);
+      sg.drawImage(this.hatchPattern(m.kind, W, H, dpr), 0, 0);
       sg.globalCompositeOperation = 'destination-in';
       sg.imageSmoothingEnabled = false;
       sg.drawImage(m.canvas, 0, 0, W, H);
@@ -398,53 +382,115 @@ export class MapView {
     // The SWS limit itself.
     if (d.limitLine.length) {
       g.strokeStyle = '#fff';
-      g.lineWidth = 3.5;
+      g.lineWidth = 3.5 * lw;
       strokeSegs(d.limitLine);
       g.strokeStyle = '#000';
-      g.lineWidth = 1.6;
+      g.lineWidth = 1.6 * lw;
       strokeSegs(d.limitLine);
     }
     g.restore();
     g.strokeStyle = '#333';
     g.lineWidth = 1;
     g.strokeRect(plot.x, plot.y, plot.w, plot.h);
+    return placed;
+  }
 
-    // "and above" / "and below" triangles on the colour bar for values beyond its range.
-    const tri = (y, dir, t) => {
-      const c = new Uint8ClampedArray(4);
-      paint(d.table, t, c, 0);
-      g.beginPath();
-      g.moveTo(bar.x, y);
-      g.lineTo(bar.x + bar.w / 2, y - dir * bar.w * 0.9);
-      g.lineTo(bar.x + bar.w, y);
-      g.closePath();
-      g.fillStyle = `rgb(${c[0]},${c[1]},${c[2]})`;
-      g.fill();
-      g.stroke();
+  /** A `w` x `h` scratch canvas of this view (device px), kept between redraws. */
+  scratchCanvas(w, h) {
+    if (!this.scratch || this.scratch.width !== w || this.scratch.height !== h) this.scratch = new OffscreenCanvas(w, h);
+    return this.scratch;
+  }
+
+  /**
+   * The hatch of kind `kind` ('/', '-' or 'dots') on a `w` x `h` canvas (device px, `dpr`
+   * a CSS px): a light wash with dark marks haloed in white, drawn once per size and kind.
+   */
+  hatchPattern(kind, w, h, dpr) {
+    this.patterns = this.patterns || new Map();
+    const key = `${kind} ${w} ${h} ${dpr} ${this.thick}`;
+    let c = this.patterns.get(key);
+    if (c) return c;
+    if (this.patterns.size > 6) this.patterns.clear();
+    c = new OffscreenCanvas(w, h);
+    const hg = c.getContext('2d');
+    hg.fillStyle = 'rgba(255,255,255,0.28)';
+    hg.fillRect(0, 0, w, h);
+    const gap = 8 * dpr * this.thick;
+    const path = () => {
+      hg.beginPath();
+      if (kind === '-') {
+        for (let y = gap / 2; y < h; y += gap) {
+          hg.moveTo(0, y);
+          hg.lineTo(w, y);
+        }
+      } else if (kind === '/') {
+        for (let x = -h; x < w; x += gap) {
+          hg.moveTo(x, h);
+          hg.lineTo(x + h, 0);
+        }
+      } else {
+        const r = 1.3 * dpr * this.thick;
+        for (let y = gap / 2; y < h; y += gap) {
+          for (let x = ((y / gap) % 2) * (gap / 2) + gap / 4; x < w; x += gap) {
+            hg.moveTo(x + r, y);
+            hg.arc(x, y, r, 0, 2 * Math.PI);
+          }
+        }
+      }
     };
-    if (d.over) tri(bar.y, 1, 1);
-    if (d.under) tri(bar.y + bar.h, -1, 0);
+    path();
+    if (kind === 'dots') {
+      hg.fillStyle = 'rgba(255,255,255,0.9)';
+      hg.lineWidth = 1.2 * dpr;
+      hg.strokeStyle = 'rgba(255,255,255,0.9)';
+      hg.stroke();
+      hg.fillStyle = 'rgb(30,30,30)';
+      hg.fill();
+    } else {
+      hg.strokeStyle = 'rgba(255,255,255,0.75)';
+      hg.lineWidth = 2.6 * dpr * this.thick;
+      hg.stroke();
+      hg.strokeStyle = 'rgb(30,30,30)';
+      hg.lineWidth = 1.1 * dpr * this.thick;
+      hg.stroke();
+    }
+    this.patterns.set(key, c);
+    return c;
+  }
+
+  toPlot(ks, cs, plot) {
+    const b = this.data.box;
+    return [
+      plot.x + ((ks - b.ks_min) / (b.ks_max - b.ks_min)) * plot.w,
+      plot.y + plot.h - ((cs - b.cs_min) / (b.cs_max - b.cs_min)) * plot.h,
+    ];
   }
 
   drawOverlay() {
     if (!this.size.w) return;
-    const g = this.ctx(this.overlay);
-    g.clearRect(0, 0, this.size.w, this.size.h);
+    const { w, h, dpr } = this.size;
+    const g = this.overlay.getContext('2d');
+    g.setTransform(dpr, 0, 0, dpr, 0, 0);
+    g.clearRect(0, 0, w, h);
     if (!this.data || !this.markers || !this.placed) return;
-    const { fs, plot } = this.layout();
+    this.paintMarkers(g, this.layout());
+  }
+
+  /** The markers on context `g` (CSS px) over the plot of layout `{fs, plot}`. */
+  paintMarkers(g, { fs, plot }) {
     const { design, datum, samples, pick } = this.markers;
+    const lw = this.thick;
     const inside = (p) => p[0] >= plot.x - 0.5 && p[0] <= plot.x + plot.w + 0.5 && p[1] >= plot.y - 0.5 && p[1] <= plot.y + plot.h + 0.5;
-    const r = Math.max(4, fs * 0.45);
+    const r = Math.max(4, fs * 0.45) * Math.sqrt(lw);
 
     // The surrogate's HiFi sample points: small white-ringed crosses.
     if (samples) {
-      g.lineWidth = 1.5;
       for (const smp of samples) {
         const q = this.toPlot(smp.ks, smp.cs, plot);
         if (!inside(q)) continue;
         const a = r * 0.75;
         g.strokeStyle = '#fff';
-        g.lineWidth = 3.5;
+        g.lineWidth = 3.5 * lw;
         g.beginPath();
         g.moveTo(q[0] - a, q[1] - a);
         g.lineTo(q[0] + a, q[1] + a);
@@ -452,7 +498,7 @@ export class MapView {
         g.lineTo(q[0] + a, q[1] - a);
         g.stroke();
         g.strokeStyle = '#7c2d12';
-        g.lineWidth = 1.6;
+        g.lineWidth = 1.6 * lw;
         g.stroke();
       }
     }
@@ -462,7 +508,7 @@ export class MapView {
       if (inside(q)) {
         g.fillStyle = '#facc15';
         g.strokeStyle = '#000';
-        g.lineWidth = 1.6;
+        g.lineWidth = 1.6 * lw;
         g.beginPath();
         g.rect(q[0] - r, q[1] - r, 2 * r, 2 * r);
         g.fill();
@@ -472,11 +518,11 @@ export class MapView {
 
     const pd = this.toPlot(datum.ks, datum.cs, plot);
     if (inside(pd)) {
-      g.lineWidth = 3.5;
+      g.lineWidth = 3.5 * lw;
       g.strokeStyle = '#fff';
       diamond(g, pd, r * 1.35);
       g.stroke();
-      g.lineWidth = 1.6;
+      g.lineWidth = 1.6 * lw;
       g.strokeStyle = '#000';
       diamond(g, pd, r * 1.35);
       g.stroke();
@@ -489,7 +535,7 @@ export class MapView {
       g.clip();
       g.setLineDash([4, 3]);
       g.strokeStyle = 'rgba(255,255,255,0.9)';
-      g.lineWidth = 1;
+      g.lineWidth = lw;
       g.beginPath();
       g.moveTo(plot.x, p[1]);
       g.lineTo(plot.x + plot.w, p[1]);
@@ -501,7 +547,7 @@ export class MapView {
       g.arc(p[0], p[1], r, 0, 2 * Math.PI);
       g.fillStyle = '#fff';
       g.fill();
-      g.lineWidth = 2;
+      g.lineWidth = 2 * lw;
       g.strokeStyle = '#000';
       g.stroke();
       g.beginPath();
@@ -511,38 +557,89 @@ export class MapView {
     }
   }
 
+  /**
+   * The map with its markers on a new canvas of `width` x `height` CSS px at `scale`
+   * device px each (a slide-size PNG), laid out as on screen at zoom `zoom`.
+   */
+  snapshot(width, height, scale, zoom) {
+    const c = document.createElement('canvas');
+    c.width = Math.round(width * scale);
+    c.height = Math.round(height * scale);
+    if (!this.data) return c;
+    const placed = this.paint(c, width, height, scale, zoom);
+    if (placed && this.markers) {
+      const g = c.getContext('2d');
+      g.setTransform(scale, 0, 0, scale, 0, 0);
+      this.paintMarkers(g, layoutOf(placed));
+    }
+    return c;
+  }
+
+  /** The design (N/m, N s/m) under a pointer event, clamped into the box when `clamp`; null outside. */
+  designAt(ev, clamp) {
+    if (!this.data || !this.placed) return null;
+    const rect = this.surface.getBoundingClientRect();
+    let u = (ev.clientX - rect.left) / rect.width;
+    let v = 1 - (ev.clientY - rect.top) / rect.height;
+    if (!clamp && (u < 0 || u > 1 || v < 0 || v > 1)) return null;
+    u = Math.min(1, Math.max(0, u));
+    v = Math.min(1, Math.max(0, v));
+    const b = this.data.box;
+    return { u, v, ks: b.ks_min + u * (b.ks_max - b.ks_min), cs: b.cs_min + v * (b.cs_max - b.cs_min) };
+  }
+
+  /** The hover readout at a pointer: Ks, Cs and the map's value in its cell. */
+  hover(ev) {
+    const at = this.designAt(ev, false);
+    if (!at) {
+      this.tip.hidden = true;
+      return;
+    }
+    const d = this.data;
+    const i = Math.min(d.nx - 1, Math.floor(at.u * d.nx));
+    const j = Math.min(d.ny - 1, Math.floor(at.v * d.ny));
+    const v = d.shown[j * d.nx + i];
+    const value = d.unit.startsWith('%') ? `${fmt(v, 3)} ${d.unit}` : `${fmt(v, 4)} ${d.unit}`;
+    const broken = HATCHES.filter((hh) => d.broken[j * d.nx + i] & hh.bits).map((hh) => hh.name);
+    this.tip.textContent = `Ks ${fmt(at.ks / KS_UNIT, 4)} kN/m, Cs ${fmt(at.cs / CS_UNIT, 3)} kNs/m: ${this.crit.title} ${value}${broken.length ? ` (breaks the ${broken.join(', ')})` : ''}`;
+    this.tip.hidden = false;
+    const l = this.layout();
+    const x = l.plot.x + at.u * l.plot.w;
+    const y = l.plot.y + (1 - at.v) * l.plot.h;
+    const left = x > this.size.w / 2;
+    this.tip.style.left = left ? '' : `${x + 12}px`;
+    this.tip.style.right = left ? `${this.size.w - x + 12}px` : '';
+    this.tip.style.top = `${Math.max(0, y - 34)}px`;
+  }
+
   bindPointer() {
+    const s = this.surface;
     let dragging = false;
     const pick = (ev, clamp) => {
-      if (!this.data || !this.placed) return false;
-      const rect = this.overlay.getBoundingClientRect();
-      const { plot } = this.layout();
-      let u = (ev.clientX - rect.left - plot.x) / plot.w;
-      let v = 1 - (ev.clientY - rect.top - plot.y) / plot.h;
-      if (!clamp && (u < 0 || u > 1 || v < 0 || v > 1)) return false;
-      u = Math.min(1, Math.max(0, u));
-      v = Math.min(1, Math.max(0, v));
-      const b = this.data.box;
-      this.onPick(b.ks_min + u * (b.ks_max - b.ks_min), b.cs_min + v * (b.cs_max - b.cs_min));
-      return true;
+      const at = this.designAt(ev, clamp);
+      if (at) this.onPick(at.ks, at.cs);
+      return at !== null;
     };
-    this.overlay.addEventListener('pointerdown', (ev) => {
+    s.addEventListener('pointerdown', (ev) => {
       if (ev.button !== 0) return;
       if (pick(ev, false)) {
         dragging = true;
-        this.overlay.setPointerCapture(ev.pointerId);
+        s.setPointerCapture(ev.pointerId);
         ev.preventDefault();
+        s.focus({ preventScroll: true });
       }
     });
-    this.overlay.addEventListener('pointermove', (ev) => {
+    s.addEventListener('pointermove', (ev) => {
       if (dragging) pick(ev, true);
+      if (ev.pointerType === 'mouse') this.hover(ev);
     });
     const end = (ev) => {
       dragging = false;
-      if (this.overlay.hasPointerCapture(ev.pointerId)) this.overlay.releasePointerCapture(ev.pointerId);
+      if (s.hasPointerCapture(ev.pointerId)) s.releasePointerCapture(ev.pointerId);
     };
-    this.overlay.addEventListener('pointerup', end);
-    this.overlay.addEventListener('pointercancel', end);
+    s.addEventListener('pointerup', end);
+    s.addEventListener('pointercancel', end);
+    s.addEventListener('pointerleave', () => (this.tip.hidden = true));
   }
 
   /** The value under a design point, for captions: absolute or relative. */
@@ -551,6 +648,13 @@ export class MapView {
     if (scale === 'rel') return `design: ${fmtPct(value / datumValue - 1)}`;
     return `design: ${fmt(value * crit.factor)} ${crit.unit}`;
   }
+}
+
+/** The plot and colour bar in CSS px of a `drawMapFrame` placement (with its `zoom`). */
+function layoutOf(pl) {
+  const z = pl.zoom;
+  const rect = (f) => ({ x: f.left * z, y: f.top * z, w: (f.right - f.left) * z, h: (f.bottom - f.top) * z });
+  return { fs: 12 * z, plot: rect(pl.frame), bar: rect(pl.bar) };
 }
 
 function diamond(g, [x, y], r) {

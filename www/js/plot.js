@@ -15,10 +15,13 @@ const MIN_W = 240;
 const MIN_H = 200;
 
 export class Plot {
-  /** `canvas`: the element; `opts`: {aspect} (height over width). */
+  /**
+   * `canvas`: the element; `opts`: `{aspect}` (height over width) or `{fill: true}` (the
+   * height of the canvas's parent, for a chart that fills a cell of the workbench).
+   */
   constructor(canvas, opts = {}) {
     this.canvas = canvas;
-    this.opts = { aspect: 0.62, ...opts };
+    this.opts = { aspect: 0.62, fill: false, ...opts };
     this.size = { w: 0, h: 0, dpr: 1, zoom: 1 };
     this.placed = null;
     this.error = null;
@@ -28,7 +31,9 @@ export class Plot {
   resize() {
     const dpr = window.devicePixelRatio || 1;
     const w = Math.max(MIN_W, this.canvas.clientWidth || this.canvas.parentElement.clientWidth || 400);
-    const h = Math.max(MIN_H * 0.8, Math.round(w * this.opts.aspect));
+    const h = this.opts.fill
+      ? Math.max(MIN_H * 0.8, Math.floor(this.canvas.parentElement.clientHeight))
+      : Math.max(MIN_H * 0.8, Math.round(w * this.opts.aspect));
     const type = (parseFloat(getComputedStyle(document.documentElement).fontSize) || NORMAL_TYPE_PX) / NORMAL_TYPE_PX;
     // Never lay a chart out below the chart module's minimum: shrink the zoom instead.
     const zoom = Math.min(type, w / MIN_W, h / MIN_H);

@@ -38,7 +38,8 @@ export function renderCriteria(table, model, design, datum, swsLimit, pending = 
     c.dataset.value = String(v);
     c.classList.toggle('over', row.crit === 'sws' && swsLimit != null && v > swsLimit);
     const frac = v / d - 1;
-    dc.textContent = fmtPct(frac);
+    // The column heading says "%"; the cell holds the signed number.
+    dc.textContent = fmtPct(frac).replace(' %', '');
     dc.dataset.value = String(frac);
     const tiny = Math.abs(frac) < 5e-4;
     dc.classList.toggle('better', !tiny && frac < 0);

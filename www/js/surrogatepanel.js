@@ -12,27 +12,51 @@ const PLAN_WORDS = (p) => {
   return kind === 'ae' ? `Audze-Eglais, ${n} points` : `grid ${n} × ${n} (${n * n} points)`;
 };
 
-/** A readable label of a surrogate name (`rba-mul-rbf-mq-per-criterion`, ...). */
+/** The groups of the approach picker, by a name's first word. */
+const GROUPS = [
+  ['rba', 'RBA: correct the LoFi\'s outputs (response-based)'],
+  ['vba', 'VBA: transform Ks and Cs before the LoFi (variable-based)'],
+  ['pba', 'PBA: scale the LoFi\'s masses (parameter-based)'],
+  ['data', 'Data fit: the HiFi samples alone, no LoFi'],
+];
+
+const WORDS = {
+  mul: 'multiplied by', add: 'plus', poly1: 'a linear fit', poly2: 'a quadratic fit',
+  rbf: 'radial basis functions', gauss: '(Gaussian)', mq: '(multiquadric)', tps: '(thin-plate)',
+  lts: 'linear transform', mts: 'mixed transform', qts: 'quadratic transform',
+  smts: 'sprung mass', umts: 'unsprung mass', kt: 'tyre stiffness',
+  lin: 'linear fit', quad: 'quadratic fit',
+};
+
+/** A plain-language label of a surrogate name (`rba-mul-rbf-mq-per-criterion`, ...), its code name after it. */
 export function surrogateLabel(name) {
   const per = name.endsWith('-per-criterion');
   const base = per ? name.slice(0, -'-per-criterion'.length) : name;
-  const words = {
-    rba: 'RBA', vba: 'VBA', pba: 'PBA', data: 'data fit', mul: 'multiplicative', add: 'additive',
-    poly1: 'linear', poly2: 'quadratic', rbf: 'RBF', gauss: 'Gaussian', mq: 'multiquadric', tps: 'thin-plate',
-    lts: 'linear transform', mts: 'mixed transform', qts: 'quadratic transform',
-    smts: 'sprung mass', umts: 'both masses', rs: 'response surface',
-  };
-  const parts = base.split('-').map((w) => words[w] || w);
-  return `${parts.join(' ')}${per ? ', per criterion' : ''} (${name})`;
+  const [kind, ...rest] = base.split('-');
+  let text;
+  if (kind === 'rba') {
+    const [form, ...resp] = rest;
+    text = `LoFi ${WORDS[form] || form} ${resp.map((w) => WORDS[w] || w).join(' ')}`;
+  } else if (kind === 'pba') {
+    text = `scale ${rest.map((w) => WORDS[w] || w).join(', ')}`;
+  } else {
+    text = rest.map((w) => WORDS[w] || w).join(' ');
+  }
+  return `${text}${per ? ', one tuning per criterion' : ''} (${name})`;
 }
 
-/** Fills the approach and plan pickers. */
+/** Fills the approach picker (grouped RBA / VBA / PBA / data fit) and the plan picker. */
 export function buildPickers(approachSelect, planSelect, names) {
-  for (const n of names) {
-    const o = document.createElement('option');
-    o.value = n;
-    o.textContent = surrogateLabel(n);
-    approachSelect.append(o);
+  for (const [kind, label] of GROUPS) {
+    const g = document.createElement('optgroup');
+    g.label = label;
+    for (const n of names.filter((x) => x.split('-')[0] === kind)) {
+      const o = document.createElement('option');
+      o.value = n;
+      o.textContent = surrogateLabel(n);
+      g.append(o);
+    }
+    if (g.children.length) approachSelect.append(g);
   }
   for (const p of PLANS) {
     const o = document.createElement('option');

@@ -1,10 +1,12 @@
 // The view state in the URL hash, so that a link reproduces the view:
 //   #car=sedan&ks=19960&cs=1290&class=B&speed=20&tracks=correlated&sws=7
 //    &box=10000,40000,500,4000&bb=0.8,1.5&db=0.2,0.5&nw=0,1,0&sur=rba-mul-rbf-mq&plan=ae:10
-//    &model=hifi&samples=0&scale=rel&large=1
+//    &model=hifi&samples=0&scale=rel&axes=ratio&pal=cividis&proj=1
 // ks in N/m, cs in N s/m, speed in m/s (SI, as the CLI), sws (the SWS limit) in mm,
 // box (Ks from, to, Cs from, to) in N/m and N s/m, bb (bounce band) in Hz, db (damping
-// band) dimensionless, nw (no worse than datum: BAcc, DTL, SWS) as 0/1.
+// band) dimensionless, nw (no worse than datum: BAcc, DTL, SWS) as 0/1; the view: the
+// maps' model, their sample plan (samples=0 hides it), colour scale and palette, the
+// objective plane's axes and projector mode (`large=1`, from earlier links, means proj=1).
 // A custom car travels as its JSON text: car=custom&carjson=...
 
 const NUMBERS = { ks: 'ks', cs: 'cs', speed: 'speed' };
@@ -29,7 +31,9 @@ export function encodeHash(state, view) {
   if (view.model && view.model !== 'lofi') p.set('model', view.model);
   if (view.plan === false) p.set('samples', '0');
   if (view.scale && view.scale !== 'abs') p.set('scale', view.scale);
-  if (view.large) p.set('large', '1');
+  if (view.ratio) p.set('axes', 'ratio');
+  if (view.palette && view.palette !== 'viridis') p.set('pal', view.palette);
+  if (view.projector) p.set('proj', '1');
   return '#' + p.toString();
 }
 
@@ -90,9 +94,15 @@ export function decodeHash(hash) {
     } else if (key === 'scale') {
       if (v === 'abs' || v === 'rel') out.view.scale = v;
       else out.problems.push(`scale: '${raw}' is not 'abs' or 'rel'`);
-    } else if (key === 'large') {
-      if (v === '1' || v === '0') out.view.large = v === '1';
-      else out.problems.push(`large: '${raw}' is not 0 or 1`);
+    } else if (key === 'axes') {
+      if (v === 'abs' || v === 'ratio') out.view.ratio = v === 'ratio';
+      else out.problems.push(`axes: '${raw}' is not 'abs' or 'ratio'`);
+    } else if (key === 'pal') {
+      if (v === 'viridis' || v === 'cividis') out.view.palette = v;
+      else out.problems.push(`pal: '${raw}' is not 'viridis' or 'cividis'`);
+    } else if (key === 'proj' || key === 'large') {
+      if (v === '1' || v === '0') out.view.projector = v === '1';
+      else out.problems.push(`${key}: '${raw}' is not 0 or 1`);
     } else {
       out.problems.push(`unknown key '${key}'`);
     }

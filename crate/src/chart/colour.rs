@@ -1,8 +1,9 @@
-//! Colours: `#rrggbb` strings and the two colour maps of the page (`www/js/colormap.js`).
+//! Colours: `#rrggbb` strings and the colour maps of the design maps.
 //!
 //! A colour map turns `t` in `[0, 1]` into one of 256 colours: `k = round(255 t)` (clamped),
 //! then linear interpolation between the map's stops at `k / 255`, each channel rounded.
-//! The tables are the page's, entry for entry, so an exported map has the page's colours.
+//! The page takes its tables from here (the wasm `colourTable`), so a map on screen and
+//! its export have the same colours.
 
 use crate::error::{Result, RideError};
 use plotters::style::RGBColor;
@@ -55,6 +56,10 @@ pub enum ColourMap {
     /// Viridis (perceptually uniform, colour-blind safe), for absolute values.
     #[default]
     Viridis,
+    /// Cividis (Nuñez, Anderton and Renslow 2018): blue to yellow with a lightness that
+    /// rises steadily, made to look the same with red-green colour-vision deficiency; the
+    /// page's colour-blind option for absolute values.
+    Cividis,
     /// Blue (below zero: better than the datum) through white (zero) to red (worse);
     /// its colour range is made symmetric about zero.
     Diverging,
@@ -74,6 +79,16 @@ const VIRIDIS: Stops = &[
     (1.0, [253, 231, 37]),
 ];
 
+/// Cividis sampled at six stops (its lightness is nearly linear, so six suffice).
+const CIVIDIS: Stops = &[
+    (0.0, [0, 34, 78]),
+    (0.2, [53, 69, 108]),
+    (0.4, [102, 105, 112]),
+    (0.6, [148, 142, 119]),
+    (0.8, [200, 184, 102]),
+    (1.0, [254, 232, 56]),
+];
+
 const DIVERGING: Stops = &[
     (0.0, [33, 102, 172]),
     (0.25, [103, 169, 207]),
@@ -86,6 +101,7 @@ impl ColourMap {
     fn stops(self) -> Stops {
         match self {
             ColourMap::Viridis => VIRIDIS,
+            ColourMap::Cividis => CIVIDIS,
             ColourMap::Diverging => DIVERGING,
         }
     }
@@ -138,9 +154,8 @@ mod tests {
     }
 
     #[test]
-    fn maps_match_the_page_tables() {
-        // Values from www/js/colormap.js's lut(): the stops at their exact entries and
-        // hand-interpolated ones between.
+    fn maps_interpolate_their_stops() {
+        // The stops at their exact entries and hand-interpolated ones between.
         let v = ColourMap::Viridis;
         assert_eq!(v.colour(0.0), Rgb(68, 1, 84));
         assert_eq!(v.colour(1.0), Rgb(253, 231, 37));
@@ -169,6 +184,23 @@ mod tests {
                 expect(172.0, 207.0)
             )
         );
+    }
+
+    #[test]
+    fn cividis_runs_dark_blue_to_yellow_with_rising_lightness() {
+        let c = ColourMap::Cividis;
+        assert_eq!(c.entry(0), Rgb(0, 34, 78));
+        assert_eq!(c.entry(255), Rgb(254, 232, 56));
+        // k = 51: t = 0.2 exactly, the second stop.
+        assert_eq!(c.entry(51), Rgb(53, 69, 108));
+        // Relative luminance (Rec. 709 weights on the 8-bit channels) never falls.
+        let lum = |k: u8| {
+            let Rgb(r, g, b) = c.entry(k);
+            0.2126 * f64::from(r) + 0.7152 * f64::from(g) + 0.0722 * f64::from(b)
+        };
+        for k in 1..=255u8 {
+            assert!(lum(k) >= lum(k - 1), "lightness falls at entry {k}");
+        }
     }
 
     #[test]

@@ -20,7 +20,7 @@
 
 mod damper;
 
-pub use damper::{Damper, Knee};
+pub use damper::{Damper, Knee, MAX_KNEE_VELOCITY};
 
 use crate::analysis::ModelKind;
 use crate::car::Car;

@@ -17,6 +17,7 @@ pub use screen::{draw_line_chart_js, draw_map_frame_js};
 
 use crate::analysis::ModelKind;
 use crate::car::{Car, PRESETS};
+use crate::chart::ColourMap;
 use crate::error::RideError;
 use crate::explorer::{
     ui_field, EvaluatorKind, FrontModel, MapModel, ModelMap, Session, State, STATE_FIELDS,
@@ -37,6 +38,18 @@ fn js_error(e: RideError) -> JsValue {
     };
     let err = js_sys::Error::new(&e.to_string());
     // Setting a property on a fresh Error object cannot fail.
+    let _ = Reflect::set(&err, &"field".into(), &field.into());
+    err.into()
+}
+
+/// A core error as a JS `Error` whose `field` is the core's own field name, unmapped
+/// (the damper law's `bump`, `rebound`, `knee.velocity`, ...: the page has a field each).
+fn js_error_verbatim(e: RideError) -> JsValue {
+    let field = match &e {
+        RideError::Field { field, .. } => field.clone(),
+        _ => String::new(),
+    };
+    let err = js_sys::Error::new(&e.to_string());
     let _ = Reflect::set(&err, &"field".into(), &field.into());
     err.into()
 }
@@ -135,6 +148,25 @@ pub fn presets() -> Result<JsValue, JsValue> {
         });
     }
     to_js(&out)
+}
+
+/// The 256 colours of a map colour scale (`name`: "viridis", "cividis" or "diverging")
+/// as 768 bytes, `r, g, b` per entry: the page paints its map images with the colours
+/// the core's charts use (see [`crate::chart::colour`]).
+#[wasm_bindgen(js_name = colourTable)]
+pub fn colour_table(name: &str) -> Result<Uint8Array, JsValue> {
+    let map: ColourMap = serde_wasm_bindgen::from_value(JsValue::from_str(name)).map_err(|_| {
+        js_error(RideError::field(
+            "colourMap",
+            format!("'{name}' is not 'viridis', 'cividis' or 'diverging'"),
+        ))
+    })?;
+    let mut rgb = Vec::with_capacity(3 * 256);
+    for k in 0..=255u8 {
+        let c = map.entry(k);
+        rgb.extend([c.0, c.1, c.2]);
+    }
+    Ok(Uint8Array::from(rgb.as_slice()))
 }
 
 /// The ISO 8608 classes with `Gd(n0)` in m^3: `[{name, gd}]`.
@@ -351,6 +383,42 @@ pub fn time_response_js(state: JsValue, options: JsValue) -> Result<JsValue, JsV
     let opt: crate::time_domain::TimeOptions = serde_wasm_bindgen::from_value(options)
         .map_err(|e| state_error(format!("time options: {e}")))?;
     to_js(&with_session(state, |s| s.time_response(&opt))?)
+}
+
+/// The front damper law's force-velocity line, for the page's chart: `damper` is
+/// `{bump, rebound, knee: {velocity, bump, rebound} | null}` (N s/m and m/s, as in
+/// [`time_response_js`]'s options) and `v_max` the largest speed drawn either way, m/s.
+/// Returns `{points: [[v, f]], linearRate}`: the law's corners and ends (m/s, N; `v > 0`
+/// is rebound) and the equivalent linear rate `(bump + rebound) / 2` the maps use, N s/m.
+/// Errors name the law's field (`bump`, `rebound`, `knee.velocity`, ...) or `vMax`.
+#[wasm_bindgen(js_name = damperCurve)]
+pub fn damper_curve_js(damper: JsValue, v_max: f64) -> Result<JsValue, JsValue> {
+    use crate::time_domain::{Damper, MAX_KNEE_VELOCITY};
+    #[derive(Serialize)]
+    #[serde(rename_all = "camelCase")]
+    struct Curve {
+        points: Vec<(f64, f64)>,
+        linear_rate: f64,
+    }
+    // Through JSON text: serde_json honours the law's deny_unknown_fields (a misspelt
+    // key is refused, not dropped).
+    let bad = |why: String| js_error_verbatim(RideError::field("damper", why));
+    let text = js_sys::JSON::stringify(&damper)
+        .ok()
+        .and_then(|t| t.as_string())
+        .ok_or_else(|| bad("must be an object {bump, rebound, knee}".into()))?;
+    let law: Damper = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
+    law.validate().map_err(js_error_verbatim)?;
+    if !(v_max.is_finite() && v_max > 0.0 && v_max <= MAX_KNEE_VELOCITY) {
+        return Err(js_error_verbatim(RideError::field(
+            "vMax",
+            format!("must be in (0, {MAX_KNEE_VELOCITY}] m/s (got {v_max})"),
+        )));
+    }
+    to_js(&Curve {
+        points: law.curve(v_max),
+        linear_rate: law.linear_rate(),
+    })
 }
 
 /// The study report of the view's scenario (as `ridelab report`, seed 1, the view's

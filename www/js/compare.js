@@ -1,0 +1,107 @@
+// Saved designs side by side: up to three designs kept from the sliders, each with its
+// LoFi and HiFi criteria and their change against the datum, beside the datum itself
+// (the Pick tab). Plain data in, a table out; the page keeps the list (not in the link).
+
+import { fmt, fmtPct } from './format.js';
+
+/** How many designs are kept; keeping a fourth drops the oldest. */
+export const MAX_SAVED = 3;
+
+/** The criteria rows: key, label with unit, and the shown number from SI. */
+const ROWS = [
+  { key: 'bacc', label: 'BAcc m/s²', show: (v) => fmt(v, 4) },
+  { key: 'dtl', label: 'DTL N', show: (v) => fmt(v, 4) },
+  { key: 'sws', label: 'SWS mm', show: (v) => fmt(v * 1000, 4) },
+];
+
+/**
+ * `saved` with `entry` (`{ks, cs, lofi, hifi, datum: {lofi, hifi}}`, reports in SI) added
+ * at the end: the same design replaces its older copy, and the oldest goes beyond MAX_SAVED.
+ */
+export function keepDesign(saved, entry) {
+  const rest = saved.filter((s) => !(s.ks === entry.ks && s.cs === entry.cs));
+  return [...rest, entry].slice(-MAX_SAVED);
+}
+
+const el = (tag, text, cls) => {
+  const e = document.createElement(tag);
+  if (text !== undefined) e.textContent = text;
+  if (cls) e.className = cls;
+  return e;
+};
+
+/**
+ * Fills `table` with the datum (of the last design kept) and the `saved` designs as
+ * columns: Ks, Cs, then each criterion by the LoFi and the HiFi with % against the
+ * design's own datum (`data-value` holds SI).
+ * `onSet(i)` and `onRemove(i)` are called from each column's buttons.
+ */
+export function renderCompare(table, saved, { onSet, onRemove }) {
+  table.replaceChildren();
+  if (!saved.length) {
+    table.hidden = true;
+    return;
+  }
+  table.hidden = false;
+  const head = el('tr');
+  head.append(el('th', ''), el('th', 'Datum'));
+  saved.forEach((s, i) => {
+    const th = el('th', `Design ${i + 1} `);
+    th.dataset.saved = String(i);
+    const set = el('button', 'Set', 'small');
+    set.type = 'button';
+    set.title = `Set the sliders to design ${i + 1}`;
+    set.addEventListener('click', () => onSet(i));
+    const rm = el('button', '×', 'small');
+    rm.type = 'button';
+    rm.title = `Remove design ${i + 1}`;
+    rm.setAttribute('aria-label', `Remove design ${i + 1}`);
+    rm.addEventListener('click', () => onRemove(i));
+    th.append(set, rm);
+    head.append(th);
+  });
+  table.append(el('thead'));
+  table.tHead.append(head);
+  const body = el('tbody');
+  const datum = saved[saved.length - 1].datum;
+  const design = (label, get) => {
+    const tr = el('tr');
+    tr.append(el('th', label));
+    tr.lastChild.scope = 'row';
+    tr.append(el('td', get(datum.design), 'num'));
+    for (const s of saved) tr.append(el('td', get(s), 'num'));
+    body.append(tr);
+  };
+  design('Ks kN/m', (d) => fmt(d.ks / 1000, 4));
+  design('Cs kNs/m', (d) => fmt(d.cs / 1000, 4));
+  for (const model of ['lofi', 'hifi']) {
+    for (const row of ROWS) {
+      const tr = el('tr');
+      tr.dataset.crit = row.key;
+      tr.dataset.model = model;
+      tr.append(el('th', `${row.label} (${model === 'lofi' ? 'LoFi' : 'HiFi'})`));
+      tr.lastChild.scope = 'row';
+      const d = datum[model]?.[row.key];
+      const c = el('td', d === undefined ? '…' : row.show(d), 'num');
+      if (d !== undefined) c.dataset.value = String(d);
+      tr.append(c);
+      for (const s of saved) {
+        const v = s[model]?.[row.key];
+        const own = s.datum[model]?.[row.key];
+        const td = el('td', v === undefined ? '…' : row.show(v), 'num');
+        if (v !== undefined) {
+          td.dataset.value = String(v);
+          if (own !== undefined) {
+            // Against the datum of the design's own scenario.
+            const frac = v / own - 1;
+            const pct = el('span', ` ${fmtPct(frac)}`, frac < -5e-4 ? 'better' : frac > 5e-4 ? 'worse' : '');
+            td.append(pct);
+          }
+        }
+        tr.append(td);
+      }
+      body.append(tr);
+    }
+  }
+  table.append(body);
+}

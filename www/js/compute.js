@@ -1,0 +1,163 @@
+// The one place the page calls the wasm core. Each method is one question the page asks
+// ("the reports of this scenario", "the HiFi maps", ...) and routes it to the engine it
+// belongs on (js/engine.js): the LoFi work and the maps on the main thread (`main`, well
+// under a millisecond a design), the HiFi readout on the HiFi worker (`hifi`, never busy
+// with long jobs), long jobs on the heavy worker (`heavy`: HiFi maps, the fit's
+// validation, spectra, time responses, NSGA-II). Replacing the stateless wasm calls by a
+// session object (one `Explorer` per engine, updated by setters) changes this file only.
+
+/** LoFi and surrogate map resolution (cells); the image is scaled smoothly onto the plot. */
+export const GRID = { nx: 160, ny: 120 };
+/** HiFi and surrogate-error map resolution (worker). */
+export const HIFI_GRID = { nx: 41, ny: 41 };
+/** The surrogate's feasible set on the objective plane (about 7000 designs). */
+export const CLOUD_GRID = { nx: 96, ny: 72 };
+/** Side of the HiFi grid the surrogate panel validates the fit on. */
+export const VALIDATION_LEVELS = 20;
+/** Frequencies of the FRF / PSD plots (log spaced, 0.1..100 Hz). */
+export const NFREQ = 240;
+/** The time panel's run: 10 s at 1 ms, every 10th sample kept (the seed and damper are the user's). */
+export const TIME_RUN = { duration: 10, dt: 0.001, f_min: 0.1, f_max: 200, decimate: 10 };
+
+export class Compute {
+  /**
+   * `api`: the wasm module (synchronous calls that need no engine: colour tables);
+   * `engines`: `{main, hifi, heavy}` (js/engine.js; the workers may fall back to main).
+   */
+  constructor(api, { main, hifi, heavy }) {
+    this.api = api;
+    this.main = main;
+    this.hifi = hifi;
+    this.heavy = heavy;
+  }
+
+  /** What the page needs once: defaults, presets, road classes, surrogate names, version. */
+  async boot() {
+    const call = (m) => this.main.call(m);
+    return {
+      defaults: await call('defaultState'),
+      presets: await call('presets'),
+      classes: await call('roadClasses'),
+      surrogateNames: await call('surrogates'),
+      version: await call('version'),
+    };
+  }
+
+  /** The 256-entry RGB table of a colour map (`Uint8Array` of 768 bytes). */
+  colourTable(name) {
+    return this.api.colourTable(name);
+  }
+
+  /** The damper law's force-velocity line to `vMax` m/s: `{points: [[v m/s, f N]], linearRate N s/m}` (main thread: a few points). */
+  damperCurve(law, vMax) {
+    return this.api.damperCurve(law, vMax);
+  }
+
+  describe(s) {
+    return this.main.call('describe', s);
+  }
+
+  checkState(s) {
+    return this.main.call('checkState', s);
+  }
+
+  parseCar(json) {
+    return this.main.call('parseCar', json);
+  }
+
+  /**
+   * Everything on the main thread that depends on car, road, objectives, box and
+   * surrogate, plus the design, except the maps: LoFi reports, the surrogate (fitted
+   * once, then kept by the core), its feasible set and the STM front on it (`{error}`
+   * when none is feasible). Rejects with `{message, field}` on a bad state.
+   */
+  async scenario(s) {
+    const main = this.main;
+    const desc = await main.call('describe', s);
+    const ds = { ...s, ks: desc.datumKs, cs: desc.datumCs };
+    const [datum, design, sDatum, sDesign, cloud] = await Promise.all([
+      main.call('analyse', ds, 'quarter'),
+      main.call('analyse', s, 'quarter'),
+      main.call('criteria', ds, 'surrogate'),
+      main.call('criteria', s, 'surrogate'),
+      main.call('modelMaps', s, 'surrogate', CLOUD_GRID.nx, CLOUD_GRID.ny),
+    ]);
+    let front;
+    try {
+      front = await main.call('front', s, 'stm', 'surrogate');
+    } catch (e) {
+      // Not a bad input (the state passed describe): no feasible design, or a numerical failure.
+      front = { error: e.message || String(e) };
+    }
+    const row = (c) => ({ ...c, dtl_relative: c.dtl / desc.staticWheelLoad });
+    return {
+      desc,
+      lofi: { datum, design },
+      surrogate: { datum: row(sDatum), design: row(sDesign) },
+      cloud,
+      front,
+    };
+  }
+
+  /**
+   * A new design point of the same scenario: its LoFi report and surrogate criteria, and
+   * with `withHifi` its HiFi report too (about 3 ms, on the main thread so every view
+   * follows the slider in one frame; null when it fails).
+   */
+  async design(s, desc, withHifi) {
+    const lofi = await this.main.call('analyse', s, 'quarter');
+    const sur = await this.main.call('criteria', s, 'surrogate');
+    let hifi = null;
+    if (withHifi) hifi = await this.main.call('analyse', s, 'full').catch(() => null);
+    return { lofi, surrogate: { ...sur, dtl_relative: sur.dtl / desc.staticWheelLoad }, hifi };
+  }
+
+  /** A HiFi report on the HiFi worker (`s`: a design or the datum state). */
+  hifiReport(s) {
+    return this.hifi.call('analyse', s, 'full');
+  }
+
+  /** The LoFi maps of the scenario at the page's grid (main thread). */
+  lofiMaps(s) {
+    return this.main.call('lofiMaps', s, GRID.nx, GRID.ny);
+  }
+
+  /** The surrogate's maps of the scenario at the page's grid (main thread, fit kept). */
+  surrogateMaps(s) {
+    return this.main.call('modelMaps', s, 'surrogate', GRID.nx, GRID.ny);
+  }
+
+  /** The HiFi or surrogate-error maps (`model`) at the HiFi grid, with the HiFi datum's criteria (heavy worker). */
+  async modelMaps(s, model, datumState) {
+    const [maps, datum] = await Promise.all([
+      this.heavy.call('modelMaps', s, model, HIFI_GRID.nx, HIFI_GRID.ny),
+      model === 'hifi' ? this.heavy.call('criteria', datumState, 'full') : null,
+    ]);
+    return { maps, datum };
+  }
+
+  /** The surrogate's fit report, validated on the HiFi grid (heavy worker). */
+  fit(s) {
+    return this.heavy.call('surrogateFit', s, VALIDATION_LEVELS);
+  }
+
+  /** The seeded NSGA-II front on the surrogate (heavy worker; `{error}` when none is feasible). */
+  nsga(s) {
+    return this.heavy.call('front', s, 'nsga2', 'surrogate').catch((e) => ({ error: e.message || String(e) }));
+  }
+
+  /** FRFs and PSDs of the design (heavy worker). */
+  spectra(s) {
+    return this.heavy.call('spectra', s, NFREQ);
+  }
+
+  /** The time response of the design on a seeded road: `opts` adds `seed` and the damper to TIME_RUN. */
+  time(s, opts) {
+    return this.heavy.call('timeResponse', s, { ...TIME_RUN, ...opts });
+  }
+
+  /** An SVG document of a line chart or map chart spec (`kind`: 'line' or 'map'; main thread only). */
+  svg(kind, spec) {
+    return this.main.call(kind === 'map' ? 'mapChartSvg' : 'lineChartSvg', spec);
+  }
+}

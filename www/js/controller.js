@@ -1,0 +1,517 @@
+// The update queue: what to recompute when, and which views to redraw after. Every
+// change of the state goes through here; the engines are asked through js/compute.js and
+// the views are drawn through js/render.js, with the store (js/store.js) between them.
+//
+// A control changes -> the candidate state is computed by the main-thread engine (which
+// also validates it) -> on success it becomes the state and the views that depend on it
+// are redrawn; on failure the message goes next to the field and the last good state
+// stays. Design changes (Ks, Cs) coalesce: a burst of slider input becomes one update
+// with the latest value. Scenario changes (car, road, objectives, box, surrogate)
+// recompute the surrogate, its feasible set and the front at once, and the maps a frame
+// later, outside the queue. HiFi and long jobs come back from the workers; an answer for
+// an earlier state is dropped.
+
+import { latestOnly } from './engine.js';
+import { DEFAULT_VIEW, MODEL_NAMES, datumStateOf, fitKeyOf, keyOf, scenarioKey } from './store.js';
+import { decodeHash } from './urlstate.js';
+import { FIELD_INPUT, explain, plainWords } from './controls.js';
+import { HIFI_GRID } from './compute.js';
+import { fmt } from './format.js';
+
+/** A promise that resolves after the next frame has been painted. */
+function afterPaint() {
+  return new Promise((r) => requestAnimationFrame(() => setTimeout(r, 0)));
+}
+
+const nextTask = () => new Promise((r) => setTimeout(r, 0));
+
+export class Controller {
+  /** `store`, `compute` (js/compute.js), `render` (js/render.js), `controls` (js/controls.js). */
+  constructor(store, compute, render, controls) {
+    this.store = store;
+    this.compute = compute;
+    this.render = render;
+    this.controls = controls;
+    /** Updates and jobs in flight (queued or waiting for a worker). */
+    this.pending = 0;
+    this.queued = 0;
+    this.chain = Promise.resolve();
+    /** The latest design request (bursts coalesce into it) and the SWS slider's. */
+    this.pendingDesign = null;
+    /** The design request being computed (between the queue and the state). */
+    this.movingTo = null;
+    this.pendingSwsMm = null;
+    this.mapsJob = null;
+    this.spectraTimer = null;
+    /**
+     * ms from an input to: the LoFi views (`design`), every view with the HiFi column
+     * current (`full`), the next frame (`frame`, from the input event's time stamp);
+     * scenario updates and their phases; the maps after a scenario edit; the HiFi maps
+     * in the worker (`modelMaps`).
+     */
+    this.metrics = { design: [], full: [], frame: [], scenario: [], scenarioPhases: [], maps: [], modelMaps: [] };
+    /**
+     * Counters of what was done: fronts drawn, NSGA-II runs and the stale answers dropped,
+     * and `nsgaLog` (per accepted NSGA-II answer: the scenario it was for and the one shown).
+     */
+    this.counters = { frontDraws: 0, frontDrawnAt: 0, nsgaRuns: 0, nsgaDropped: 0, nsgaLog: [], firstMapAt: null };
+
+    this.hifiRun = latestOnly(async (req) => {
+      const dkey = keyOf(req.datumState);
+      if (this.store.hifi.datumKey !== dkey) {
+        this.store.hifi.datum = await this.compute.hifiReport(req.datumState);
+        this.store.hifi.datumKey = dkey;
+      }
+      return { ...req, design: await this.compute.hifiReport(req.s) };
+    });
+    this.modelMapsRun = latestOnly(async ({ s, model, datumState }) => {
+      const t0 = performance.now();
+      const r = await this.compute.modelMaps(s, model, datumState);
+      return { s, model, ...r, ms: performance.now() - t0 };
+    });
+    this.fitRun = latestOnly((s) => this.compute.fit(s).then((r) => ({ s, r })));
+    this.nsgaRun = latestOnly((s) => {
+      this.counters.nsgaRuns++;
+      return this.compute.nsga(s).then((r) => ({ s, r }));
+    });
+    this.spectraRun = latestOnly((s) => this.compute.spectra(s).then((r) => ({ s, r })));
+  }
+
+  /** The design the page is moving to (`{ks, cs}`): the latest request, else the state's. */
+  targetDesign() {
+    const p = this.pendingDesign || this.movingTo;
+    return p ? { ks: p.ks, cs: p.cs } : { ks: this.store.state.ks, cs: this.store.state.cs };
+  }
+
+  /** True when every view shows the current state and nothing is queued. */
+  isSettled() {
+    return this.pending === 0 && this.pendingDesign === null && this.store.hifiCurrent();
+  }
+
+  /** Runs `fn` after every earlier update; each reads the state when it starts. */
+  enqueue(fn) {
+    this.pending++;
+    this.queued++;
+    const p = this.chain.then(fn).finally(() => {
+      this.pending--;
+      this.queued--;
+    });
+    this.chain = p.catch((e) => this.controls.banner(`Internal error: ${e && e.message ? e.message : e}`, 'error'));
+    return p;
+  }
+
+  /** Counts a job in flight until `p` settles. */
+  track(p) {
+    this.pending++;
+    return p.finally(() => this.pending--);
+  }
+
+  // ------------------------------------------------------------ scenario and design
+
+  /**
+   * A change of car, road, objective, box or surrogate (`patch` of the state, or a
+   * function read when the update runs) made in field `source`; `note` is said beside
+   * the car menu when it applies; `onFail(failure)` shows a refusal instead of the field
+   * the core names (a car file's message stays beside the file). Resolves true when applied.
+   */
+  changeScenario(patchOrFn, source, { note = '', onFail = null } = {}) {
+    const tIn = performance.now();
+    return this.enqueue(async () => {
+      const t0 = performance.now();
+      const st = this.store;
+      const patch = typeof patchOrFn === 'function' ? patchOrFn() : patchOrFn;
+      const s = { ...st.state, ...patch };
+      let r;
+      try {
+        r = await this.compute.scenario(s);
+      } catch (e) {
+        if (onFail) onFail(e);
+        else this.controls.fail(e, source);
+        this.render.controls(); // menus go back to the state
+        return false;
+      }
+      if (source) this.controls.setMsg(source, '');
+      for (const f of Object.keys(patch)) if (FIELD_INPUT[f]) this.controls.setMsg(f, '');
+      this.controls.note(note);
+      this.adopt(s, r);
+      const t1 = performance.now();
+      this.scenarioChanged();
+      this.metrics.scenario.push(performance.now() - t0);
+      this.metrics.scenarioPhases.push({ wait: t0 - tIn, compute: t1 - t0, render: performance.now() - t1 });
+      if (!st.hifiCurrent()) this.requestHifi(t0);
+      return true;
+    });
+  }
+
+  /** Takes a computed scenario `r` (js/compute.js `scenario`) for state `s`. */
+  adopt(s, r) {
+    const st = this.store;
+    st.state = s;
+    st.desc = r.desc;
+    st.lofi = r.lofi;
+    st.surrogate = r.surrogate;
+    st.cloud = r.cloud;
+    st.front = r.front;
+    if (st.nsga && st.nsga.key !== scenarioKey(s)) st.nsga = null;
+  }
+
+  /** Redraws what a new scenario changes and starts what it needs from the workers. */
+  scenarioChanged() {
+    this.render.scenario();
+    this.counters.frontDrawnAt = performance.now();
+    this.counters.frontDraws++;
+    this.showMaps();
+    if (this.store.view.nsga) this.requestNsga();
+    this.requestFit();
+    this.designChanged();
+  }
+
+  /** Redraws what a new design changes. */
+  designChanged() {
+    this.render.design();
+    this.render.hifi();
+    this.requestSpectra();
+    this.store.scheduleUrl();
+  }
+
+  /**
+   * The SWS limit slider: the front and pick follow while it is dragged. Input events
+   * coalesce: while an update for the slider waits in the queue, a new position only
+   * replaces its value, so the front is never more than one update behind the pointer.
+   */
+  dragSwsLimit(mm) {
+    const waiting = this.pendingSwsMm !== null;
+    this.pendingSwsMm = mm;
+    this.render.swsDragged(mm);
+    if (waiting) return;
+    this.changeScenario(() => {
+      const v = this.pendingSwsMm;
+      this.pendingSwsMm = null;
+      return { swsLimit: v / 1000 };
+    }, 'swsLimit');
+  }
+
+  /**
+   * A new design (N/m, N s/m) from field `source`; `t0` is when its input happened
+   * (performance.now time base). Bursts coalesce into the latest request.
+   */
+  changeDesign(ks, cs, source, t0 = performance.now()) {
+    const waiting = this.pendingDesign !== null;
+    this.pendingDesign = { ks, cs, source, t0 };
+    if (waiting) return this.chain;
+    return this.enqueue(async () => {
+      const st = this.store;
+      const { ks: k, cs: c, source: src, t0: start } = this.pendingDesign;
+      this.movingTo = this.pendingDesign;
+      this.pendingDesign = null;
+      const s = { ...st.state, ks: k, cs: c };
+      // The HiFi readout of the design (about 3 ms) in the same update once the datum's
+      // is there, so every view follows the slider in one frame; the datum's (once per
+      // scenario) and any failure go to the HiFi worker.
+      const withHifi = st.hifiDatumCurrent(s);
+      let r;
+      try {
+        r = await this.compute.design(s, st.desc, withHifi);
+      } catch (e) {
+        this.controls.fail(e, src);
+        this.render.controls();
+        return false;
+      } finally {
+        this.movingTo = null;
+      }
+      this.controls.setMsg('ks', '');
+      this.controls.setMsg('cs', '');
+      st.state = s;
+      st.lofi = { ...st.lofi, design: r.lofi };
+      st.surrogate = { ...st.surrogate, design: r.surrogate };
+      if (r.hifi) {
+        st.hifi.design = r.hifi;
+        st.hifi.key = keyOf(s);
+      }
+      this.designChanged();
+      this.metrics.design.push(performance.now() - start);
+      requestAnimationFrame(() => this.metrics.frame.push(performance.now() - start));
+      if (r.hifi) this.metrics.full.push(performance.now() - start);
+      else this.requestHifi(start);
+      return true;
+    });
+  }
+
+  /** The HiFi reports of the current design and datum from the HiFi worker (the latest request waits). */
+  requestHifi(t0) {
+    const st = this.store;
+    const s = st.state;
+    this.track(
+      this.hifiRun({ s, key: keyOf(s), datumState: datumStateOf(s, st.desc), t0 })
+        .then((r) => {
+          if (!r || r.key !== keyOf(st.state)) return; // superseded
+          st.hifi.design = r.design;
+          st.hifi.key = r.key;
+          this.render.hifi();
+          this.metrics.full.push(performance.now() - r.t0);
+        })
+        .catch((e) => this.controls.banner(`The HiFi model failed: ${e.message || e}`, 'error')),
+    );
+  }
+
+  // ------------------------------------------------------------ view settings
+
+  /** A change of view settings (`patch` of the view): redraws what shows them. */
+  setView(patch) {
+    const st = this.store;
+    const before = st.view;
+    st.view = { ...st.view, ...patch };
+    if ('projector' in patch && patch.projector !== before.projector) this.render.projector();
+    if ('model' in patch || 'scale' in patch || 'palette' in patch) this.showMaps();
+    else if ('plan' in patch) this.render.markers();
+    if ('ratio' in patch) this.render.plane();
+    this.render.controls();
+    st.scheduleUrl();
+  }
+
+  // ------------------------------------------------------------ maps
+
+  /** Draws the maps of the view's model, or computes them first. */
+  showMaps() {
+    const st = this.store;
+    const shown = st.shownMaps();
+    if (shown) {
+      this.render.maps(shown);
+      return;
+    }
+    const model = st.view.model;
+    if (model === 'hifi' || model === 'error') {
+      this.render.mapStatus(`Computing the ${MODEL_NAMES[model]} maps (${HIFI_GRID.nx} × ${HIFI_GRID.ny}) in the worker…`);
+      this.requestModelMaps();
+    } else {
+      this.render.mapStatus(`Computing the ${MODEL_NAMES[model]} maps…`);
+      this.refreshMaps();
+    }
+  }
+
+  /**
+   * The LoFi (or surrogate) maps of the current scenario, computed and drawn after the
+   * next paint and outside the update queue, one map per task: an edit shows its front
+   * and readout first, its maps a frame later, and a newer edit never waits for a map.
+   * The refresh steps aside while updates are queued and starts again if the state
+   * changes under it; it reads the state when it runs. At most one is scheduled.
+   */
+  refreshMaps() {
+    if (this.mapsJob) return;
+    const st = this.store;
+    this.mapsJob = this.track(
+      (async () => {
+        for (;;) {
+          await afterPaint();
+          if (this.queued > 0) continue;
+          const s = st.state;
+          const key = scenarioKey(s);
+          const t0 = performance.now();
+          if (!st.maps || st.maps.key !== key) st.maps = { ...(await this.compute.lofiMaps(s)), key };
+          if (st.view.model === 'surrogate' && (!st.surMaps || st.surMaps.key !== key)) {
+            st.surMaps = { ...(await this.compute.surrogateMaps(s)), key };
+          }
+          if (st.state !== s) continue;
+          const shown = st.shownMaps();
+          // HiFi and error maps come from the worker; their arrival draws them.
+          if (!shown) {
+            if (st.view.model === 'hifi' || st.view.model === 'error') return;
+            continue;
+          }
+          let current = true;
+          for (let k = 0; k < 3; k++) {
+            if (st.state !== s || st.shownMaps()?.maps !== shown.maps) {
+              current = false;
+              break;
+            }
+            // Two short tasks per map (data, then drawing), so an edit waits at most one.
+            this.render.mapData(k, shown);
+            await nextTask();
+            this.render.mapDraw(k);
+            await nextTask();
+          }
+          if (!current || st.state !== s) continue;
+          this.render.mapsDone(shown);
+          if (this.counters.firstMapAt === null) this.counters.firstMapAt = performance.now();
+          this.metrics.maps.push(performance.now() - t0);
+          return;
+        }
+      })()
+        .catch((e) => this.controls.banner(`The maps failed: ${e.message || e}`, 'error'))
+        .finally(() => {
+          this.mapsJob = null;
+        }),
+    );
+  }
+
+  /** The HiFi or surrogate-error maps of the current scenario, from the heavy worker. */
+  requestModelMaps() {
+    const st = this.store;
+    const s = st.state;
+    const model = st.view.model;
+    this.track(
+      this.modelMapsRun({ s, model, datumState: datumStateOf(s, st.desc) })
+        .then((r) => {
+          if (!r) return;
+          this.metrics.modelMaps.push(r.ms);
+          st.modelMaps = { model: r.model, key: scenarioKey(r.s), maps: r.maps, datum: r.datum, ms: r.ms };
+          if (r.model === st.view.model && scenarioKey(r.s) === scenarioKey(st.state)) this.showMaps();
+        })
+        .catch((e) => this.render.mapStatus(`The ${MODEL_NAMES[model]} maps failed: ${e.message || e}`, 'bad')),
+    );
+  }
+
+  // ------------------------------------------------------------ worker jobs
+
+  /** The surrogate's fit report (samples, tuning, metrics on the HiFi grid), from the heavy worker. */
+  requestFit() {
+    const st = this.store;
+    const s = st.state;
+    if (fitKeyOf(s) === st.fitKey) return;
+    this.render.fitStatus('Fitting and validating on the HiFi…');
+    const t0 = performance.now();
+    this.track(
+      this.fitRun(s)
+        .then((out) => {
+          if (!out || fitKeyOf(out.s) !== fitKeyOf(st.state)) return;
+          st.fit = out.r;
+          st.fitKey = fitKeyOf(out.s);
+          this.render.fit(performance.now() - t0);
+        })
+        .catch((e) => this.render.fitStatus(`The surrogate fit failed: ${e.message || e}`)),
+    );
+  }
+
+  /**
+   * The NSGA-II front of the current scenario, from the heavy worker; asked again on
+   * every later scenario change. An answer for an earlier scenario is dropped.
+   */
+  requestNsga() {
+    const st = this.store;
+    st.view.nsga = true;
+    this.render.nsgaStatus('NSGA-II running…');
+    this.track(
+      this.nsgaRun(st.state).then((out) => {
+        if (!out) return; // superseded by a newer request
+        const key = scenarioKey(out.s);
+        const now = scenarioKey(st.state);
+        if (key !== now) {
+          this.counters.nsgaDropped++;
+          return;
+        }
+        this.counters.nsgaLog.push({ key, shown: now });
+        st.nsga = { ...out.r, key };
+        this.render.nsga();
+      }),
+    );
+  }
+
+  /** FRFs and PSDs of the current design (heavy worker), 60 ms after the last change. */
+  requestSpectra() {
+    const st = this.store;
+    // Spectra depend on the car, road and design, and on the surrogate's fit.
+    const keyFor = (s) => keyOf(s) + fitKeyOf(s);
+    const key = keyFor(st.state);
+    if (key === st.spectraKey) return;
+    st.spectraKey = key;
+    clearTimeout(this.spectraTimer);
+    if (!this.spectraTimer) this.pending++;
+    this.spectraTimer = setTimeout(() => {
+      this.spectraTimer = null;
+      const s = st.state;
+      this.spectraRun(s)
+        .then((out) => {
+          if (!out || keyFor(out.s) !== keyFor(st.state)) return;
+          st.spectra = out.r;
+          this.render.spectra(s);
+        })
+        .catch((e) => {
+          st.spectraKey = '';
+          this.render.spectraStatus(`Spectra failed: ${e.message || e}`);
+        })
+        .finally(() => this.pending--);
+    }, 60);
+  }
+
+  /**
+   * Runs the time response of the current design (`opts`: `seed` and the damper; heavy
+   * worker); with a nonlinear damper also the linear run on the same road, to overlay.
+   */
+  async runTime(opts, describeRun) {
+    const st = this.store;
+    const s = st.state;
+    this.pending++;
+    const t0 = performance.now();
+    this.render.timeStatus('Simulating…', true);
+    try {
+      const [result, linear] = await Promise.all([
+        this.compute.time(s, opts),
+        opts.damper ? this.compute.time(s, { seed: opts.seed }) : null,
+      ]);
+      st.time = { result, linear, key: JSON.stringify(s), opts };
+      this.render.time(`Done in ${fmt(performance.now() - t0, 3)} ms (${describeRun}).`);
+    } catch (e) {
+      this.render.timeStatus(`The time response failed: ${e.message || e}`);
+    } finally {
+      this.pending--;
+    }
+  }
+
+  // ------------------------------------------------------------ links and sessions
+
+  /** The state and view a hash asks for, validated; the defaults (and a message) if not. */
+  async fromHash(hash) {
+    const st = this.store;
+    const d = decodeHash(hash);
+    const fallback = (why) => {
+      this.controls.banner(`This link's view could not be restored (${why}); showing the default view instead.`);
+      return { state: { ...st.defaults }, view: {} };
+    };
+    if (d.problems.length) return fallback(d.problems.join('; '));
+    const s = { ...st.defaults, ...d.state };
+    if (s.car !== 'custom') s.carJson = null;
+    try {
+      // A link without ks or cs means the car's own (datum) front spring or damper.
+      if (d.state.ks === undefined || d.state.cs === undefined) {
+        const desc = await this.compute.describe({ ...s, ks: st.defaults.ks, cs: st.defaults.cs });
+        if (d.state.ks === undefined) s.ks = desc.datumKs;
+        if (d.state.cs === undefined) s.cs = desc.datumCs;
+      }
+      await this.compute.describe(s);
+    } catch (e) {
+      return fallback(explain(e, e.field));
+    }
+    return { state: s, view: d.view };
+  }
+
+  /**
+   * Shows `state` and `view` in place of the current ones; `origin` ('link' or
+   * 'session') names where a custom car came from.
+   */
+  async load({ state, view }, origin = 'link') {
+    const st = this.store;
+    let r;
+    try {
+      r = await this.compute.scenario(state);
+    } catch (e) {
+      // Valid but not computable (a numerical failure): the defaults always are.
+      this.controls.banner(`This view could not be computed (${plainWords(e.message)}); showing the default view instead.`);
+      state = { ...st.defaults };
+      r = await this.compute.scenario(state);
+    }
+    if (state.car === 'custom') st.custom = { json: state.carJson, ks: r.desc.datumKs, cs: r.desc.datumCs, origin, name: r.desc.car.name };
+    const projector = st.view.projector;
+    st.view = { ...DEFAULT_VIEW, ...view };
+    st.nsga = null;
+    this.adopt(state, r);
+    this.controls.clearAll();
+    if (st.view.projector !== projector) this.render.projector();
+    this.scenarioChanged();
+    this.requestHifi(performance.now());
+  }
+
+  /** Loads a hash (a link, or the address bar's after a hash change). */
+  loadHash(hash) {
+    return this.enqueue(async () => this.load(await this.fromHash(hash)));
+  }
+}

@@ -1,0 +1,174 @@
+// The objective plane: DTL against BAcc on the surrogate, with its feasible designs (the
+// page's dots), the Pareto fronts, the min-max pick and its HiFi re-check, the datum
+// (plotters, js/chartspecs.js), and the current design on an overlay canvas (it moves
+// with the sliders). A design beyond the axes stays in view: pinned to the edge with an
+// arrow towards it. A click selects the nearest front point. Handed plain data.
+
+import { Plot } from './plot.js';
+import { CLOUD_OPACITY, cloudPoints, objectiveSpec, planeXY } from './chartspecs.js';
+import { fmt, fmtPct } from './format.js';
+
+/** The live layer's colours (the charts' own are in js/chartspecs.js). */
+const CLOUD_FILL = `rgba(120, 160, 210, ${CLOUD_OPACITY})`;
+
+export class ObjectivePlane {
+  /**
+   * `els`: `{base, overlay, wrap, msg}` elements; `onSelect(point)` gets the front point
+   * (`{ks, cs, bacc, dtl, sws}`) nearest a click.
+   */
+  constructor({ base, overlay, wrap, msg }, onSelect) {
+    this.base = new Plot(base, { fill: true });
+    this.over = overlay;
+    this.wrap = wrap;
+    this.msg = msg;
+    this.data = null;
+    this.design = null;
+    this.designAt = null;
+    this.designClamped = false;
+    this.thick = 1;
+    overlay.addEventListener('click', (ev) => {
+      const p = this.nearest(ev);
+      if (p) onSelect(p);
+    });
+  }
+
+  /** Line widths times `thick` (projector mode). */
+  setStyle({ thick }) {
+    this.thick = thick;
+  }
+
+  /**
+   * The plane of `data` = `{front, nsga, cloud, ratio}` in three layers on the base
+   * canvas: plotters' axes, the cloud of feasible designs (thousands of dots in one
+   * path), then plotters' fronts and markers. With no front the core's message (naming
+   * the binding objective) replaces the plot.
+   */
+  draw(data) {
+    this.data = data;
+    const fr = data.front;
+    if (!fr || fr.error) {
+      this.msg.textContent = fr ? `No front to draw: ${fr.error.replace(/^sws_limit: /, 'SWS limit: ')}` : '';
+      this.msg.hidden = !fr;
+      this.wrap.hidden = true;
+      return;
+    }
+    this.msg.hidden = true;
+    this.wrap.hidden = false;
+    const spec = objectiveSpec(data, { ratio: data.ratio, live: true });
+    if (this.thick !== 1) for (const s of spec.series) s.size = (s.size || 2) * this.thick;
+    if (this.base.draw(spec, 'axes')) {
+      // Every cell of a cloud up to 120 wide, every other one of a larger one.
+      this.base.dots(cloudPoints(data.cloud, fr, data.ratio, data.cloud.nx > 120 ? 2 : 1), CLOUD_FILL, 1.4 * this.thick);
+      this.base.draw(spec, 'series');
+    }
+    this.drawDesign(this.design);
+  }
+
+  /** The current design's marker (`design`: its surrogate criteria `{bacc, dtl}`). */
+  drawDesign(design) {
+    this.design = design;
+    const b = this.base;
+    const d = this.data;
+    if (!d || !d.front || d.front.error || !b.placed || b.error || !design) return;
+    const c = this.over;
+    const { w, h, dpr, zoom } = b.size;
+    if (c.width !== b.canvas.width || c.height !== b.canvas.height) {
+      c.width = b.canvas.width;
+      c.height = b.canvas.height;
+    }
+    if (c.style.height !== b.canvas.style.height) c.style.height = b.canvas.style.height;
+    const g = c.getContext('2d');
+    g.setTransform(dpr, 0, 0, dpr, 0, 0);
+    g.clearRect(0, 0, w, h);
+    const { plot } = b.layout();
+    const [x, y] = planeXY(d.front, d.ratio)(design.bacc, design.dtl);
+    const [px, py] = b.px(x, y);
+    const r = 4.5 * zoom * Math.sqrt(this.thick);
+    // Inside the plot, or pinned to its edge (an inset of the marker's size) with an
+    // arrow pointing to where it lies.
+    const cx = Math.min(plot.x + plot.w - r - 2, Math.max(plot.x + r + 2, px));
+    const cy = Math.min(plot.y + plot.h - r - 2, Math.max(plot.y + r + 2, py));
+    const out = cx !== px || cy !== py;
+    this.designAt = [cx, cy];
+    this.designClamped = out;
+    if (out) {
+      // The marker one arrow length in from the edge, the arrow's tip at the edge.
+      const a = Math.atan2(py - cy, px - cx);
+      const ux = Math.cos(a);
+      const uy = Math.sin(a);
+      const len = 3.5 * r;
+      this.designAt = [cx - ux * len, cy - uy * len];
+      const [mx, my] = this.designAt;
+      g.beginPath();
+      g.moveTo(mx + ux * r, my + uy * r);
+      g.lineTo(cx - ux * r * 0.5, cy - uy * r * 0.5);
+      g.lineWidth = 2.2 * this.thick;
+      g.strokeStyle = '#000';
+      g.stroke();
+      const tx = cx + ux * r;
+      const ty = cy + uy * r;
+      g.beginPath();
+      g.moveTo(tx, ty);
+      g.lineTo(tx - ux * 2 * r - uy * r, ty - uy * 2 * r + ux * r);
+      g.lineTo(tx - ux * 2 * r + uy * r, ty - uy * 2 * r - ux * r);
+      g.closePath();
+      g.fillStyle = '#000';
+      g.fill();
+    }
+    const [mx, my] = this.designAt;
+    g.beginPath();
+    g.arc(mx, my, r, 0, 2 * Math.PI);
+    g.fillStyle = '#000';
+    g.fill();
+    g.lineWidth = 2 * this.thick;
+    g.strokeStyle = '#fff';
+    g.stroke();
+  }
+
+  /** The front point nearest a click (CSS px on the plot), or null away from the plot. */
+  nearest(ev) {
+    const d = this.data;
+    if (!d || !d.front || d.front.error || !this.base.placed) return null;
+    const rect = this.over.getBoundingClientRect();
+    const x = ev.clientX - rect.left;
+    const y = ev.clientY - rect.top;
+    const { plot } = this.base.layout();
+    if (x < plot.x || x > plot.x + plot.w || y < plot.y || y > plot.y + plot.h) return null;
+    const xy = planeXY(d.front, d.ratio);
+    let best = null;
+    let bestD = Infinity;
+    for (const p of d.front.study.front) {
+      const [px, py] = this.base.px(...xy(p.bacc, p.dtl));
+      const dist = Math.hypot(px - x, py - y);
+      if (dist < bestD) [best, bestD] = [p, dist];
+    }
+    return best;
+  }
+}
+
+/** The min-max pick's table: Ks, Cs, surrogate and HiFi criteria, % vs datum, their difference. */
+export function renderPick(table, fr) {
+  if (!fr || fr.error) {
+    table.replaceChildren();
+    return;
+  }
+  const p = fr.study.pick;
+  const r = fr.recheck;
+  const row = (name, unit, k, scale, dec) => {
+    const i = { bacc: 0, dtl: 1, sws: 2 }[k];
+    return `<tr><th scope="row">${name} <span class="unit">${unit}</span></th>
+      <td class="num" data-value="${p.criteria[k]}">${fmt(p.criteria[k] * scale, dec)}</td>
+      <td class="num delta">${fmtPct(p.change_percent[i] / 100)}</td>
+      <td class="num" data-value="${r.rechecked[k]}">${fmt(r.rechecked[k] * scale, dec)}</td>
+      <td class="num delta">${fmtPct(r.rechecked_change_percent[i] / 100)}</td>
+      <td class="num">${fmtPct(r.error_percent[i] / 100, 2)}</td></tr>`;
+  };
+  table.innerHTML = `
+    <caption>Min-max pick: Ks = <b data-value="${p.ks}">${fmt(p.ks / 1000, 4)} kN/m</b>,
+      Cs = <b data-value="${p.cs}">${fmt(p.cs / 1000, 4)} kNs/m</b>;
+      hypervolume ${fmt(fr.study.hypervolume, 4)} (m/s²)·N, ${fr.study.evaluations} runs of ${fr.study.evaluator}</caption>
+    <thead><tr><th scope="col">Criterion</th><th scope="col" class="num">Surrogate</th><th scope="col" class="num">vs datum</th>
+      <th scope="col" class="num">HiFi re-check</th><th scope="col" class="num">vs datum</th>
+      <th scope="col" class="num">Surrogate − HiFi</th></tr></thead>
+    <tbody>${row('BAcc', 'm/s²', 'bacc', 1, 4)}${row('DTL', 'N', 'dtl', 1, 4)}${row('SWS', 'mm', 'sws', 1000, 4)}</tbody>`;
+}

@@ -1,0 +1,295 @@
+// From the store to the views: each function takes what one view shows out of the store
+// and hands it over as plain data. The controller (js/controller.js) calls these after it
+// has changed the store; the views (js/mapview.js, js/plane.js, js/readout.js, ...) never
+// see the store.
+
+import { MapView } from './mapview.js';
+import { renderPick } from './plane.js';
+import { renderCriteria, feasibilityText, routeNote, renderProps, renderModes } from './readout.js';
+import { renderMetrics, tuningText } from './surrogatepanel.js';
+import { MODEL_NAMES, datumStateOf, fitKeyOf, keyOf } from './store.js';
+import { GRID } from './compute.js';
+import { fmt, fmtInput, fmtPct } from './format.js';
+
+const $ = (id) => document.getElementById(id);
+
+/** The objectives of a map mask, by bit (see the wasm `modelMaps`). */
+const OBJECTIVE_BITS = [
+  [1, 'SWS limit'], [2, 'bounce band'], [4, 'damping band'],
+  [8, 'BAcc ≤ datum'], [16, 'DTL ≤ datum'], [32, 'SWS ≤ datum'],
+];
+
+/** "x % of the box breaks the SWS limit, y % the bounce band" from a map mask. */
+function brokenText(maps) {
+  const n = maps.nx * maps.ny;
+  const parts = [];
+  for (const [bit, name] of OBJECTIVE_BITS) {
+    let c = 0;
+    for (let k = 0; k < n; k++) if (maps.broken[k] & bit) c++;
+    if (c) parts.push(`${fmt((100 * c) / n, 3)} % break the ${name}`);
+  }
+  return parts.join(', ');
+}
+
+export class Render {
+  /**
+   * `store`; `ui`: `{maps: MapView[], plane, spectra, time, damper, carEditor, controls, tables}`
+   * (`tables`: the colour tables by name).
+   */
+  constructor(store, ui) {
+    this.store = store;
+    this.ui = ui;
+  }
+
+  /** The label of the custom car in the car menu (its name and where it came from), or null when there is none. */
+  customLabel() {
+    const c = this.store.custom;
+    if (!c) return null;
+    const from = { file: ' (file)', editor: '', link: ' (from the link)', session: ' (from the session)' }[c.origin];
+    return `${c.name}${from}`;
+  }
+
+  /** Every control from the state. */
+  controls() {
+    const st = this.store;
+    this.ui.controls.sync(st.state, st.desc, st.view, { customLabel: this.customLabel(), swsDragging: false });
+  }
+
+  /** The SWS limit's text field while its slider is dragged. */
+  swsDragged(mm) {
+    $('sws-limit').value = fmtInput(mm, 4);
+  }
+
+  /** What a new scenario changes besides the maps: the car editor, the plane, the pick. */
+  scenario() {
+    const st = this.store;
+    // The car editor follows the datum car (only a scenario change can change it), but
+    // edits in progress survive changes of road, box or objectives.
+    const ed = this.ui.carEditor;
+    if (JSON.stringify(ed.car) !== JSON.stringify(st.desc.car)) ed.show(st.desc.car);
+    this.plane();
+    renderPick($('op-pick'), st.front);
+    this.pickSummary();
+  }
+
+  /** The objective plane from the store. */
+  plane() {
+    const st = this.store;
+    this.ui.plane.draw({ front: st.front, nsga: st.nsga, cloud: st.cloud, ratio: st.view.ratio });
+    this.ui.plane.drawDesign(st.surrogate.design);
+  }
+
+  /** The readout's line on the pick (the Pick tab has the table). */
+  pickSummary() {
+    const fr = this.store.front;
+    const el = $('pick-summary');
+    if (!fr || fr.error) {
+      el.textContent = fr ? 'No min-max pick: no design meets the objectives.' : '';
+      return;
+    }
+    const p = fr.study.pick;
+    const worst = Math.max(...fr.recheck.error_percent.map(Math.abs));
+    el.textContent = `Min-max pick: Ks ${fmt(p.ks / 1000, 4)} kN/m, Cs ${fmt(p.cs / 1000, 4)} kNs/m; ` +
+      `BAcc ${fmtPct(p.change_percent[0] / 100)}, DTL ${fmtPct(p.change_percent[1] / 100)} vs datum; the HiFi agrees within ${fmt(worst, 2)} %.`;
+  }
+
+  /** What a new design changes: LoFi and surrogate readout, ride properties, markers, plane marker, controls. */
+  design() {
+    const st = this.store;
+    const { desc, lofi } = st;
+    renderCriteria($('criteria'), 'lofi', lofi.design, lofi.datum, desc.swsLimit);
+    renderCriteria($('criteria'), 'sur', st.surrogate.design, st.surrogate.datum, desc.swsLimit);
+    renderProps($('ride-props'), lofi.design);
+    renderModes($('modes-lofi'), lofi.design.modes);
+    this.markers();
+    this.ui.plane.drawDesign(st.surrogate.design);
+    // The linear damper's force-velocity line follows Cs while the time panel is open.
+    if (this.ui.damper.linear && this.ui.damper.visible()) this.ui.damper.refresh();
+    this.timeStale();
+    this.controls();
+  }
+
+  /** The HiFi column and modes, greyed while they belong to an earlier state. */
+  hifi() {
+    const st = this.store;
+    const { desc, lofi, hifi } = st;
+    const current = st.hifiCurrent();
+    const datumOk = hifi.datumKey === keyOf(datumStateOf(st.state, desc));
+    renderCriteria($('criteria'), 'hifi', hifi.design, datumOk ? hifi.datum : null, desc.swsLimit, !current);
+    if (hifi.design) renderModes($('modes-hifi'), hifi.design.modes, !current);
+    const f = feasibilityText(lofi.design, current ? hifi.design : null, desc.swsLimit);
+    const fe = $('feasibility');
+    fe.textContent = f.text;
+    fe.className = f.ok ? 'status good' : 'status bad';
+    $('route-note').textContent = routeNote(lofi.design, current ? hifi.design : null);
+  }
+
+  /** The data of map `k` (not drawn). */
+  mapData(k, shown, draw = false) {
+    const st = this.store;
+    const { desc } = st;
+    this.ui.maps[k].setData({
+      maps: shown.maps, box: desc.designBox, swsLimit: desc.swsLimit, scale: st.view.scale, datum: shown.datum,
+      kind: shown.kind, palette: st.view.palette, tables: this.ui.tables,
+    }, draw);
+  }
+
+  mapDraw(k) {
+    this.ui.maps[k].drawBase();
+  }
+
+  /** Every map from `shown` (`store.shownMaps()`), its status line and markers. */
+  maps(shown) {
+    for (let k = 0; k < this.ui.maps.length; k++) this.mapData(k, shown, true);
+    this.mapsDone(shown);
+  }
+
+  /** After the maps are drawn: the status line and the markers. */
+  mapsDone(shown) {
+    this.mapsHead();
+    this.mapStatusOf(shown);
+    this.markers();
+  }
+
+  /** The maps' heading names the model shown. */
+  mapsHead() {
+    $('maps-model').textContent = MODEL_NAMES[this.store.view.model];
+  }
+
+  /** A status line under the maps (`kind`: 'good', 'bad' or plain). */
+  mapStatus(text, kind = '') {
+    this.mapsHead();
+    const el = $('map-status');
+    el.textContent = text;
+    el.title = text;
+    el.classList.toggle('good', kind === 'good');
+    el.classList.toggle('bad', kind === 'bad');
+  }
+
+  /** The line under the maps: how much of the box is feasible, what breaks where. */
+  mapStatusOf(shown) {
+    const st = this.store;
+    const { state } = st;
+    const model = st.view.model;
+    const road = `class ${state.class} at ${fmtInput(state.speed, 3)} m/s, ${state.tracks} tracks`;
+    const maps = shown.maps;
+    const n = maps.nx * maps.ny;
+    const who = `(${MODEL_NAMES[model === 'error' ? 'hifi' : model]}${maps.nx !== GRID.nx ? `, ${maps.nx} × ${maps.ny} grid` : ''})`;
+    const timing = st.modelMaps && shown.maps === st.modelMaps.maps ? ` Computed in ${fmt(st.modelMaps.ms, 3)} ms in the worker.` : '';
+    const errorNote = model === 'error' ? ' Error maps are in % of the HiFi whatever the colour setting.' : '';
+    if (maps.feasibleCount === n) {
+      this.mapStatus(`Every design in the box meets the design objectives on ${road} ${who}.${timing}${errorNote}`, 'good');
+    } else if (maps.feasibleCount === 0) {
+      this.mapStatus(
+        `No design in the box meets the design objectives on ${road} ${who}: the whole map is hatched (${brokenText(maps)}). ` +
+          'Try a smoother road, a lower speed or a looser objective.',
+        'bad',
+      );
+    } else {
+      this.mapStatus(`${fmt((100 * maps.feasibleCount) / n, 3)} % of the design box meets the design objectives on ${road} ${who}; ${brokenText(maps)}.${timing}${errorNote}`, 'good');
+    }
+  }
+
+  /** Design, datum, pick and sample markers on every map, with the design's value in each caption. */
+  markers() {
+    const st = this.store;
+    const { state, desc, lofi } = st;
+    const shown = st.shownMaps();
+    const datum = { ks: desc.datumKs, cs: desc.datumCs };
+    const samples = st.view.plan && st.fit && st.fitKey === fitKeyOf(state) ? st.fit.samples : null;
+    const pick = st.front && !st.front.error ? st.front.study.pick : null;
+    const sur = st.view.model === 'surrogate';
+    const value = sur ? st.surrogate.design : lofi.design;
+    const ref = sur ? st.surrogate.datum : lofi.datum;
+    for (const v of this.ui.maps) {
+      const k = v.crit.key;
+      const caption = shown && (st.view.model === 'lofi' || sur) ? MapView.caption(v.crit, value[k], ref[k], st.view.scale) : '';
+      v.setMarkers({ design: { ks: state.ks, cs: state.cs }, datum, samples, pick }, caption);
+    }
+  }
+
+  /** The surrogate panel's report and the markers of its samples. */
+  fit(ms) {
+    const r = this.store.fit;
+    renderMetrics($('sur-metrics'), r);
+    $('sur-tuning').textContent = tuningText(r);
+    this.fitStatus(`${r.surrogate} on ${r.plan}: fitted and validated in ${fmt(ms, 3)} ms (worker).`);
+    this.markers();
+  }
+
+  fitStatus(text) {
+    $('sur-status').textContent = text;
+  }
+
+  /** The NSGA-II front on the plane, and its line. */
+  nsga() {
+    const st = this.store;
+    const r = st.nsga;
+    const stm = st.front && !st.front.error ? fmt(st.front.study.hypervolume, 4) : '–';
+    this.nsgaStatus(r.error
+      ? `NSGA-II: ${r.error}`
+      : `NSGA-II (population 60, 60 generations, seed 1): ${r.study.front.length} points, hypervolume ${fmt(r.study.hypervolume, 4)} vs STM ${stm} (each against its own reference point).`);
+    this.plane();
+  }
+
+  nsgaStatus(text) {
+    $('op-status').textContent = text;
+  }
+
+  /** The FRF / PSD panel of state `s`'s design. */
+  spectra(s) {
+    this.ui.spectra.show(this.store.spectra);
+    this.spectraStatus(`Ks ${fmt(s.ks / 1000, 4)} kN/m, Cs ${fmt(s.cs / 1000, 4)} kNs/m`);
+  }
+
+  spectraStatus(text) {
+    $('sp-status').textContent = text;
+  }
+
+  /** The time panel's charts and side view after a run, with its status line. */
+  time(text) {
+    const st = this.store;
+    $('tp-charts').hidden = false;
+    this.ui.time.draw(st.time.result, st.state.speed, st.time.linear);
+    this.timeStale();
+    $('tp-play').disabled = false;
+    this.timeStatus(text);
+  }
+
+  timeStatus(text, running = false) {
+    $('tp-status').textContent = text;
+    $('tp-run').disabled = running;
+  }
+
+  /** Says when the time response shown belongs to an earlier design or scenario. */
+  timeStale() {
+    const st = this.store;
+    const el = $('tp-stale');
+    if (!st.time) el.textContent = 'Press "Run time response" to simulate the current design.';
+    else el.textContent = st.timeCurrent() ? '' : 'The time response shown is for an earlier design or road; run it again for the current one.';
+  }
+
+  /** Projector mode on or off: type size (CSS), line widths, and every chart redrawn. */
+  projector() {
+    const on = this.store.view.projector;
+    document.documentElement.classList.toggle('projector', on);
+    const thick = on ? 1.8 : 1;
+    for (const v of [...this.ui.maps, this.ui.plane, this.ui.spectra, this.ui.time, this.ui.damper]) v.setStyle({ thick });
+    requestAnimationFrame(() => this.redrawAll());
+  }
+
+  /** Redraws every chart at its current size (after a resize, the type size or the drawer). */
+  redrawAll() {
+    const st = this.store;
+    if (!st.state) return;
+    for (const v of this.ui.maps) {
+      if (v.resize()) continue;
+      v.drawBase();
+      v.drawOverlay();
+    }
+    this.plane();
+    if (st.spectra) this.ui.spectra.show(st.spectra);
+    if (st.time) this.ui.time.draw(st.time.result, st.state.speed, st.time.linear);
+    if (this.ui.damper.visible()) this.ui.damper.refresh();
+  }
+}

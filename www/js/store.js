@@ -1,0 +1,173 @@
+// The page's data: the state (the core's state object, SI units), the view (page-only
+// settings), the results computed for them, and the URL that carries state and view.
+// Only the controller (js/controller.js) writes here; views never read it (they are
+// handed plain data, see js/render.js).
+
+import { encodeHash } from './urlstate.js';
+
+/** The page-only settings of a fresh view. */
+export const DEFAULT_VIEW = {
+  /** Map colours: 'abs' values or 'rel' % change against the datum. */
+  scale: 'abs',
+  /** Projector mode: large type, thick lines, high contrast. */
+  projector: false,
+  /** The maps' model: 'lofi', 'hifi', 'surrogate' or 'error'. */
+  model: 'lofi',
+  /** The surrogate's sample plan marked on the maps. */
+  plan: true,
+  /** The objective plane on ratio-to-datum axes. */
+  ratio: false,
+  /** Colour scale of absolute map values: 'viridis' or 'cividis'. */
+  palette: 'viridis',
+  /** NSGA-II asked for (recomputed on scenario changes; not in the URL). */
+  nsga: false,
+};
+
+/** What each map model is called on the page. */
+export const MODEL_NAMES = { lofi: 'LoFi', hifi: 'HiFi', surrogate: 'surrogate', error: 'surrogate error' };
+
+/** The key of everything a report depends on (car, road and design). */
+export function keyOf(s) {
+  return JSON.stringify([s.car, s.carJson, s.ks, s.cs, s.class, s.speed, s.tracks]);
+}
+
+/** The key of everything but the design point (maps, fronts and fits depend on it). */
+export function scenarioKey(s) {
+  return JSON.stringify({ ...s, ks: 0, cs: 0 });
+}
+
+/** The key of everything the surrogate's fit depends on. */
+export function fitKeyOf(s) {
+  return JSON.stringify([s.car, s.carJson, s.class, s.speed, s.tracks, s.ksMin, s.ksMax, s.csMin, s.csMax, s.surrogate, s.plan]);
+}
+
+/** The state `s` at the datum design of its car (`desc` from `describe`). */
+export function datumStateOf(s, desc) {
+  return { ...s, ks: desc.datumKs, cs: desc.datumCs };
+}
+
+export class Store {
+  constructor() {
+    /** Defaults and lists from the core (js/compute.js `boot`). */
+    this.defaults = null;
+    this.presets = [];
+    this.classes = [];
+    this.surrogateNames = [];
+    this.state = null;
+    this.view = { ...DEFAULT_VIEW };
+    /** `describe` of the state's scenario. */
+    this.desc = null;
+    /** LoFi reports of the design and the datum, always for the current state. */
+    this.lofi = { design: null, datum: null };
+    /** The surrogate's criteria of the design and the datum (`{bacc, dtl, sws, dtl_relative}`). */
+    this.surrogate = { design: null, datum: null };
+    /** HiFi reports and the state keys they belong to (may lag the state). */
+    this.hifi = { design: null, datum: null, key: '', datumKey: '' };
+    /** Designs kept to compare side by side (js/compare.js; not in the link). */
+    this.saved = [];
+    /** The LoFi and surrogate maps at the page's grid, each with the scenario key it is for. */
+    this.maps = null;
+    this.surMaps = null;
+    /** The map shown when it is the HiFi's or the error's: `{model, key, maps, datum, ms}`. */
+    this.modelMaps = null;
+    /** The surrogate's feasible set on the objective plane. */
+    this.cloud = null;
+    /** The STM front study of the current scenario (`{error}` when none is feasible). */
+    this.front = null;
+    /** The NSGA-II study when asked for, with the scenario key it is for. */
+    this.nsga = null;
+    /** The surrogate's fit report and the key of what it was fitted to. */
+    this.fit = null;
+    this.fitKey = '';
+    /** FRFs and PSDs of the current design, and their key. */
+    this.spectra = null;
+    this.spectraKey = '';
+    /** The time response when run: `{result, linear, key, opts}` (`linear`: the same road with the linear damper, for a nonlinear run). */
+    this.time = null;
+    /** The last custom car: `{json, ks, cs, origin}` (`origin`: 'file' or 'editor'). */
+    this.custom = null;
+    this.lastHash = '';
+    this.urlTimer = null;
+  }
+
+  /** True when the HiFi reports belong to the current design and datum. */
+  hifiCurrent() {
+    const s = this.state;
+    return s !== null && this.hifi.key === keyOf(s) && this.hifi.datumKey === keyOf(datumStateOf(s, this.desc));
+  }
+
+  /** True when the HiFi datum report belongs to the current scenario. */
+  hifiDatumCurrent(s = this.state) {
+    return this.hifi.datumKey === keyOf(datumStateOf(s, this.desc));
+  }
+
+  /** The map data the maps show for the view's model: `{maps, datum, kind}`, or null while computing. */
+  shownMaps() {
+    const m = this.view.model;
+    const key = scenarioKey(this.state);
+    if (m === 'lofi' && this.maps && this.maps.key === key) return { maps: this.maps, datum: this.lofi.datum, kind: 'value' };
+    if (m === 'surrogate' && this.surMaps && this.surMaps.key === key) return { maps: this.surMaps, datum: this.surrogate.datum, kind: 'value' };
+    const mm = this.modelMaps;
+    if (mm && mm.model === m && mm.key === key) return { maps: mm.maps, datum: mm.datum, kind: m === 'error' ? 'error' : 'value' };
+    return null;
+  }
+
+  /** The time response shown, when it was run for the current state. */
+  timeCurrent() {
+    return this.time !== null && this.time.key === JSON.stringify(this.state);
+  }
+
+  /** Writes the URL hash 120 ms after the last change (a drag writes it once). */
+  scheduleUrl() {
+    clearTimeout(this.urlTimer);
+    this.urlTimer = setTimeout(() => this.writeUrl(), 120);
+  }
+
+  writeUrl() {
+    clearTimeout(this.urlTimer);
+    this.urlTimer = null;
+    const hash = encodeHash(this.state, this.view);
+    if (hash !== location.hash) {
+      this.lastHash = hash;
+      history.replaceState(null, '', hash);
+    }
+  }
+
+  /** The session file's object: `{ridelab: "session", version, state, view}`. */
+  session() {
+    return { ridelab: 'session', version: 1, state: this.state, view: { ...this.view } };
+  }
+}
+
+/**
+ * A session file's `{state, view}`: throws `{message}` for text that is not JSON, not a
+ * RideLab session, or a view with keys or values the page does not know.
+ */
+export function readSession(text) {
+  let s;
+  try {
+    s = JSON.parse(text);
+  } catch {
+    throw { message: 'not a RideLab session file (not JSON)' };
+  }
+  if (!s || typeof s !== 'object' || s.ridelab !== 'session') throw { message: 'not a RideLab session file (no "ridelab": "session")' };
+  if (typeof s.state !== 'object' || s.state === null) throw { message: 'the session has no state' };
+  const unknown = Object.keys(s).filter((k) => !['ridelab', 'version', 'state', 'view'].includes(k));
+  if (unknown.length) throw { message: `unknown session key '${unknown[0]}'` };
+  const view = { ...DEFAULT_VIEW };
+  for (const [k, v] of Object.entries(s.view || {})) {
+    const ok = {
+      scale: ['abs', 'rel'].includes(v),
+      model: Object.hasOwn(MODEL_NAMES, v),
+      plan: typeof v === 'boolean',
+      ratio: typeof v === 'boolean',
+      projector: typeof v === 'boolean',
+      palette: ['viridis', 'cividis'].includes(v),
+      nsga: typeof v === 'boolean',
+    }[k];
+    if (ok === undefined) throw { message: `unknown view key '${k}'` };
+    if (!ok) throw { message: `view: ${k} cannot be ${JSON.stringify(v)}` };
+    view[k] = v;
+  }
+  return { state: { ...s.state }, view };
+}

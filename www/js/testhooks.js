@@ -1,0 +1,100 @@
+// What the browser tests read: `window.__ridelab`, a window onto the store, the views,
+// the controller's counters and the engines. Nothing in the page reads it.
+
+/** Installs `window.__ridelab` over the page's parts (`parts`: see js/app.js). */
+export function installTestHooks({ store, controller, compute, ui, boot, exportData }) {
+  const hooks = {
+    /** Milestones, ms since navigation: script start, wasm ready; interactive (maps drawn) and ready (HiFi too). */
+    marks: boot.marks,
+    get ready() {
+      return boot.ready;
+    },
+    get interactiveAt() {
+      return boot.interactiveAt;
+    },
+    get readyAt() {
+      return boot.readyAt;
+    },
+    /** When the first map was drawn, ms since navigation. */
+    get firstMapAt() {
+      return controller.counters.firstMapAt;
+    },
+    /** True when every view shows the current state and nothing is queued. */
+    isSettled: () => controller.isSettled(),
+    // The store's data.
+    get state() {
+      return store.state;
+    },
+    get view() {
+      return store.view;
+    },
+    get desc() {
+      return store.desc;
+    },
+    get presets() {
+      return store.presets;
+    },
+    get lofi() {
+      return store.lofi;
+    },
+    get hifi() {
+      return store.hifi;
+    },
+    get surrogate() {
+      return store.surrogate;
+    },
+    get maps() {
+      return store.maps;
+    },
+    get surMaps() {
+      return store.surMaps;
+    },
+    get modelMaps() {
+      return store.modelMaps;
+    },
+    get cloud() {
+      return store.cloud;
+    },
+    get front() {
+      return store.front;
+    },
+    get nsga() {
+      return store.nsga;
+    },
+    get fit() {
+      return store.fit;
+    },
+    get spectra() {
+      return store.spectra;
+    },
+    /** The time response shown (`timeResponse` result) or null. */
+    /** The designs kept to compare (js/compare.js). */
+    get saved() {
+      return store.saved;
+    },
+    get time() {
+      return store.time ? store.time.result : null;
+    },
+    // The views.
+    views: ui.maps,
+    objPlane: ui.plane,
+    spectraPanel: ui.spectra,
+    timePanel: ui.time,
+    damperChart: ui.damper,
+    // The controller's measurements.
+    metrics: controller.metrics,
+    counters: controller.counters,
+    get frontDraws() {
+      return controller.counters.frontDraws;
+    },
+    // The engines and the raw wasm module.
+    api: compute.api,
+    engine: compute.main,
+    heavyEngine: compute.heavy,
+    /** The data the chart exports are made of (js/svgexport.js `exportCharts`). */
+    exportData,
+    /** SVG of a chart spec (`kind`: 'line' or 'map'), as the export buttons make it. */
+    svg: (kind, spec) => compute.svg(kind, spec),
+  };
+  window.__ridelab = hooks;
+}

@@ -1,0 +1,50 @@
+// Trunk post-build hook (Trunk.toml): writes the build's id and file list into sw.js in
+// the staging directory, so each build has its own offline cache and a new build
+// replaces the old one. The id is a SHA-256 over every file of the build (paths and
+// contents, sw.js left out), so it changes exactly when something the page loads does.
+//   node www/sw-stamp.mjs [DIR]      (DIR defaults to $TRUNK_STAGING_DIR)
+import crypto from 'node:crypto';
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+/** The files of the build in `dir` (paths relative to it, '/' separated, sorted), sw.js left out. */
+export function buildFiles(dir) {
+  const out = [];
+  const walk = (d) => {
+    for (const e of fs.readdirSync(d, { withFileTypes: true })) {
+      const p = path.join(d, e.name);
+      if (e.isDirectory()) walk(p);
+      else if (e.isFile()) out.push(path.relative(dir, p).split(path.sep).join('/'));
+    }
+  };
+  walk(dir);
+  return out.filter((f) => f !== 'sw.js').sort();
+}
+
+/** The build id of `dir`: 16 hex digits of SHA-256 over each file's path and contents. */
+export function buildId(dir) {
+  const h = crypto.createHash('sha256');
+  for (const f of buildFiles(dir)) {
+    h.update(f);
+    h.update('\0');
+    h.update(fs.readFileSync(path.join(dir, f)));
+    h.update('\0');
+  }
+  return h.digest('hex').slice(0, 16);
+}
+
+if (process.argv[1] === fileURLToPath(import.meta.url)) {
+  const dir = process.argv[2] || process.env.TRUNK_STAGING_DIR;
+  if (!dir) throw new Error('sw-stamp: give the build directory (or run as a Trunk hook)');
+  const sw = path.join(dir, 'sw.js');
+  const text = fs.readFileSync(sw, 'utf8');
+  if (!text.includes("'__RIDELAB_BUILD__'") || !text.includes("['__RIDELAB_FILES__']")) {
+    throw new Error(`sw-stamp: ${sw} has no placeholders (stamped twice?)`);
+  }
+  // The page itself is cached as './' (what a navigation asks for) besides index.html.
+  const files = ['./', ...buildFiles(dir)];
+  const id = buildId(dir);
+  fs.writeFileSync(sw, text.replace("'__RIDELAB_BUILD__'", `'${id}'`).replace("['__RIDELAB_FILES__']", JSON.stringify(files)));
+  console.log(`sw-stamp: build ${id}, ${files.length} files cached for offline use`);
+}
