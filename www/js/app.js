@@ -24,8 +24,9 @@ import { objectiveSvg, allSvgs } from './svgexport.js';
 
 /** LoFi and surrogate map resolution (cells); the image is scaled smoothly onto the plot. */
 const GRID = { nx: 160, ny: 120 };
-/** HiFi and surrogate-error map resolution (worker). */
-const HIFI_GRID = { nx: 41, ny: 41 };
+/** HiFi and surrogate-error map resolutions (worker): a coarse map first, then the LoFi
+ * maps' resolution (the residue route makes a 160 x 120 HiFi map cost about 0.1 s). */
+const HIFI_GRIDS = [{ nx: 41, ny: 41 }, GRID];
 /** The surrogate's feasible set on the objective plane (about 7000 designs). */
 const CLOUD_GRID = { nx: 96, ny: 72 };
 /** Side of the HiFi grid the surrogate panel validates the fit on. */
@@ -397,7 +398,7 @@ function renderMaps() {
       refreshMaps();
       return;
     }
-    status.textContent = `Computing the ${MODEL_NAMES[model]} maps (${HIFI_GRID.nx} × ${HIFI_GRID.ny}) in the worker…`;
+    status.textContent = `Computing the ${MODEL_NAMES[model]} maps (${HIFI_GRIDS[0].nx} × ${HIFI_GRIDS[0].ny}, then ${GRID.nx} × ${GRID.ny}) in the worker…`;
     requestModelMaps();
     return;
   }
@@ -514,25 +515,30 @@ function renderScenario() {
   renderDesign();
 }
 
-/** The HiFi or surrogate-error maps of the current scenario, from the worker. */
-const modelMapsRun = latestOnly(async ({ s, model }) => {
+/** The HiFi or surrogate-error maps of the current scenario on `grid`, from the worker. */
+const modelMapsRun = latestOnly(async ({ s, model, grid }) => {
   const t0 = performance.now();
   const [maps, datum] = await Promise.all([
-    app.heavyEngine.call('modelMaps', s, model, HIFI_GRID.nx, HIFI_GRID.ny),
+    app.heavyEngine.call('modelMaps', s, model, grid.nx, grid.ny),
     model === 'hifi' ? app.heavyEngine.call('criteria', { ...s, ks: app.desc.datumKs, cs: app.desc.datumCs }, 'full') : null,
   ]);
   return { s, model, maps, datum, ms: performance.now() - t0 };
 });
-function requestModelMaps() {
+/** Progressively: each grid of `HIFI_GRIDS` in turn, each drawn when it arrives, while
+ * the scenario and model stay those asked for. */
+function requestModelMaps(level = 0) {
   const s = app.state;
   const model = app.view.model;
+  const current = (r) => r.model === app.view.model && scenarioKey(r.s) === scenarioKey(app.state);
   app.pending++;
-  modelMapsRun({ s, model })
+  modelMapsRun({ s, model, grid: HIFI_GRIDS[level] })
     .then((r) => {
       if (!r) return;
       app.mapTimes.push(r.ms);
       app.modelMaps = { model: r.model, key: scenarioKey(r.s), maps: r.maps, datum: r.datum, ms: r.ms };
-      if (r.model === app.view.model && scenarioKey(r.s) === scenarioKey(app.state)) renderMaps();
+      if (!current(r)) return;
+      renderMaps();
+      if (level + 1 < HIFI_GRIDS.length) requestModelMaps(level + 1);
     })
     .catch((e) => {
       $('map-status').textContent = `The ${MODEL_NAMES[model]} maps failed: ${e.message || e}`;
