@@ -305,3 +305,24 @@ fn surrogate_spectra_carry_the_surrogate_rms() {
         assert!((sp.surrogate.psd[0][i] / sp.lofi.psd[0][i] - r * r).abs() < 1e-12);
     }
 }
+
+/// The page's list of state keys (unknown keys are refused against it) is exactly the
+/// keys a state serialises to, every optional field set.
+#[test]
+fn state_fields_are_the_serialised_keys() {
+    let state = State {
+        car_json: Some("{}".into()),
+        bounce_band: Some([0.8, 1.5]),
+        damping_band: Some([0.2, 0.5]),
+        no_worse: Some([false; 3]),
+        dtl_margin: Some(3.0),
+        travel: Some([0.025, 3.0]),
+        ..State::default()
+    };
+    let v = serde_json::to_value(&state).unwrap();
+    let mut keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
+    let mut want = crate::explorer::STATE_FIELDS.to_vec();
+    keys.sort();
+    want.sort();
+    assert_eq!(keys, want);
+}
