@@ -98,7 +98,7 @@ test('map model toggle: HiFi and error maps from the worker equal point evaluati
     const box = a.desc.designBox;
     const n = m.nx * m.ny;
     let worst = 0;
-    for (const [i, j] of [[0, 0], [40, 0], [13, 27], [40, 40], [20, 20]]) {
+    for (const [i, j] of [[0, 0], [159, 0], [53, 77], [159, 119], [80, 60]]) {
       const ks = box.ks_min + ((i + 0.5) * (box.ks_max - box.ks_min)) / m.nx;
       const cs = box.cs_min + ((j + 0.5) * (box.cs_max - box.cs_min)) / m.ny;
       const c = a.api.criteria({ ...a.state, ks, cs }, 'full');
@@ -108,7 +108,7 @@ test('map model toggle: HiFi and error maps from the worker equal point evaluati
     return { worst, nx: m.nx, ny: m.ny, model: a.modelMaps.model };
   });
   assert.equal(check.model, 'hifi');
-  assert.deepEqual([check.nx, check.ny], [41, 41]);
+  assert.deepEqual([check.nx, check.ny], [160, 120]);
   assert.ok(check.worst < 1e-12, `HiFi map cells vs point evaluations: ${check.worst}`);
   const hifiPixels = await page.evaluate(() => {
     const c = document.getElementById('map-bacc');
