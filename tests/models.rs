@@ -232,8 +232,17 @@ fn road_warp_uses_iso_low_cutoff() {
         ..Road::default()
     };
     let full = full_car(&car);
-    let e = criteria_exact(&full, &road).unwrap_err().to_string();
-    assert!(e.contains("road warp"), "{e}");
+    let err = criteria_exact(&full, &road).unwrap_err();
+    // A typed error chooses the route, not its wording.
+    assert!(matches!(err, ridelab::RideError::RoadWarp(_)), "{err:?}");
+    let e = err.to_string();
+    assert!(e.starts_with("road warp: "), "{e}");
+    // The modal route says the same, and the HiFi evaluator goes to the frequency route.
+    let modal = ridelab::criteria::criteria_modal(&full, &road).unwrap_err();
+    assert!(
+        matches!(modal, ridelab::RideError::RoadWarp(_)),
+        "{modal:?}"
+    );
     let sp = criteria_spectral(&full, &road, 1e-8).unwrap();
     assert_eq!(sp.low_cutoff_hz, Some(0.011 * 20.0));
     // Correlated tracks need no cutoff even with unequal widths.
@@ -491,4 +500,22 @@ fn evaluators_and_bad_inputs() {
         .unwrap_err()
         .to_string()
         .starts_with("dt"));
+}
+
+/// The modal route declines a model it cannot expand (here a stiffness matrix made
+/// slightly asymmetric) with a typed error, and the fast exact route then gives the
+/// Kronecker route's numbers exactly.
+#[test]
+fn the_modal_route_declines_by_type_and_the_kronecker_route_answers() {
+    let mut m = full_car(&Car::datum());
+    m.k[(0, 1)] += 1.0;
+    let road = Road::default();
+    let e = ridelab::criteria::criteria_modal(&m, &road).unwrap_err();
+    assert!(
+        matches!(e, ridelab::RideError::ModalInapplicable(_)),
+        "{e:?}"
+    );
+    assert!(e.to_string().starts_with("modal: "), "{e}");
+    let fast = ridelab::criteria::criteria_fast_exact(&m, &road).unwrap();
+    assert_eq!(fast, criteria_exact(&m, &road).unwrap());
 }

@@ -278,14 +278,14 @@ impl HiFi {
         m.k += ks * &self.dk;
         m.c += cs * &self.dc;
         let exact = match criteria_modal(&m, &self.road) {
-            Err(RideError::Numerical(msg)) if msg.starts_with("modal:") => {
+            Err(RideError::ModalInapplicable(_)) => {
                 criteria_exact(&m, &self.road).map(|c| by(c, HiFiRoute::Kronecker))
             }
             other => other.map(|c| by(c, HiFiRoute::Modal)),
         };
         match exact {
             // A road warp: the frequency route with ISO 8608's low cutoff.
-            Err(RideError::Numerical(msg)) if msg.starts_with("road warp") => Ok(by(
+            Err(RideError::RoadWarp(_)) => Ok(by(
                 criteria_spectral(&m, &self.road, 1e-8)?.criteria,
                 HiFiRoute::Spectral,
             )),
@@ -421,7 +421,7 @@ pub fn report(kind: ModelKind, car: &Car, road: &Road) -> Result<Report> {
     let spectral = criteria_spectral(&model, road, 1e-8)?;
     let (values, route) = match criteria_fast_exact(&model, road) {
         Ok(c) => (c, "exact"),
-        Err(RideError::Numerical(_)) if spectral.low_cutoff_hz.is_some() => {
+        Err(RideError::RoadWarp(_)) if spectral.low_cutoff_hz.is_some() => {
             (spectral.criteria, "spectral")
         }
         Err(e) => return Err(e),
@@ -434,7 +434,7 @@ pub fn report(kind: ModelKind, car: &Car, road: &Road) -> Result<Report> {
         .fold(0.0, f64::max);
     let bacc_wk = match bacc_wk_exact(&model, road) {
         Ok(a) => a,
-        Err(RideError::Numerical(_)) if spectral.low_cutoff_hz.is_some() => {
+        Err(RideError::RoadWarp(_)) if spectral.low_cutoff_hz.is_some() => {
             bacc_wk_spectral(&model, road, 1e-8)?
         }
         Err(e) => return Err(e),

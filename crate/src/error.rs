@@ -30,6 +30,15 @@ pub enum RideError {
     /// A computation cannot give a finite answer (for example an unstable model).
     #[error("{0}")]
     Numerical(String),
+    /// The modal expansion does not apply to this model (repeated or unresolved modes, an
+    /// asymmetric matrix): the exact Kronecker route does.
+    #[error("modal: {0}")]
+    ModalInapplicable(String),
+    /// Independent tracks of unequal front and rear widths: the road warp makes the
+    /// suspension deflections a random walk, unbounded in RMS over the whole band (the
+    /// frequency route with ISO 8608's low cutoff applies).
+    #[error("road warp: {0}")]
+    RoadWarp(String),
 }
 
 impl RideError {

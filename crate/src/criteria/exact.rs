@@ -124,8 +124,8 @@ pub(super) fn check_stationary(
         let sum: f64 = gains.clone().map(|g| g[i]).sum();
         let size: f64 = gains.clone().map(|g| g[i].abs()).sum();
         if size > 1e-12 * scale && sum.abs() > 1e-9 * size {
-            return Err(RideError::Numerical(
-                "road warp: with independent tracks and unequal front and rear track widths the \
+            return Err(RideError::RoadWarp(
+                "with independent tracks and unequal front and rear track widths the \
                  suspension deflections follow a random walk and their RMS is unbounded"
                     .into(),
             ));

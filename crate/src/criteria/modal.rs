@@ -48,7 +48,7 @@ struct Group {
 }
 
 /// Exact RMS criteria by the modal route (see the module doc). Declines with an
-/// `Err(Numerical("modal: ..."))` when the modal expansion is not accurate.
+/// `Err(ModalInapplicable(..))` when the modal expansion is not accurate.
 pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
     road.validate()?;
     let n = model.n();
@@ -56,8 +56,8 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
         let tol = 1e-12 * mat.amax();
         let asymmetric = (0..n).any(|i| (0..i).any(|j| (mat[(i, j)] - mat[(j, i)]).abs() > tol));
         if asymmetric {
-            return Err(RideError::Numerical(format!(
-                "modal: {name} is not symmetric"
+            return Err(RideError::ModalInapplicable(format!(
+                "{name} is not symmetric"
             )));
         }
     }
@@ -85,7 +85,7 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
         }
     }
     let lam = hqr::eigenvalues(&mut a, ns)
-        .ok_or_else(|| RideError::Numerical("modal: QR did not converge".into()))?;
+        .ok_or_else(|| RideError::ModalInapplicable("QR did not converge".into()))?;
     if lam.iter().any(|l| l.re.is_nan() || l.re >= 0.0) {
         return Err(RideError::Numerical(
             "model is not asymptotically stable".into(),
@@ -110,13 +110,13 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
             .collect();
         let mut q = q_at(shift);
         let piv = lu(&mut q, n)
-            .ok_or_else(|| RideError::Numerical("modal: inverse iteration failed".into()))?;
+            .ok_or_else(|| RideError::ModalInapplicable("inverse iteration failed".into()))?;
         for _ in 0..2 {
             lu_solve(&q, &piv, &mut x, n);
             let s = x.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
             if !(s.is_finite() && s > 0.0) {
-                return Err(RideError::Numerical(
-                    "modal: inverse iteration failed".into(),
+                return Err(RideError::ModalInapplicable(
+                    "inverse iteration failed".into(),
                 ));
             }
             x.iter_mut().for_each(|v| *v /= s);
@@ -174,7 +174,7 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
         for (gi, g) in groups.iter().enumerate() {
             let mut q = q_at(s0);
             let piv = lu(&mut q, n)
-                .ok_or_else(|| RideError::Numerical("modal: check solve failed".into()))?;
+                .ok_or_else(|| RideError::ModalInapplicable("check solve failed".into()))?;
             let mut x: Vec<C64> = (0..n).map(|i| g.kr[i] + s0 * g.cr[i]).collect();
             lu_solve(&q, &piv, &mut x, n);
             for o in 0..N_OUT {
@@ -183,7 +183,9 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
                 let modal: C64 =
                     (0..ns).map(|k| rho[gi][o][k] / (s0 - lam[k])).sum::<C64>() + g.g[o] / s0;
                 if (direct - modal).norm() > 1e-7 * direct.norm().max(1e-300) + 1e-300 {
-                    return Err(RideError::Numerical("modal: expansion check failed".into()));
+                    return Err(RideError::ModalInapplicable(
+                        "expansion check failed".into(),
+                    ));
                 }
             }
         }
@@ -323,9 +325,7 @@ fn lu_solve(a: &[C64], piv: &[usize], b: &mut [C64], n: usize) {
 /// Exact criteria: the modal route when it is accurate, the Kronecker route otherwise.
 pub fn criteria_fast_exact(model: &LinearModel, road: &Road) -> Result<Criteria> {
     match criteria_modal(model, road) {
-        Err(RideError::Numerical(m)) if m.starts_with("modal:") => {
-            super::criteria_exact(model, road)
-        }
+        Err(RideError::ModalInapplicable(_)) => super::criteria_exact(model, road),
         other => other,
     }
 }
