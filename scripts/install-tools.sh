@@ -3,8 +3,8 @@
 # Versions are pinned here and nowhere else (see ../shared/TOOLCHAIN.md for why):
 #   Trunk 0.21.14 (later versions need a newer rustc), wasm-bindgen-cli equal to the
 #   wasm-bindgen crate pinned in crate/Cargo.toml, Debian's Chromium for the browser tests,
-#   playwright-core from npm (package-lock.json). No tool is downloaded from outside the
-#   package registries.
+#   playwright-core and binaryen (wasm-opt for the page's build; Debian's breaks the wasm)
+#   from npm (package-lock.json). No tool is downloaded from outside the package registries.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -36,7 +36,7 @@ if [ ! -x /usr/bin/chromium ]; then
   apt-get install -y -q chromium chromium-driver
 fi
 
-if [ ! -d node_modules/playwright-core ]; then
-  say "installing playwright-core (npm ci; no browser download)"
+if [ ! -d node_modules/playwright-core ] || [ ! -x node_modules/.bin/wasm-opt ]; then
+  say "installing playwright-core and binaryen's wasm-opt (npm ci; no browser download)"
   npm ci --no-audit --no-fund
 fi

@@ -4,6 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-tools.sh
+# npm's wasm-opt (binaryen) for Trunk's release build.
+export PATH="$PWD/node_modules/.bin:$PATH"
 
 echo "== Rust unit, integration and doc tests"
 cargo test --workspace

@@ -33,6 +33,82 @@ fn json(args: &[&str]) -> Value {
     serde_json::from_str(&out).expect("valid JSON")
 }
 
+/// The page's maps (the explorer's session, cell centres of the design box) and the
+/// CLI's maps over the same points are one computation: equal bit for bit, values and
+/// objective masks.
+#[test]
+fn the_page_and_the_cli_maps_are_the_same_numbers() {
+    use ridelab::explorer::{MapModel, Session, State};
+    let mut session = Session::new(State {
+        no_worse: Some([false, true, false]),
+        ..State::default()
+    })
+    .unwrap();
+    for (model, kind, nx, ny) in [
+        (MapModel::LoFi, "quarter", 16, 12),
+        (MapModel::HiFi, "full", 5, 4),
+    ] {
+        let page = session.map(model, nx, ny).unwrap();
+        let g = page.grid();
+        // Shortest round-trip decimals: the CLI reads back exactly these axes.
+        let range = |a: &ridelab::maps::Axis| format!("{:?}:{:?}:{}", a.min, a.max, a.n);
+        let v = json(&[
+            "map",
+            "--model",
+            kind,
+            "--ks-range",
+            &range(&g.ks),
+            "--cs-range",
+            &range(&g.cs),
+            "--json",
+        ]);
+        let values = &page.values;
+        for (name, field) in [
+            ("bacc", &values.bacc),
+            ("dtl", &values.dtl),
+            ("sws", &values.sws),
+        ] {
+            let cli: Vec<f64> = serde_json::from_value(v[name].clone()).unwrap();
+            assert_eq!(&cli, field, "{kind} {name}");
+        }
+        // The page judges "DTL no worse than the datum" too; the CLI's default objectives
+        // are the SWS limit only, so compare that bit.
+        let cli_mask: Vec<u8> = serde_json::from_value(v["feasibility"]["mask"].clone()).unwrap();
+        let sws_bit: Vec<u8> = page.broken().iter().map(|m| m & 1).collect();
+        assert_eq!(cli_mask, sws_bit, "{kind} mask");
+        assert!(
+            page.broken().iter().any(|m| m & 16 != 0),
+            "{kind}: the DTL objective shows"
+        );
+    }
+}
+
+#[test]
+fn help_and_version_go_to_stdout() {
+    let (code, out, _) = ridelab(&["--help"]);
+    assert_eq!(code, 0);
+    for command in [
+        "eval",
+        "doe",
+        "optimize",
+        "map",
+        "surrogate",
+        "study",
+        "simulate",
+        "presets",
+    ] {
+        assert!(out.contains(command), "{command} in --help");
+    }
+    let (code, out, _) = ridelab(&["simulate", "--help"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("--rebound-high"), "{out}");
+    let (code, out, _) = ridelab(&["--version"]);
+    assert_eq!(
+        (code, out.trim()),
+        (0, format!("ridelab {}", env!("CARGO_PKG_VERSION")).as_str())
+    );
+}
+
 #[test]
 fn eval_json_equals_the_library() {
     for (model, kind) in [("quarter", ModelKind::Quarter), ("full", ModelKind::Full)] {
@@ -516,6 +592,111 @@ fn bad_input_is_one_line_naming_the_option_with_exit_code_2() {
         (&["presets", "extra"], "extra"),
         (&["eval", "--model", "full", "--ks", "inf"], "ks"),
         (&["frobnicate"], "command"),
+        // Every size has a bound with a message (this one once aborted on a 14 GB allocation).
+        (
+            &["optimize", "--method", "nsga2", "--population", "100000000"],
+            "population",
+        ),
+        (
+            &["optimize", "--method", "nsga2", "--generations", "100000"],
+            "generations",
+        ),
+        (&["optimize", "--grid", "5000"], "grid"),
+        (&["doe", "--points", "5000"], "points"),
+        (
+            &["map", "--model", "quarter", "--ks-range", "1:2:2000"],
+            "ks-range",
+        ),
+        (
+            &[
+                "surrogate",
+                "--approach",
+                "vba-qts",
+                "--predict",
+                "grid:1000",
+            ],
+            "predict",
+        ),
+        (
+            &["surrogate", "--approach", "vba-qts", "--plan", "ae:5000"],
+            "plan",
+        ),
+        (
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--duration",
+                "3600",
+                "--dt",
+                "0.0001",
+            ],
+            "dt",
+        ),
+        // The asymmetric damper: rates come together, and the design's Cs is their mean.
+        (&["simulate", "--model", "full", "--bump", "500"], "rebound"),
+        (
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--bump",
+                "500",
+                "--rebound",
+                "-1",
+            ],
+            "rebound",
+        ),
+        (
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--bump",
+                "500",
+                "--rebound",
+                "900",
+                "--cs",
+                "1000",
+            ],
+            "cs",
+        ),
+        (
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--bump",
+                "1",
+                "--rebound",
+                "2",
+                "--knee",
+                "0.1",
+            ],
+            "bump-high",
+        ),
+        (
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--bump",
+                "1",
+                "--rebound",
+                "2",
+                "--knee",
+                "-0.1",
+                "--bump-high",
+                "1",
+                "--rebound-high",
+                "1",
+            ],
+            "knee",
+        ),
+        (
+            &["eval", "--model", "full", "--speed", "3", "--speed", "4"],
+            "speed",
+        ),
     ];
     for &(args, field) in cases {
         let (code, out, err) = ridelab(args);

@@ -15,7 +15,6 @@ pub mod evaluate;
 pub mod explorer;
 pub mod maps;
 pub mod model;
-pub mod modes;
 pub mod optimize;
 pub mod road;
 pub mod surrogate;

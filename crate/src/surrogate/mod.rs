@@ -84,10 +84,9 @@ pub fn sample_plan<E: Evaluator>(
     plan: &Plan,
     design_box: &DesignBox,
 ) -> Result<Vec<Sample>> {
-    plan.unit
-        .iter()
-        .map(|p| {
-            let (ks, cs) = design_box.scale(p[0], p[1]);
+    plan.points(design_box)
+        .into_iter()
+        .map(|(ks, cs)| {
             Ok(Sample {
                 ks,
                 cs,
