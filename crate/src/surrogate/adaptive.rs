@@ -17,6 +17,7 @@
 use super::fit::LmOptions;
 use super::infill::{choose, reason, Candidate, Infill, InfillSetting};
 use super::spec::PlanSpec;
+use super::study::{Fitted, SurrogateReport};
 use super::uncertainty::{Uncertain, UncertaintyMethod};
 use super::{sample_plan, Sample, Setting, Surrogate, SurrogateSpec};
 use crate::analysis::HiFi;
@@ -27,8 +28,8 @@ use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::optimize::study::REFERENCE_MARGIN;
 use crate::optimize::{
-    hypervolume, min_max_pick, recheck, reference_point, stm, Counted, FrontPoint, Pick, StmParams,
-    SuspensionProblem,
+    hypervolume, min_max_pick, optimize_model, recheck, reference_point, stm, Counted,
+    EvaluatorSpec, FrontPoint, Method, OptimizeReport, Pick, StmParams, SuspensionProblem,
 };
 use crate::road::Road;
 use serde::{Deserialize, Serialize};
@@ -136,7 +137,7 @@ pub struct Decision {
 impl Decision {
     /// The decision of `car` on the HiFi `hifi`: default objectives, the datum's HiFi
     /// criteria (one HiFi run), default STM (201 x 201, 3 levels), as `ridelab optimize`.
-    pub fn of_car(car: &Car, hifi: &HiFi) -> Result<Decision> {
+    pub fn of_car<E: Evaluator + ?Sized>(car: &Car, hifi: &E) -> Result<Decision> {
         Ok(Decision {
             objectives: DesignObjectives::default(),
             ctx: DosContext::of_model(car, hifi)?,
@@ -426,6 +427,99 @@ pub fn run<E: Evaluator + ?Sized>(
         state.step(hifi)?;
     }
     Ok(state)
+}
+
+/// `ridelab surrogate --plan PLAN --adaptive K`: the loop on `car` and `road` over
+/// `design_box` (default objectives, the datum's HiFi criteria, default STM), then the
+/// final surrogate's report as [`super::surrogate_report_in`] gives it for a plain plan,
+/// with the loop's report in `adaptive`. Errors name the loop's fields, `plan` or
+/// `predict-grid`.
+pub fn surrogate_report(
+    spec: SurrogateSpec,
+    plan: PlanSpec,
+    car: &Car,
+    road: &Road,
+    design_box: &DesignBox,
+    predict_grid: Option<usize>,
+    options: AdaptiveOptions,
+) -> Result<SurrogateReport> {
+    let setting = Setting::new(car, road, design_box)?;
+    let hifi = Counted::new(HiFi::new(car, road)?);
+    let decision = Decision::of_car(car, &hifi)?;
+    let state = run(spec, &setting, &hifi, plan, &decision, options)?;
+    let report = state.report();
+    let fitted = Fitted {
+        spec,
+        plan: format!(
+            "{} + {} adaptive ({})",
+            plan.name(),
+            options.runs,
+            options.criterion.name()
+        ),
+        plan_method: format!(
+            "{}, then {} HiFi runs by {} on the {} uncertainty",
+            plan.plan()?.method,
+            options.runs,
+            options.criterion.name(),
+            report.uncertainty.name()
+        ),
+        samples: state.samples().to_vec(),
+        model: state.into_model(),
+        options: options.lm(),
+        adaptive: Some(report),
+    };
+    fitted.report(&setting, &hifi, predict_grid)
+}
+
+/// `ridelab optimize` with an adaptive surrogate: the optimisation report with the loop's
+/// report beside it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AdaptiveOptimizeReport {
+    /// Front, pick and HiFi re-check, as `ridelab optimize` gives them.
+    #[serde(flatten)]
+    pub optimize: OptimizeReport,
+    /// The loop that chose the surrogate's samples.
+    pub adaptive: AdaptiveReport,
+}
+
+/// `ridelab optimize --evaluator SURROGATE --plan PLAN --adaptive K`: the loop judged by the
+/// same objectives (against the datum's HiFi criteria) and, for STM, the same STM settings
+/// as the optimisation, then [`optimize_model`] on its final surrogate. Errors name
+/// `adaptive` for a model evaluator (the loop refits a surrogate), and the loop's fields.
+pub fn optimize_report(
+    car: &Car,
+    road: &Road,
+    evaluator: EvaluatorSpec,
+    plan: PlanSpec,
+    method: &Method,
+    objectives: DesignObjectives,
+    options: AdaptiveOptions,
+) -> Result<AdaptiveOptimizeReport> {
+    let EvaluatorSpec::Surrogate(spec) = evaluator else {
+        return Err(RideError::field(
+            "adaptive",
+            "the adaptive loop refits a surrogate; give a surrogate --evaluator",
+        ));
+    };
+    objectives.validate()?;
+    let design_box = DesignBox::default();
+    let setting = Setting::new(car, road, &design_box)?;
+    let hifi = HiFi::new(car, road)?;
+    let decision = Decision {
+        objectives: objectives.clone(),
+        ctx: DosContext::of_model(car, &hifi)?,
+        stm: match method {
+            Method::Stm(p) => p.clone(),
+            Method::Nsga2(_) => StmParams::default(),
+        },
+    };
+    let state = run(spec, &setting, &hifi, plan, &decision, options)?;
+    let adaptive = state.report();
+    let model: Box<dyn Evaluator + Sync> = Box::new(state.into_model());
+    Ok(AdaptiveOptimizeReport {
+        optimize: optimize_model(car, road, model, method, objectives)?,
+        adaptive,
+    })
 }
 
 /// The reference HiFi front of a scenario: STM on the HiFi itself (the decision's

@@ -83,6 +83,14 @@ impl Infill {
     }
 }
 
+impl std::str::FromStr for Infill {
+    type Err = RideError;
+    /// As [`Infill::parse`].
+    fn from_str(s: &str) -> Result<Infill> {
+        Infill::parse(s)
+    }
+}
+
 /// Deviations below the mean beyond which `psi` counts as zero in [`Staircase::ehvi`]
 /// (`phi(8) = 5e-15`).
 pub const TAIL_Z: f64 = 8.0;

@@ -408,6 +408,49 @@ pub fn check(est: &Uncertain, validation: &ValidationSet) -> Result<UncertaintyC
     })
 }
 
+/// One uncertainty estimate of a surrogate report: checked on the validation grid, or
+/// why it could not be made.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "status", rename_all = "lowercase")]
+pub enum UncertaintyOutcome {
+    /// Estimated and checked.
+    Estimated(UncertaintyCheck),
+    /// Not estimated (leave-one-out on too few samples), and why.
+    Skipped {
+        /// The method.
+        method: UncertaintyMethod,
+        /// The reason.
+        reason: String,
+    },
+}
+
+/// Every estimate `spec` offers on `samples` (LOO, and the model's own where it has one),
+/// each checked on `validation`; an estimate that cannot be made is a skipped entry.
+pub fn estimates(
+    spec: &SurrogateSpec,
+    setting: &Setting,
+    samples: &[Sample],
+    options: &LmOptions,
+    validation: &ValidationSet,
+) -> Result<Vec<UncertaintyOutcome>> {
+    let mut methods = vec![UncertaintyMethod::Loo];
+    if UncertaintyMethod::default_for(spec) == UncertaintyMethod::Model {
+        methods.insert(0, UncertaintyMethod::Model);
+    }
+    methods
+        .into_iter()
+        .map(
+            |method| match Uncertain::fit(spec, setting, samples, options, method) {
+                Ok(est) => Ok(UncertaintyOutcome::Estimated(check(&est, validation)?)),
+                Err(e) => Ok(UncertaintyOutcome::Skipped {
+                    method,
+                    reason: e.to_string(),
+                }),
+            },
+        )
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::kriging::NUGGET;
