@@ -16,6 +16,7 @@ pub mod explorer;
 pub mod maps;
 pub mod model;
 pub mod optimize;
+pub mod report;
 pub mod road;
 pub mod surrogate;
 pub mod time_domain;

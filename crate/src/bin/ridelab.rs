@@ -18,7 +18,13 @@ use ridelab::maps::{map_csv, map_report, Axis, Grid, MapSettings, Scale};
 use ridelab::optimize::{
     optimize_report, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, StmParams,
 };
+use ridelab::report::{build, ReportInputs, SECTIONS};
 use ridelab::road::{Road, RoadClass, Tracks};
+use ridelab::surrogate::adaptive::{
+    self, adaptive_study, AdaptiveOptions, StudyOptions, DEFAULT_CANDIDATES, DEFAULT_MIN_DISTANCE,
+};
+use ridelab::surrogate::infill::Infill;
+use ridelab::surrogate::uncertainty::UncertaintyMethod;
 use ridelab::surrogate::{study, surrogate_report_in, PlanSpec, SurrogateSpec};
 use ridelab::time_domain::{simulate, Damper, Knee, TimeOptions, TimeResponse};
 use std::path::{Path, PathBuf};
@@ -50,6 +56,9 @@ enum Command {
     Simulate(SimulateArgs),
     /// The shipped cars with their literature sources.
     Presets(PresetsArgs),
+    /// The study report: the method end to end as one HTML file, its Markdown twin,
+    /// the figures as SVG and the data as JSON and CSV.
+    Report(ReportArgs),
 }
 
 /// The car, the road and the front design.
@@ -126,6 +135,8 @@ struct OptimizeArgs {
     #[arg(long, default_value_t = Nsga2Params::default().seed, value_parser = count_u64)]
     seed: u64,
     #[command(flatten)]
+    adaptive: AdaptiveArgs,
+    #[command(flatten)]
     car: CarRoad,
     #[arg(long)]
     json: bool,
@@ -172,13 +183,72 @@ struct SurrogateArgs {
     #[arg(long, value_name = "grid:N", value_parser = predict_grid)]
     predict: Option<usize>,
     #[command(flatten)]
+    adaptive: AdaptiveArgs,
+    #[command(flatten)]
     car: CarRoad,
     #[arg(long)]
     json: bool,
 }
 
+/// The adaptive loop after the plan (issue #15): `--plan ae:5 --adaptive 5` is 10 HiFi
+/// runs, the last 5 placed one at a time by the infill criterion.
+#[derive(Args)]
+struct AdaptiveArgs {
+    /// HiFi runs added one at a time after the plan (plan + runs <= 100).
+    #[arg(long, value_name = "K", value_parser = count)]
+    adaptive: Option<usize>,
+    /// Infill criterion: ehvi-front (expected hypervolume improvement of the surrogate's
+    /// predicted front x probability of meeting the SWS limit) or ehvi (of the feasible
+    /// HiFi samples' front) [default: ehvi-front].
+    #[arg(long, requires = "adaptive")]
+    infill: Option<Infill>,
+    /// Uncertainty estimate: model (gp-mul's own variance) or loo (leave-one-out, any
+    /// surrogate) [default: model for gp-mul, else loo].
+    #[arg(long, requires = "adaptive")]
+    uncertainty: Option<UncertaintyMethod>,
+    /// Candidate grid of the infill, points per axis, 2..201 [default: 41].
+    #[arg(long, value_parser = count, requires = "adaptive")]
+    candidates: Option<usize>,
+    /// Smallest normalised distance of a new run to every sample, (0, 0.5] [default: 0.02].
+    #[arg(long, value_name = "D", value_parser = number, allow_negative_numbers = true, requires = "adaptive")]
+    min_distance: Option<f64>,
+}
+
+impl AdaptiveArgs {
+    /// The loop's options, `None` without `--adaptive`.
+    fn options(&self) -> Option<AdaptiveOptions> {
+        let d = AdaptiveOptions::default();
+        self.adaptive.map(|runs| AdaptiveOptions {
+            runs,
+            criterion: self.infill.unwrap_or(d.criterion),
+            uncertainty: self.uncertainty,
+            candidates: self.candidates.unwrap_or(DEFAULT_CANDIDATES),
+            min_distance: self.min_distance.unwrap_or(DEFAULT_MIN_DISTANCE),
+            ..d
+        })
+    }
+}
+
 #[derive(Args)]
 struct StudyArgs {
+    /// The adaptive study of this surrogate instead of the fidelity study: for every
+    /// total of HiFi runs, Audze-Eglais + adaptive runs against an Audze-Eglais plan of
+    /// that size, judged on the HiFi.
+    #[arg(long, value_name = "SURROGATE")]
+    adaptive: Option<SurrogateSpec>,
+    /// Audze-Eglais points of the adaptive study's initial plan, 2.. [default: 5].
+    #[arg(long, value_parser = count, requires = "adaptive")]
+    initial: Option<usize>,
+    /// Smallest total of HiFi runs of the adaptive study [default: 6].
+    #[arg(long, value_parser = count, requires = "adaptive")]
+    min_runs: Option<usize>,
+    /// Largest total of HiFi runs of the adaptive study, ..100 [default: 20].
+    #[arg(long, value_parser = count, requires = "adaptive")]
+    max_runs: Option<usize>,
+    /// STM grid points per variable of every front of the adaptive study (the HiFi's own
+    /// included), 2..2001 [default: 201].
+    #[arg(long, value_parser = count, requires = "adaptive")]
+    grid: Option<usize>,
     #[command(flatten)]
     car: CarRoad,
     #[arg(long)]
@@ -228,6 +298,34 @@ struct SimulateArgs {
     /// One row per kept sample instead of JSON.
     #[arg(long)]
     csv: bool,
+}
+
+#[derive(Args)]
+struct ReportArgs {
+    #[command(flatten)]
+    car: CarRoad,
+    /// Ks range of the design box, min:max (N/m).
+    #[arg(long, value_name = "MIN:MAX", default_value = "10000:40000", value_parser = |s: &str| DesignBox::parse_range("ks-range", s))]
+    ks_range: (f64, f64),
+    /// Cs range of the design box, min:max (N s/m).
+    #[arg(long, value_name = "MIN:MAX", default_value = "500:4000", value_parser = |s: &str| DesignBox::parse_range("cs-range", s))]
+    cs_range: (f64, f64),
+    /// RMS SWS limit, m [default: 0.007].
+    #[arg(long, value_name = "M", value_parser = number, allow_negative_numbers = true)]
+    sws_limit: Option<f64>,
+    /// The surrogate of sections 4 and 5 [default: the study's best at 10 HiFi samples].
+    #[arg(long, requires = "plan")]
+    approach: Option<SurrogateSpec>,
+    /// Its HiFi sampling plan: ae:N or grid:n.
+    #[arg(long, requires = "approach")]
+    plan: Option<PlanSpec>,
+    /// Seed of the time-domain record and of NSGA-II.
+    #[arg(long, default_value_t = 1, value_parser = count_u64)]
+    seed: u64,
+    /// Directory for report.html, report.md, figures/, report.json and the CSV tables
+    /// (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "report")]
+    out: PathBuf,
 }
 
 #[derive(Args)]
@@ -377,6 +475,7 @@ fn run(command: Command) -> Result<String> {
         Command::Study(a) => study_cmd(a),
         Command::Simulate(a) => simulate_cmd(a),
         Command::Presets(a) => presets(a),
+        Command::Report(a) => report_cmd(a),
     }
 }
 
@@ -537,7 +636,34 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
             ..Nsga2Params::default()
         })
     };
-    let out = optimize_report(&car, &road, a.evaluator, a.plan, &method, objectives)?;
+    let design_box = DesignBox::default();
+    let (out, looped) = match a.adaptive.options() {
+        None => (
+            optimize_report(
+                &car,
+                &road,
+                &design_box,
+                a.evaluator,
+                a.plan,
+                &method,
+                objectives,
+            )?,
+            None,
+        ),
+        Some(options) => {
+            let r = adaptive::optimize_report(
+                &car,
+                &road,
+                &design_box,
+                a.evaluator,
+                a.plan,
+                &method,
+                objectives,
+                options,
+            )?;
+            (r.optimize, Some(r.adaptive))
+        }
+    };
     if let Some(path) = &svg {
         write_svg(
             path,
@@ -548,10 +674,38 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
             ))?,
         )?;
     }
+    if let Some(looped) = looped {
+        let report = adaptive::AdaptiveOptimizeReport {
+            optimize: out,
+            adaptive: looped,
+        };
+        if a.json {
+            return json(&report);
+        }
+        return Ok(optimize_text(&report.optimize) + &adaptive_text(&report.adaptive));
+    }
     if a.json {
         return json(&out);
     }
     Ok(optimize_text(&out))
+}
+
+/// The loop's added runs, one line each.
+fn adaptive_text(r: &adaptive::AdaptiveReport) -> String {
+    let mut s = format!(
+        "adaptive: {} + {} HiFi runs ({}, {} uncertainty)\n",
+        r.plan,
+        r.added.len(),
+        r.options.criterion.name(),
+        r.uncertainty.name()
+    );
+    for a in &r.added {
+        s += &format!(
+            "  run {:>3}: Ks {:.1} N/m, Cs {:.1} N s/m: {}\n",
+            a.run, a.sample.ks, a.sample.cs, a.reason
+        );
+    }
+    s
 }
 
 fn optimize_text(out: &OptimizeReport) -> String {
@@ -719,14 +873,19 @@ fn map_cmd(a: MapArgs) -> Result<String> {
 
 fn surrogate_cmd(a: SurrogateArgs) -> Result<String> {
     let (car, road) = car_and_road(&a.car)?;
-    let r = surrogate_report_in(
-        a.approach,
-        a.plan,
-        &car,
-        &road,
-        &DesignBox::default(),
-        a.predict,
-    )
+    let design_box = DesignBox::default();
+    let r = match a.adaptive.options() {
+        None => surrogate_report_in(a.approach, a.plan, &car, &road, &design_box, a.predict),
+        Some(options) => adaptive::surrogate_report(
+            a.approach,
+            a.plan,
+            &car,
+            &road,
+            &design_box,
+            a.predict,
+            options,
+        ),
+    }
     .map_err(|e| match e {
         RideError::Field { field, reason } if field == "predict-grid" => {
             RideError::field("predict", reason)
@@ -738,10 +897,104 @@ fn surrogate_cmd(a: SurrogateArgs) -> Result<String> {
 
 fn study_cmd(a: StudyArgs) -> Result<String> {
     let (car, road) = car_and_road(&a.car)?;
+    if let Some(spec) = a.adaptive {
+        let d = StudyOptions::default();
+        let options = StudyOptions {
+            initial: a.initial.unwrap_or(d.initial),
+            min_runs: a.min_runs.unwrap_or(d.min_runs),
+            max_runs: a.max_runs.unwrap_or(d.max_runs),
+            stm: StmParams {
+                grid: a.grid.unwrap_or(d.stm.grid),
+                ..d.stm.clone()
+            },
+            ..d
+        };
+        let r = adaptive_study(&car, &road, spec, &options).map_err(|e| match e {
+            RideError::Field { field, reason } => RideError::field(field.replace('_', "-"), reason),
+            other => other,
+        })?;
+        return if a.markdown {
+            Ok(r.to_markdown())
+        } else {
+            json(&r)
+        };
+    }
     let r = study(&car, &road)?;
     if a.markdown {
         Ok(r.to_markdown())
     } else {
         json(&r)
     }
+}
+
+fn report_cmd(a: ReportArgs) -> Result<String> {
+    let (car, road) = car_and_road(&a.car)?;
+    let design_box = DesignBox {
+        ks_min: a.ks_range.0,
+        ks_max: a.ks_range.1,
+        cs_min: a.cs_range.0,
+        cs_max: a.cs_range.1,
+    };
+    design_box.validate()?;
+    let inputs = ReportInputs {
+        design_box,
+        objectives: DesignObjectives {
+            sws_limit: a.sws_limit.or(DesignObjectives::default().sws_limit),
+            ..DesignObjectives::default()
+        },
+        surrogate: a.approach.zip(a.plan),
+        seed: a.seed,
+        ..ReportInputs::new(car, road)
+    };
+    let figures_dir = a.out.join("figures");
+    std::fs::create_dir_all(&figures_dir).map_err(|e| {
+        RideError::field(
+            "out",
+            format!("cannot create '{}': {e}", figures_dir.display()),
+        )
+    })?;
+    // Progress on stderr, one line per section with its time.
+    let start = std::time::Instant::now();
+    let mut last = (start, None::<usize>);
+    let report = build(&inputs, |k| {
+        let now = std::time::Instant::now();
+        if let Some(prev) = last.1 {
+            eprintln!(
+                "report: {} took {:.2} s",
+                SECTIONS[prev],
+                (now - last.0).as_secs_f64()
+            );
+        }
+        if k < SECTIONS.len() {
+            eprintln!("report: {} ...", SECTIONS[k]);
+        }
+        last = (now, Some(k));
+    })?;
+    let render = std::time::Instant::now();
+    let docs = report.documents()?;
+    let write = |name: &Path, text: &str| {
+        std::fs::write(name, text)
+            .map_err(|e| RideError::field("out", format!("cannot write '{}': {e}", name.display())))
+    };
+    write(&a.out.join("report.html"), &docs.html)?;
+    write(&a.out.join("report.md"), &docs.markdown)?;
+    write(&a.out.join("report.json"), &json(&report)?)?;
+    for (name, text) in report.csv_files() {
+        write(&a.out.join(name), &text)?;
+    }
+    for f in &docs.figures {
+        write(&figures_dir.join(format!("{}.svg", f.key)), &f.svg)?;
+    }
+    eprintln!(
+        "report: rendering {} figures took {:.2} s; {:.2} s in all",
+        docs.figures.len(),
+        render.elapsed().as_secs_f64(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(format!(
+        "{}: {} (and report.md, report.json, {} figures, CSV tables)\n",
+        report.title(),
+        a.out.join("report.html").display(),
+        docs.figures.len()
+    ))
 }

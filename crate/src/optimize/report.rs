@@ -84,25 +84,27 @@ pub struct OptimizeReport {
     pub hifi_recheck: Recheck,
 }
 
-/// Optimises `car`'s front spring and damper on `road` over the default design box by
-/// `method` on `evaluator` (a surrogate fitted at `plan`) under `objectives`.
+/// Optimises `car`'s front spring and damper on `road` over `design_box` by `method` on
+/// `evaluator` (a surrogate fitted at `plan`) under `objectives`.
 pub fn optimize_report(
     car: &Car,
     road: &Road,
+    design_box: &DesignBox,
     evaluator: EvaluatorSpec,
     plan: PlanSpec,
     method: &Method,
     objectives: DesignObjectives,
 ) -> Result<OptimizeReport> {
     objectives.validate()?;
-    let model = evaluator.build(car, road, &DesignBox::default(), plan)?;
-    optimize_model(car, road, model, method, objectives)
+    let model = evaluator.build(car, road, design_box, plan)?;
+    optimize_model(car, road, design_box, model, method, objectives)
 }
 
 /// [`optimize_report`] on an evaluator built already (the adaptive loop's surrogate).
 pub fn optimize_model(
     car: &Car,
     road: &Road,
+    design_box: &DesignBox,
     model: Box<dyn Evaluator + Sync>,
     method: &Method,
     objectives: DesignObjectives,
@@ -110,12 +112,8 @@ pub fn optimize_model(
     objectives.validate()?;
     let hifi = HiFi::new(car, road)?;
     let datum = hifi.evaluate(car.front.spring, car.front.damper)?;
-    let problem = SuspensionProblem::new(
-        model,
-        DesignBox::default(),
-        objectives,
-        DosContext::new(car, datum),
-    )?;
+    let problem =
+        SuspensionProblem::new(model, *design_box, objectives, DosContext::new(car, datum))?;
     let study = run_study(&problem, method, None)?;
     let hifi_recheck = recheck(&study.pick, &hifi, &datum)?;
     Ok(OptimizeReport {

@@ -52,7 +52,8 @@ pub use rba::{Form, Rba, RbaParams};
 pub use response::{Kernel, ResponseKind};
 pub use spec::{Approach, PlanSpec, SurrogateSpec};
 pub use study::{
-    study, surrogate_report, surrogate_report_in, StudyReport, SurrogateReport, ValidationSet,
+    study, study_in, surrogate_report, surrogate_report_in, StudyReport, SurrogateReport,
+    ValidationSet,
 };
 pub use tuned::Tuned;
 pub use vba::{Transform, VbaParams};

@@ -107,6 +107,14 @@ impl UncertaintyMethod {
     }
 }
 
+impl std::str::FromStr for UncertaintyMethod {
+    type Err = RideError;
+    /// As [`UncertaintyMethod::parse`].
+    fn from_str(s: &str) -> Result<UncertaintyMethod> {
+        UncertaintyMethod::parse(s)
+    }
+}
+
 /// The relative leave-one-out errors `e_ik = S^(-i)_k(x_i) / F_ik - 1` of `spec` on
 /// `samples`: refits without each sample in turn (`n` fits). Errors (naming `plan`) when
 /// the surrogate cannot be fitted to `n - 1` of the samples.

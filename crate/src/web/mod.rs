@@ -30,7 +30,7 @@ use wasm_bindgen::prelude::*;
 /// Converts a core error to a JS `Error` with a `field` property.
 fn js_error(e: RideError) -> JsValue {
     let field = match &e {
-        RideError::Field { field, .. } => ui_field(field),
+        RideError::Field { field, .. } | RideError::Infeasible { field, .. } => ui_field(field),
         // The only JSON the core parses is a car file.
         RideError::Json(_) => "car".into(),
         _ => String::new(),
