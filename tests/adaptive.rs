@@ -415,3 +415,44 @@ fn the_study_rows_are_the_loop_and_the_plans() {
 fn the_bound_is_the_explorers() {
     assert_eq!(MAX_HIFI_RUNS, ridelab::explorer::state::MAX_PLAN_POINTS);
 }
+
+/// `front_check`'s HiFi feasibility tolerance: the loop's front ends on the SWS limit by
+/// bisection, and on the HiFi that end lies within `HIFI_FEASIBILITY_TOLERANCE` (1e-4
+/// relative) of the limit, so every point of the 5 + 5 gp-mul front counts as feasible
+/// on the HiFi (its largest error is 8e-5) and none drops out for a hair.
+#[test]
+fn the_front_end_on_the_sws_limit_counts_on_the_hifi() {
+    use ridelab::surrogate::adaptive::HIFI_FEASIBILITY_TOLERANCE;
+    assert_eq!(HIFI_FEASIBILITY_TOLERANCE, 1e-4);
+    let (car, road, b) = (Car::datum(), Road::default(), DesignBox::default());
+    let setting = Setting::new(&car, &road, &b).unwrap();
+    let hifi = HiFi::new(&car, &road).unwrap();
+    let decision = decision(&car, &hifi, 101, 3);
+    let state = run(
+        SurrogateSpec::parse("gp-mul").unwrap(),
+        &setting,
+        &hifi,
+        PlanSpec::AudzeEglais(5),
+        &decision,
+        AdaptiveOptions {
+            runs: 5,
+            ..AdaptiveOptions::default()
+        },
+    )
+    .unwrap();
+    let limit = decision.objectives.sws_limit.unwrap();
+    let end = state
+        .front()
+        .iter()
+        .max_by(|p, q| p.sws.total_cmp(&q.sws))
+        .unwrap();
+    // The surrogate's end is on the limit (bisection to 2^-30 of a lattice step).
+    assert!((end.sws / limit - 1.0).abs() < 1e-6, "{}", end.sws);
+    let c = ridelab::Evaluator::evaluate(&hifi, end.ks, end.cs).unwrap();
+    let g = c.sws / limit - 1.0;
+    assert!(g.abs() < HIFI_FEASIBILITY_TOLERANCE, "{g}");
+    let reference = HifiFront::new(&hifi, &decision, &b).unwrap();
+    let check = front_check(state.model(), &hifi, &decision, &b, &reference, 10).unwrap();
+    assert!(check.front_max_error_percent < 100.0 * HIFI_FEASIBILITY_TOLERANCE);
+    assert_eq!(check.hifi_feasible_points, check.front_points);
+}

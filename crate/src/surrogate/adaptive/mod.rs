@@ -18,7 +18,7 @@ mod check;
 mod reports;
 mod study;
 
-pub use check::{front_check, FrontCheck, HifiFront};
+pub use check::{front_check, FrontCheck, HifiFront, HIFI_FEASIBILITY_TOLERANCE};
 pub use reports::{optimize_report, surrogate_report, AdaptiveOptimizeReport};
 pub use study::{adaptive_study, AdaptiveStudy, StudyOptions, StudyRow};
 
