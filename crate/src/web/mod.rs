@@ -354,14 +354,15 @@ pub fn time_response_js(state: JsValue, options: JsValue) -> Result<JsValue, JsV
 }
 
 /// The page's "next HiFi run" (issue #15): `new AdaptiveRun(state, options?)` runs the
-/// state's plan on the HiFi and fits its surrogate; then `propose()` says where the next
-/// HiFi run would go and why (`{candidate: {ks, cs, score, ..}, reason}`), `step()` runs
-/// it, refits and returns `{added, step: {hifi_runs, front_points, hypervolume, pick}, recheck}`,
-/// `report()` the loop so far (samples in order with reasons, `history` of hypervolume
-/// and pick per HiFi run, as `ridelab surrogate ... --adaptive K` gives it), `front()` the
-/// surrogate's front and `uncertaintyMap(nx, ny)` the estimate, %, in the maps' layout.
-/// `options` (optional, the CLI's names): `{criterion: "ehvi-front" | "ehvi",
-/// uncertainty: "model" | "loo", candidates, min_distance, seed}`.
+/// state's plan on the HiFi and fits its surrogate. Then `propose()` says where the next
+/// HiFi run would go and why: `{candidate: {ks, cs, on_front, predicted, relative_std,
+/// ehvi, probability_feasible, value, distance}, reason}`. `step()` runs it, refits and
+/// returns `{added, step: {hifi_runs, front_points, hypervolume, pick}, recheck}`.
+/// `report()` is the loop so far (samples in order with reasons, the `history` of
+/// hypervolume and pick per HiFi run, as `ridelab surrogate ... --adaptive K` gives it),
+/// `front()` the surrogate's front and `uncertaintyMap(nx, ny)` the estimate, %, in the
+/// maps' layout. `options` (optional, the CLI's names): `{criterion: "ehvi-front" |
+/// "ehvi", uncertainty: "model" | "loo", candidates, min_distance, seed}`.
 #[wasm_bindgen(js_name = AdaptiveRun)]
 pub struct AdaptiveRun(crate::explorer::PageLoop);
 
