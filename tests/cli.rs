@@ -121,12 +121,30 @@ fn eval_json_equals_the_library() {
             "--json",
         ]);
         let r = report(kind, &Car::datum(), &Road::default()).unwrap();
-        for (k, x) in [("bacc", r.bacc), ("dtl", r.dtl), ("sws", r.sws)] {
+        for (k, x) in [
+            ("bacc", r.bacc),
+            ("dtl", r.dtl),
+            ("sws", r.sws),
+            ("bacc_wk", r.bacc_wk),
+        ] {
             // JSON carries the shortest round-trip decimal; the same code gives the same number.
             let y = v[k].as_f64().unwrap();
             assert!((y / x - 1.0).abs() < 1e-14, "{model} {k}: {y} vs {x}");
         }
         assert!(!v["modes"].as_array().unwrap().is_empty());
+        // The weighted comfort by the frequency route (an independent computation).
+        let wk = ridelab::criteria::bacc_wk_spectral(
+            &kind.build(&Car::datum()),
+            &Road::default(),
+            1e-11,
+        )
+        .unwrap();
+        assert!(
+            (r.bacc_wk / wk - 1.0).abs() < 1e-8,
+            "{model}: {} vs {wk}",
+            r.bacc_wk
+        );
+        assert_eq!(v["comfort"], ridelab::criteria::comfort_label(r.bacc_wk));
     }
     // --ks/--cs override the front corner.
     let v = json(&[
@@ -285,6 +303,7 @@ fn optimize_by_library(evaluator: &str, method: Method) -> Value {
         sprung_mass: q.ms,
         tire_stiffness: q.kt,
         datum,
+        static_wheel_load: car.front_wheel_load(),
     };
     let design_box = ridelab::DesignBox::default();
     let eval: Box<dyn Evaluator> = match evaluator {
@@ -465,12 +484,7 @@ fn adaptive_json_equals_the_library_and_lists_the_samples_in_order() {
     let setting = Setting::new(&car, &road, &b).unwrap();
     let model = spec.fit(&setting, &samples, &LmOptions::default()).unwrap();
     let datum = hifi.evaluate(car.front.spring, car.front.damper).unwrap();
-    let q = car.quarter();
-    let ctx = DosContext {
-        sprung_mass: q.ms,
-        tire_stiffness: q.kt,
-        datum,
-    };
+    let ctx = DosContext::new(&car, datum);
     let problem = SuspensionProblem::new(model, b, DesignObjectives::default(), ctx).unwrap();
     let study = run_study(&problem, &method, None).unwrap();
     assert_same_json(&v["front"], &to_json(&study.front), "front on the refit");
@@ -820,6 +834,34 @@ fn bad_input_is_one_line_naming_the_option_with_exit_code_2() {
         (&["presets", "extra"], "extra"),
         (&["eval", "--model", "full", "--ks", "inf"], "ks"),
         (&["frobnicate"], "command"),
+        (&["report", "--ks-range", "40000:10000"], "ks-range"),
+        (&["optimize", "--dtl-margin", "0"], "dtl_margin"),
+        (&["optimize", "--pick", "asf:2"], "pick"),
+        (&["optimize", "--travel", "25"], "travel"),
+        (
+            &["map", "--model", "quarter", "--travel", "0.025:-3"],
+            "travel",
+        ),
+        // Class C: RMS DTL is about 770 N at the datum; F_static / 10 = 498 N is out of reach
+        // in the whole box.
+        (
+            &[
+                "optimize",
+                "--evaluator",
+                "quarter",
+                "--class",
+                "C",
+                "--sws-limit",
+                "1",
+                "--dtl-margin",
+                "10",
+            ],
+            "dtl_margin",
+        ),
+        (&["report", "--seed", "-1"], "seed"),
+        (&["report", "--approach", "pba-ml"], "approach"),
+        (&["report", "--out", "/proc/ridelab-report"], "out"),
+        (&["doe", "--points", "-3"], "points"),
         // Every size has a bound with a message (this one once aborted on a 14 GB allocation).
         (
             &["optimize", "--method", "nsga2", "--population", "100000000"],
@@ -1103,4 +1145,107 @@ fn a_reader_that_closes_the_pipe_early_ends_the_run_quietly() {
     assert!(first.starts_with("ks"), "{first}");
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_eq!(out.status.code(), Some(0), "{stderr}");
+}
+
+/// `ridelab report` writes the library's report: report.json is the library's build of
+/// the same inputs (to 1e-14), the HTML, the Markdown, every figure and every CSV table are
+/// the library's text byte for byte, and stderr times each section.
+#[test]
+fn report_writes_the_library_report() {
+    use ridelab::report::{build, ReportInputs, SECTIONS};
+    let dir = std::env::temp_dir().join("ridelab-cli-report");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out_dir = dir.to_str().unwrap();
+    let (code, out, err) = ridelab(&["report", "--car", "suv", "--class", "C", "--out", out_dir]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("report.html"), "{out}");
+    for s in SECTIONS {
+        assert!(err.contains(&format!("report: {s} took ")), "{s}: {err}");
+    }
+    let read = |name: &str| std::fs::read_to_string(dir.join(name)).unwrap();
+    let road = Road {
+        class: ridelab::road::RoadClass::C,
+        ..Road::default()
+    };
+    let lib = build(
+        &ReportInputs::new(Car::preset("suv").unwrap(), road),
+        |_| {},
+    )
+    .unwrap();
+    let got: Value = serde_json::from_str(&read("report.json")).unwrap();
+    let want = to_json(&lib);
+    assert_same_json(&got, &want, "report");
+    assert!(numbers_in(&want) > 1000);
+    let docs = lib.documents().unwrap();
+    assert_eq!(read("report.html"), docs.html);
+    assert_eq!(read("report.md"), docs.markdown);
+    assert!(!docs.figures.is_empty());
+    for f in &docs.figures {
+        assert_eq!(read(&format!("figures/{}.svg", f.key)), f.svg, "{}", f.key);
+    }
+    for (name, text) in lib.csv_files() {
+        assert_eq!(read(name), text, "{name}");
+    }
+}
+
+/// The tyre-load margin and the travel budget shape the front: every front point and the
+/// pick meet both (RMS DTL <= F_static / 14, 3 RMS SWS <= 20 mm), while the default front
+/// has points that break them.
+#[test]
+fn optimize_meets_the_tyre_load_margin_and_the_travel_budget() {
+    let f_static = Car::datum().front_wheel_load();
+    let ok = |p: &Value| {
+        p["dtl"].as_f64().unwrap() * 14.0 <= f_static * (1.0 + 1e-12)
+            && 3.0 * p["sws"].as_f64().unwrap() <= 0.02 * (1.0 + 1e-12)
+    };
+    let base = json(&["optimize", "--evaluator", "quarter", "--json"]);
+    let front = base["front"].as_array().unwrap();
+    assert!(front.iter().any(|p| !ok(p)), "the limits should bind");
+    let v = json(&[
+        "optimize",
+        "--evaluator",
+        "quarter",
+        "--dtl-margin",
+        "14",
+        "--travel",
+        "0.02:3",
+        "--json",
+    ]);
+    let front = v["front"].as_array().unwrap();
+    assert!(front.len() > 10);
+    assert!(front.iter().all(ok));
+    assert!(ok(&v["pick"]["criteria"]));
+}
+
+/// `--pick knee` and `--pick asf:W` print the library's repick of the same front with its
+/// HiFi re-check.
+#[test]
+fn optimize_pick_rules_equal_the_library() {
+    use ridelab::optimize::{optimize_report, EvaluatorSpec, PickRule};
+    for rule in ["knee", "asf:0.8"] {
+        let v = json(&[
+            "optimize",
+            "--evaluator",
+            "quarter",
+            "--pick",
+            rule,
+            "--json",
+        ]);
+        let car = Car::datum();
+        let road = Road::default();
+        let mut lib = optimize_report(
+            &car,
+            &road,
+            &ridelab::DesignBox::default(),
+            EvaluatorSpec::Model(ModelKind::Quarter),
+            PlanSpec::parse("ae:10").unwrap(),
+            &Method::Stm(StmParams::default()),
+            ridelab::dos::DesignObjectives::default(),
+        )
+        .unwrap();
+        lib.repick(rule.parse::<PickRule>().unwrap(), &car, &road)
+            .unwrap();
+        assert_same_json(&v, &to_json(&lib), rule);
+        assert_eq!(v["pick"]["rule"], rule);
+    }
 }

@@ -20,6 +20,7 @@ fn stm_and_nsga2_reach_995_permille_of_the_brute_force_hifi_front() {
         sprung_mass: q.ms,
         tire_stiffness: q.kt,
         datum,
+        static_wheel_load: car.front_wheel_load(),
     };
     let objectives = DesignObjectives::default();
     let b = DesignBox::default();

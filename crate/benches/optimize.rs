@@ -36,6 +36,7 @@ fn problem() -> SuspensionProblem<QuarterCar> {
         sprung_mass: 467.7,
         tire_stiffness: 175_500.0,
         datum: QuarterCar.evaluate(20_000.0, 1_500.0).unwrap(),
+        static_wheel_load: 4_500.0,
     };
     SuspensionProblem::new(
         QuarterCar,

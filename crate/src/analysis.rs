@@ -2,7 +2,10 @@
 //! report of one design (criteria by both routes, modes, ride properties).
 
 use crate::car::{Car, QuarterCar};
-use crate::criteria::{criteria_exact, criteria_fast_exact, criteria_spectral, quarter_car_rms};
+use crate::criteria::{
+    bacc_wk_exact, bacc_wk_spectral, comfort_label, criteria_exact, criteria_fast_exact,
+    criteria_spectral, quarter_car_rms,
+};
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::model::Mode;
@@ -187,6 +190,10 @@ pub struct Report {
     pub dtl: f64,
     /// RMS suspension working space, m.
     pub sws: f64,
+    /// ISO 2631-1 Wk-weighted RMS body acceleration above the front wheel, m/s^2.
+    pub bacc_wk: f64,
+    /// ISO 2631-1 Annex C's likely comfort reaction to `bacc_wk`.
+    pub comfort: &'static str,
     /// RMS DTL relative to the static front wheel load, -.
     pub dtl_relative: f64,
     /// Which route gave `bacc`, `dtl`, `sws`: "exact" or "spectral".
@@ -230,6 +237,13 @@ pub fn report(kind: ModelKind, car: &Car, road: &Road) -> Result<Report> {
         .zip(spectral.criteria.to_array())
         .map(|(a, b)| (a / b - 1.0).abs())
         .fold(0.0, f64::max);
+    let bacc_wk = match bacc_wk_exact(&model, road) {
+        Ok(a) => a,
+        Err(RideError::Numerical(_)) if spectral.low_cutoff_hz.is_some() => {
+            bacc_wk_spectral(&model, road, 1e-8)?
+        }
+        Err(e) => return Err(e),
+    };
     let q = car.quarter();
     Ok(Report {
         model: kind,
@@ -240,6 +254,8 @@ pub fn report(kind: ModelKind, car: &Car, road: &Road) -> Result<Report> {
         bacc: values.bacc,
         dtl: values.dtl,
         sws: values.sws,
+        bacc_wk,
+        comfort: comfort_label(bacc_wk),
         dtl_relative: values.dtl / car.front_wheel_load(),
         route,
         spectral: spectral.criteria,

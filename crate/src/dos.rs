@@ -18,6 +18,15 @@ pub struct DesignObjectives {
     pub damping_band: Option<(f64, f64)>,
     /// "No worse than the datum car" for `[bacc, dtl, sws]`.
     pub no_worse_than_datum: [bool; 3],
+    /// Tyre-load margin `k` (0 < k <= 100): `sigma_DTL <= F_static / k` (off by default).
+    /// With a Gaussian tyre load, k = 3 keeps the wheel on the road (DTL > F_static is the
+    /// tyre leaving it) all but 0.135 % of the time; smooth roads need larger k to bind.
+    #[serde(default)]
+    pub dtl_margin: Option<f64>,
+    /// Travel budget `(available bump travel m, sigma factor n)`: `n sigma_SWS <= travel`
+    /// (off by default; for example 3 sigma within 25 mm).
+    #[serde(default)]
+    pub travel: Option<(f64, f64)>,
 }
 
 impl Default for DesignObjectives {
@@ -27,6 +36,8 @@ impl Default for DesignObjectives {
             bounce_band: None,
             damping_band: None,
             no_worse_than_datum: [false; 3],
+            dtl_margin: None,
+            travel: None,
         }
     }
 }
@@ -40,6 +51,8 @@ pub struct DosContext {
     pub tire_stiffness: f64,
     /// The datum car's criteria (for "no worse than datum").
     pub datum: Criteria,
+    /// Static front wheel load `F_static`, N (for the tyre-load margin).
+    pub static_wheel_load: f64,
 }
 
 impl DosContext {
@@ -51,6 +64,7 @@ impl DosContext {
             sprung_mass: q.ms,
             tire_stiffness: q.kt,
             datum,
+            static_wheel_load: car.front_wheel_load(),
         }
     }
 
@@ -80,6 +94,10 @@ pub enum Objective {
     DtlDatum,
     /// SWS worse than the datum car.
     SwsDatum,
+    /// RMS DTL above the static wheel load over the margin.
+    DtlMargin,
+    /// The sigma multiple of RMS SWS beyond the travel budget.
+    Travel,
 }
 
 impl Objective {
@@ -92,6 +110,8 @@ impl Objective {
             Objective::BaccDatum => "BAcc no worse than datum",
             Objective::DtlDatum => "DTL no worse than datum",
             Objective::SwsDatum => "SWS no worse than datum",
+            Objective::DtlMargin => "tyre-load margin",
+            Objective::Travel => "travel budget",
         }
     }
 }
@@ -127,6 +147,28 @@ impl DesignObjectives {
                 if !(lo.is_finite() && hi.is_finite() && lo >= 0.0 && lo < hi) {
                     return Err(RideError::field(name, "needs finite 0 <= lo < hi"));
                 }
+            }
+        }
+        if let Some(k) = self.dtl_margin {
+            if !(k.is_finite() && k > 0.0 && k <= 100.0) {
+                return Err(RideError::field(
+                    "dtl_margin",
+                    "must be a ratio F_static / RMS DTL in (0, 100]",
+                ));
+            }
+        }
+        if let Some((travel, n)) = self.travel {
+            if !(travel.is_finite() && travel > 0.0 && travel <= 1.0) {
+                return Err(RideError::field(
+                    "travel",
+                    "available travel must be in (0, 1] m",
+                ));
+            }
+            if !(n.is_finite() && n > 0.0 && n <= 10.0) {
+                return Err(RideError::field(
+                    "travel",
+                    "sigma factor must be in (0, 10]",
+                ));
             }
         }
         Ok(())
@@ -178,6 +220,15 @@ impl DesignObjectives {
                 f(objs[i], v[i] / d[i] - 1.0);
             }
         }
+        if let Some(k) = self.dtl_margin {
+            f(
+                Objective::DtlMargin,
+                k * c.dtl / ctx.static_wheel_load - 1.0,
+            );
+        }
+        if let Some((travel, n)) = self.travel {
+            f(Objective::Travel, n * c.sws / travel - 1.0);
+        }
     }
 
     /// The objectives a design breaks (empty when feasible).
@@ -216,6 +267,7 @@ mod tests {
                 dtl: 500.0,
                 sws: 0.006,
             },
+            static_wheel_load: 4_500.0,
         }
     }
 
@@ -247,6 +299,78 @@ mod tests {
         };
         assert!(o.broken(&ctx(), 20_000.0, 1500.0, &ok).is_empty());
         assert_eq!(o.violation(&ctx(), 20_000.0, 1500.0, &ok), 0.0);
+    }
+
+    /// The tyre-load margin and the travel budget by hand: with F_static = 4500 N and
+    /// k = 3 the limit is 1500 N; 3 sigma of 9 mm SWS is 27 mm against a 25 mm budget.
+    #[test]
+    fn tyre_load_margin_and_travel_budget_by_hand() {
+        let o = DesignObjectives {
+            sws_limit: None,
+            dtl_margin: Some(3.0),
+            travel: Some((0.025, 3.0)),
+            ..Default::default()
+        };
+        let c = |dtl: f64, sws: f64| Criteria {
+            bacc: 1.0,
+            dtl,
+            sws,
+        };
+        let g = o.constraints(&ctx(), 20_000.0, 1500.0, &c(1600.0, 0.009));
+        assert_eq!(g.len(), 2);
+        assert_eq!(g[0].0, Objective::DtlMargin);
+        assert!((g[0].1 - (3.0 * 1600.0 / 4500.0 - 1.0)).abs() < 1e-15);
+        assert_eq!(g[1].0, Objective::Travel);
+        assert!((g[1].1 - (27.0 / 25.0 - 1.0)).abs() < 1e-12);
+        // Just inside both: 1499 N and 8.3 mm (24.9 mm at 3 sigma).
+        assert!(o
+            .broken(&ctx(), 20_000.0, 1500.0, &c(1499.0, 0.0083))
+            .is_empty());
+        assert_eq!(
+            o.broken(&ctx(), 20_000.0, 1500.0, &c(1501.0, 0.0083)),
+            vec![Objective::DtlMargin]
+        );
+        assert_eq!(
+            o.broken(&ctx(), 20_000.0, 1500.0, &c(1499.0, 0.0084)),
+            vec![Objective::Travel]
+        );
+    }
+
+    #[test]
+    fn bad_margin_and_travel_name_the_field() {
+        for (o, field) in [
+            (
+                DesignObjectives {
+                    dtl_margin: Some(0.0),
+                    ..Default::default()
+                },
+                "dtl_margin",
+            ),
+            (
+                DesignObjectives {
+                    dtl_margin: Some(f64::NAN),
+                    ..Default::default()
+                },
+                "dtl_margin",
+            ),
+            (
+                DesignObjectives {
+                    travel: Some((-0.02, 3.0)),
+                    ..Default::default()
+                },
+                "travel",
+            ),
+            (
+                DesignObjectives {
+                    travel: Some((0.025, 0.0)),
+                    ..Default::default()
+                },
+                "travel",
+            ),
+        ] {
+            let e = o.validate().unwrap_err().to_string();
+            assert!(e.starts_with(field), "{e}");
+        }
     }
 
     #[test]

@@ -16,7 +16,7 @@ use ridelab::dos::DesignObjectives;
 use ridelab::error::{Result, RideError};
 use ridelab::maps::{map_csv, map_report, Axis, Grid, MapSettings, Scale};
 use ridelab::optimize::{
-    optimize_report, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, StmParams,
+    optimize_report, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, PickRule, StmParams,
 };
 use ridelab::report::{build, ReportInputs, SECTIONS};
 use ridelab::road::{Road, RoadClass, Tracks};
@@ -99,10 +99,10 @@ struct EvalArgs {
 #[derive(Args)]
 struct DoeArgs {
     /// Number of points, 2..1000.
-    #[arg(long, value_parser = count)]
+    #[arg(long, value_parser = count, allow_negative_numbers = true)]
     points: usize,
     /// Seed of the annealing (plans beyond the stored optima).
-    #[arg(long, default_value_t = 1, value_parser = count_u64)]
+    #[arg(long, default_value_t = 1, value_parser = count_u64, allow_negative_numbers = true)]
     seed: u64,
     #[arg(long)]
     json: bool,
@@ -119,20 +119,22 @@ struct OptimizeArgs {
     /// stm (space transformation) or nsga2.
     #[arg(long, default_value = "stm", value_parser = ["stm", "nsga2"])]
     method: String,
-    /// RMS SWS limit, m [default: 0.007].
-    #[arg(long, value_name = "M", value_parser = number, allow_negative_numbers = true)]
-    sws_limit: Option<f64>,
+    #[command(flatten)]
+    objectives: ObjectiveArgs,
+    /// The pick: minmax (the thesis's), knee, or asf:W (weighted, comfort weight W in 0..1).
+    #[arg(long, default_value = "minmax")]
+    pick: PickRule,
     /// STM grid points per variable, 2..2001.
-    #[arg(long, default_value_t = StmParams::default().grid, value_parser = count)]
+    #[arg(long, default_value_t = StmParams::default().grid, value_parser = count, allow_negative_numbers = true)]
     grid: usize,
     /// NSGA-II population, an even number 4..10000.
-    #[arg(long, default_value_t = Nsga2Params::default().population, value_parser = count)]
+    #[arg(long, default_value_t = Nsga2Params::default().population, value_parser = count, allow_negative_numbers = true)]
     population: usize,
     /// NSGA-II generations, 1..10000.
-    #[arg(long, default_value_t = Nsga2Params::default().generations, value_parser = count)]
+    #[arg(long, default_value_t = Nsga2Params::default().generations, value_parser = count, allow_negative_numbers = true)]
     generations: usize,
     /// NSGA-II seed.
-    #[arg(long, default_value_t = Nsga2Params::default().seed, value_parser = count_u64)]
+    #[arg(long, default_value_t = Nsga2Params::default().seed, value_parser = count_u64, allow_negative_numbers = true)]
     seed: u64,
     #[command(flatten)]
     adaptive: AdaptiveArgs,
@@ -169,6 +171,36 @@ struct MapArgs {
     /// Also write PREFIX-bacc.svg, PREFIX-dtl.svg and PREFIX-sws.svg.
     #[arg(long, value_name = "PREFIX")]
     svg: Option<String>,
+    #[command(flatten)]
+    objectives: ObjectiveArgs,
+}
+
+/// Design objectives beyond the defaults (optimize, report, map).
+#[derive(Args)]
+struct ObjectiveArgs {
+    /// RMS SWS limit, m [default: 0.007].
+    #[arg(long, value_name = "M", value_parser = number, allow_negative_numbers = true)]
+    sws_limit: Option<f64>,
+    /// Tyre-load margin K: RMS DTL at most the static wheel load / K (e.g. 3) [default: off].
+    #[arg(long, value_name = "K", value_parser = number, allow_negative_numbers = true)]
+    dtl_margin: Option<f64>,
+    /// Travel budget M:N: N x RMS SWS within M metres of bump travel (e.g. 0.025:3) [default: off].
+    #[arg(long, value_name = "M:N", value_parser = |s: &str| DesignBox::parse_range("travel", s), allow_negative_numbers = true)]
+    travel: Option<(f64, f64)>,
+}
+
+impl ObjectiveArgs {
+    /// The objectives: the defaults with these options applied, validated.
+    fn objectives(&self) -> Result<DesignObjectives> {
+        let o = DesignObjectives {
+            sws_limit: self.sws_limit.or(DesignObjectives::default().sws_limit),
+            dtl_margin: self.dtl_margin,
+            travel: self.travel,
+            ..DesignObjectives::default()
+        };
+        o.validate()?;
+        Ok(o)
+    }
 }
 
 #[derive(Args)]
@@ -270,7 +302,7 @@ struct SimulateArgs {
     #[arg(long, value_name = "S", value_parser = number, allow_negative_numbers = true)]
     dt: Option<f64>,
     /// Seed of the road's random phases.
-    #[arg(long, default_value_t = 1, value_parser = count_u64)]
+    #[arg(long, default_value_t = 1, value_parser = count_u64, allow_negative_numbers = true)]
     seed: u64,
     /// Front damper bump (compression) rate, N s/m; the design's Cs is then the mean
     /// of bump and rebound, so --cs is left out.
@@ -289,7 +321,7 @@ struct SimulateArgs {
     #[arg(long, value_name = "NS/M", value_parser = number, allow_negative_numbers = true, requires = "knee")]
     rebound_high: Option<f64>,
     /// Keep every n-th sample in the output.
-    #[arg(long, default_value_t = 10, value_parser = count)]
+    #[arg(long, default_value_t = 10, value_parser = count, allow_negative_numbers = true)]
     decimate: usize,
     #[command(flatten)]
     car: CarRoad,
@@ -310,9 +342,8 @@ struct ReportArgs {
     /// Cs range of the design box, min:max (N s/m).
     #[arg(long, value_name = "MIN:MAX", default_value = "500:4000", value_parser = |s: &str| DesignBox::parse_range("cs-range", s))]
     cs_range: (f64, f64),
-    /// RMS SWS limit, m [default: 0.007].
-    #[arg(long, value_name = "M", value_parser = number, allow_negative_numbers = true)]
-    sws_limit: Option<f64>,
+    #[command(flatten)]
+    objectives: ObjectiveArgs,
     /// The surrogate of sections 4 and 5 [default: the study's best at 10 HiFi samples].
     #[arg(long, requires = "plan")]
     approach: Option<SurrogateSpec>,
@@ -320,7 +351,7 @@ struct ReportArgs {
     #[arg(long, requires = "approach")]
     plan: Option<PlanSpec>,
     /// Seed of the time-domain record and of NSGA-II.
-    #[arg(long, default_value_t = 1, value_parser = count_u64)]
+    #[arg(long, default_value_t = 1, value_parser = count_u64, allow_negative_numbers = true)]
     seed: u64,
     /// Directory for report.html, report.md, figures/, report.json and the CSV tables
     /// (created if missing).
@@ -560,7 +591,8 @@ fn eval(a: EvalArgs) -> Result<String> {
 fn text_report(r: &Report) -> String {
     let mut s = format!(
         "{} model, {} on ISO class {:?} at {} m/s ({:?} tracks)\nKs {:.1} N/m, Cs {:.1} N s/m\n\
-         BAcc {:.5} m/s^2\nDTL  {:.3} N ({:.2} % of static wheel load)\nSWS  {:.4} mm\n\
+         BAcc {:.5} m/s^2 (ISO 2631-1 Wk-weighted {:.5} m/s^2: {})\n\
+         DTL  {:.3} N ({:.2} % of static wheel load)\nSWS  {:.4} mm\n\
          route {} (frequency route differs by {:.1e})\n",
         match r.model {
             ModelKind::Quarter => "Quarter-car (LoFi)",
@@ -573,6 +605,8 @@ fn text_report(r: &Report) -> String {
         r.ks,
         r.cs,
         r.bacc,
+        r.bacc_wk,
+        r.comfort,
         r.dtl,
         100.0 * r.dtl_relative,
         1e3 * r.sws,
@@ -619,10 +653,7 @@ fn doe(a: DoeArgs) -> Result<String> {
 fn optimize(a: OptimizeArgs) -> Result<String> {
     let svg = svg_target(a.svg.as_deref())?;
     let (car, road) = car_and_road(&a.car)?;
-    let objectives = DesignObjectives {
-        sws_limit: a.sws_limit.or(DesignObjectives::default().sws_limit),
-        ..DesignObjectives::default()
-    };
+    let objectives = a.objectives.objectives()?;
     let method = if a.method == "stm" {
         Method::Stm(StmParams {
             grid: a.grid,
@@ -637,7 +668,7 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
         })
     };
     let design_box = DesignBox::default();
-    let (out, looped) = match a.adaptive.options() {
+    let (mut out, looped) = match a.adaptive.options() {
         None => (
             optimize_report(
                 &car,
@@ -664,6 +695,9 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
             (r.optimize, Some(r.adaptive))
         }
     };
+    if a.pick != PickRule::MinMax {
+        out.repick(a.pick, &car, &road)?;
+    }
     if let Some(path) = &svg {
         write_svg(
             path,
@@ -713,7 +747,7 @@ fn optimize_text(out: &OptimizeReport) -> String {
     let p = &study.pick;
     format!(
         "front: {} points on {} ({} evaluations), hypervolume {:.4} (m/s^2) N against [{:.4}, {:.2}]\n\
-         min-max pick: Ks {:.1} N/m, Cs {:.1} N s/m\n  BAcc {:+.2} %, DTL {:+.2} %, SWS {:+.2} % against the datum\n\
+         {} pick: Ks {:.1} N/m, Cs {:.1} N s/m (pseudo-weights comfort {:.2}, road holding {:.2})\n  BAcc {:+.2} %, DTL {:+.2} %, SWS {:+.2} % against the datum\n\
          HiFi re-check: BAcc {:+.2} %, DTL {:+.2} %, SWS {:+.2} % (prediction error {:.3} / {:.3} / {:.3} %)\n",
         study.front.len(),
         study.evaluator,
@@ -721,8 +755,11 @@ fn optimize_text(out: &OptimizeReport) -> String {
         study.hypervolume,
         study.reference_point[0],
         study.reference_point[1],
+        p.rule,
         p.ks,
         p.cs,
+        p.pseudo_weights[0],
+        p.pseudo_weights[1],
         p.change_percent[0],
         p.change_percent[1],
         p.change_percent[2],
@@ -851,6 +888,7 @@ fn map_cmd(a: MapArgs) -> Result<String> {
         } else {
             Scale::Absolute
         },
+        objectives: a.objectives.objectives()?,
         ..MapSettings::default()
     };
     let r = map_report(a.model, &car, &road, &settings)?;
@@ -938,10 +976,7 @@ fn report_cmd(a: ReportArgs) -> Result<String> {
     design_box.validate()?;
     let inputs = ReportInputs {
         design_box,
-        objectives: DesignObjectives {
-            sws_limit: a.sws_limit.or(DesignObjectives::default().sws_limit),
-            ..DesignObjectives::default()
-        },
+        objectives: a.objectives.objectives()?,
         surrogate: a.approach.zip(a.plan),
         seed: a.seed,
         ..ReportInputs::new(car, road)

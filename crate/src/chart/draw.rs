@@ -144,6 +144,12 @@ pub(crate) fn render(
         draw(&root)?;
         root.present().map_err(drawing_error)?;
     }
+    // Map cells are abutting rectangles; anti-aliased edges would show the background
+    // through every seam as a fine white grid, so rectangles are drawn with crisp edges
+    // (lines and text stay anti-aliased).
+    if let Some(end) = buf.find('>') {
+        buf.insert_str(end + 1, "\n<style>rect{shape-rendering:crispEdges}</style>");
+    }
     Ok(buf)
 }
 

@@ -227,6 +227,7 @@ mod tests {
             reference_rule: "test".into(),
             hypervolume: 1.0,
             pick: Pick {
+                rule: "minmax".into(),
                 index: 3,
                 ks: 2e4,
                 cs: 1.5e3,
@@ -234,6 +235,7 @@ mod tests {
                 ratio: [0.9, 0.95],
                 distance: [0.1, 0.1],
                 score: 0.1,
+                pseudo_weights: [0.5, 0.5],
                 change_percent: [-10.0, -5.0, 0.0],
             },
             evaluations: 100,

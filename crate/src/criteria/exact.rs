@@ -150,7 +150,11 @@ pub(super) fn rms_of(var: [f64; N_OUT]) -> Result<Criteria> {
 /// feed-through into an output, or a road warp (independent tracks with unequal
 /// front and rear track widths) that makes the static deflection a random walk.
 pub fn criteria_exact(model: &LinearModel, road: &Road) -> Result<Criteria> {
-    let wf = WhiteForm::new(model, road)?;
+    rms_of(variances(&WhiteForm::new(model, road)?)?)
+}
+
+/// The output variances of a white-noise form (the sum of the closed-form terms above).
+pub(super) fn variances(wf: &WhiteForm) -> Result<[f64; N_OUT]> {
     let ns = wf.a.nrows();
     // Kronecker operator of the Lyapunov/Sylvester equation, factorised once.
     let eye = DMatrix::<f64>::identity(ns, ns);
@@ -191,5 +195,5 @@ pub fn criteria_exact(model: &LinearModel, road: &Road) -> Result<Criteria> {
             }
         }
     }
-    rms_of(var)
+    Ok(var)
 }

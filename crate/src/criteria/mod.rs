@@ -11,10 +11,12 @@
 mod closed_form;
 mod exact;
 mod hqr;
+mod iso2631;
 mod modal;
 mod spectral;
 
 pub use closed_form::quarter_car_rms;
 pub use exact::criteria_exact;
+pub use iso2631::{bacc_wk_exact, bacc_wk_spectral, comfort_label, wk_gain};
 pub use modal::{criteria_fast_exact, criteria_modal};
 pub use spectral::{criteria_spectral, SpectralCriteria, Spectrum};

@@ -186,6 +186,24 @@ impl<'a> Spectrum<'a> {
         to_rms(var)
     }
 
+    /// `int_0^inf weight(f)^2 P_output(f) df` by adaptive Gauss-Kronrod to relative
+    /// tolerance `rtol`: the variance of output `output` (0 BAcc, 1 DTL, 2 SWS) through
+    /// a frequency weighting of gain `weight(f)`.
+    pub fn weighted_variance(&self, output: usize, weight: impl Fn(f64) -> f64, rtol: f64) -> f64 {
+        let (var, _) = adaptive_gk15(
+            |th| {
+                let t = th.tan();
+                let w = weight(FC * t);
+                let p = self.mapped_psd(th)[output] * w * w;
+                std::array::from_fn(|o| if o == 0 { p } else { 0.0 })
+            },
+            0.0,
+            PI / 2.0,
+            rtol,
+        );
+        var[0]
+    }
+
     /// The PSDs times the Jacobian of `f = FC tan(theta)`.
     fn mapped_psd(&self, th: f64) -> [f64; N_OUT] {
         let t = th.tan();

@@ -27,6 +27,7 @@ pub fn ui_field(core: &str) -> String {
         "sws_limit" => "swsLimit".into(),
         "bounce_band" => "bounceBand".into(),
         "damping_band" => "dampingBand".into(),
+        "dtl_margin" => "dtlMargin".into(),
         "approach" | "scheme" => "surrogate".into(),
         f if f.starts_with("damper.") => "damper".into(),
         f if CAR_FIELDS.contains(&f)
@@ -55,6 +56,8 @@ mod tests {
             ("sws_limit", "swsLimit"),
             ("bounce_band", "bounceBand"),
             ("damping_band", "dampingBand"),
+            ("dtl_margin", "dtlMargin"),
+            ("travel", "travel"),
             ("approach", "surrogate"),
             ("scheme", "surrogate"),
             ("damper.bump", "damper"),

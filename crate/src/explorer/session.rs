@@ -21,6 +21,7 @@ use crate::dos::DosContext;
 use crate::error::Result;
 use crate::evaluate::{Criteria, Evaluator};
 use crate::maps::{Dcs, DosMap, Grid, Scale};
+use crate::report::{build as build_report, MethodReport, ReportInputs};
 use crate::surrogate::SurrogateReport;
 use crate::time_domain::TimeOptions;
 use std::rc::Rc;
@@ -184,6 +185,22 @@ impl Session {
     /// `ridelab surrogate`; it refits, so the page runs it in a worker).
     pub fn fit_report(&self, levels: usize) -> Result<SurrogateReport> {
         fit_report(&self.scenario, levels)
+    }
+
+    /// The study report of this scenario (as `ridelab report` with the view's car, road,
+    /// design box, objectives, surrogate and plan, seed 1; it takes seconds, so the page
+    /// runs it in a worker).
+    pub fn study_report(&self) -> Result<MethodReport> {
+        let s = &self.scenario;
+        build_report(
+            &ReportInputs {
+                design_box: s.dbox,
+                objectives: s.objectives.clone(),
+                surrogate: Some((s.surrogate, s.plan)),
+                ..ReportInputs::new(s.datum.clone(), s.road)
+            },
+            |_| {},
+        )
     }
 
     fn design(&self) -> (f64, f64) {

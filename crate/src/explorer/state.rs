@@ -14,7 +14,7 @@ use crate::LoFi;
 use serde::{Deserialize, Serialize};
 
 /// The JS names of the [`State`] fields.
-pub const STATE_FIELDS: [&str; 17] = [
+pub const STATE_FIELDS: [&str; 19] = [
     "car",
     "carJson",
     "ks",
@@ -30,6 +30,8 @@ pub const STATE_FIELDS: [&str; 17] = [
     "bounceBand",
     "dampingBand",
     "noWorse",
+    "dtlMargin",
+    "travel",
     "surrogate",
     "plan",
 ];
@@ -86,6 +88,12 @@ pub struct State {
     /// "No worse than the datum car" for `[BAcc, DTL, SWS]` (all off when absent).
     #[serde(default)]
     pub no_worse: Option<[bool; 3]>,
+    /// Tyre-load margin `k`: RMS DTL at most the static wheel load / k (off when absent).
+    #[serde(default)]
+    pub dtl_margin: Option<f64>,
+    /// Travel budget `[available bump travel m, sigma factor]` (off when absent).
+    #[serde(default)]
+    pub travel: Option<[f64; 2]>,
     /// The surrogate, a `ridelab surrogate` name (default [`DEFAULT_SURROGATE`]).
     #[serde(default)]
     pub surrogate: Option<String>,
@@ -116,6 +124,8 @@ impl Default for State {
             bounce_band: None,
             damping_band: None,
             no_worse: None,
+            dtl_margin: None,
+            travel: None,
             surrogate: Some(DEFAULT_SURROGATE.into()),
             plan: Some(DEFAULT_PLAN.into()),
         }
@@ -186,6 +196,8 @@ impl State {
             bounce_band: self.bounce_band.map(|[lo, hi]| (lo, hi)),
             damping_band: self.damping_band.map(|[lo, hi]| (lo, hi)),
             no_worse_than_datum: self.no_worse.unwrap_or_default(),
+            dtl_margin: self.dtl_margin,
+            travel: self.travel.map(|[m, n]| (m, n)),
         };
         o.validate()?;
         Ok(o)

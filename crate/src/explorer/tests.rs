@@ -341,3 +341,24 @@ fn the_pages_adaptive_loop_is_the_clis() {
     let e = page.uncertainty_map(1, 4).unwrap_err().to_string();
     assert!(e.starts_with("nx: "), "{e}");
 }
+
+/// The page's list of state keys (unknown keys are refused against it) is exactly the
+/// keys a state serialises to, every optional field set.
+#[test]
+fn state_fields_are_the_serialised_keys() {
+    let state = State {
+        car_json: Some("{}".into()),
+        bounce_band: Some([0.8, 1.5]),
+        damping_band: Some([0.2, 0.5]),
+        no_worse: Some([false; 3]),
+        dtl_margin: Some(3.0),
+        travel: Some([0.025, 3.0]),
+        ..State::default()
+    };
+    let v = serde_json::to_value(&state).unwrap();
+    let mut keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
+    let mut want = crate::explorer::STATE_FIELDS.to_vec();
+    keys.sort();
+    want.sort();
+    assert_eq!(keys, want);
+}

@@ -13,13 +13,15 @@ use crate::evaluate::Criteria;
 use serde::{Deserialize, Serialize};
 
 /// Every objective in bit order: objective `OBJECTIVE_BITS[b]` is bit `1 << b` of a mask.
-pub const OBJECTIVE_BITS: [Objective; 6] = [
+pub const OBJECTIVE_BITS: [Objective; 8] = [
     Objective::SwsLimit,
     Objective::BounceBand,
     Objective::DampingBand,
     Objective::BaccDatum,
     Objective::DtlDatum,
     Objective::SwsDatum,
+    Objective::DtlMargin,
+    Objective::Travel,
 ];
 
 /// The mask bit of one objective (see [`OBJECTIVE_BITS`]).
@@ -31,6 +33,8 @@ pub fn objective_bit(o: Objective) -> u8 {
         Objective::BaccDatum => 1 << 3,
         Objective::DtlDatum => 1 << 4,
         Objective::SwsDatum => 1 << 5,
+        Objective::DtlMargin => 1 << 6,
+        Objective::Travel => 1 << 7,
     }
 }
 
@@ -43,6 +47,8 @@ pub fn objective_name(o: Objective) -> &'static str {
         Objective::BaccDatum => "bacc_datum",
         Objective::DtlDatum => "dtl_datum",
         Objective::SwsDatum => "sws_datum",
+        Objective::DtlMargin => "dtl_margin",
+        Objective::Travel => "travel",
     }
 }
 
@@ -274,6 +280,7 @@ mod tests {
             sprung_mass: q.ms,
             tire_stiffness: q.kt,
             datum: map.datum.criteria,
+            static_wheel_load: car.front_wheel_load(),
         };
         (e, map, ctx)
     }
@@ -286,8 +293,16 @@ mod tests {
             bounce_band: Some((0.9, 1.3)),
             damping_band: Some((0.25, 0.45)),
             no_worse_than_datum: [true, true, false],
+            ..DesignObjectives::default()
         };
-        for objectives in [DesignObjectives::default(), all_on] {
+        // RMS DTL at most F_static / 14 (356 N) and 3 sigma of SWS within 18 mm.
+        let limits = DesignObjectives {
+            sws_limit: None,
+            dtl_margin: Some(14.0),
+            travel: Some((0.018, 3.0)),
+            ..DesignObjectives::default()
+        };
+        for objectives in [DesignObjectives::default(), all_on, limits] {
             let dos = DosMap::new(&map, &objectives, &ctx).unwrap();
             let mut seen = 0u8;
             for j in 0..map.grid.cs.n {
@@ -380,6 +395,7 @@ mod tests {
             sprung_mass: 400.0,
             tire_stiffness: 2e5,
             datum,
+            static_wheel_load: 4_000.0,
         };
         let objectives = DesignObjectives {
             sws_limit: None,

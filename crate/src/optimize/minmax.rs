@@ -1,18 +1,79 @@
-//! The min-max pick on a front, normalised by a datum car, and its HiFi re-check.
+//! Picks on a front, normalised by a datum car, and their HiFi re-check.
 //!
-//! Datum normalisation `r_i = f_i / f_i(datum)`; on the front, the pick minimises the
-//! largest normalised distance from the ideal point,
-//! `max_i (r_i - r_i,min) / (r_i,max - r_i,min)`, `i` over BAcc and DTL. The datum
-//! cancels in that ratio, so it sets the reported ratios and % changes, not the pick.
+//! Datum normalisation `r_i = f_i / f_i(datum)` and normalised distances from the ideal
+//! point `d_i = (r_i - r_i,min) / (r_i,max - r_i,min)`, `i` over BAcc and DTL. Rules
+//! ([`PickRule`]): the thesis's min-max pick minimises `max_i d_i`; the knee minimises
+//! `d_1 + d_2` (the point farthest below the line through the front's two extremes, Das
+//! 1999); the weighted pick minimises the achievement scalarising function
+//! `max(W d_1, (1 - W) d_2) + 1e-6 (d_1 + d_2)` with the comfort weight `W` in [0, 1]
+//! (W = 0.5 is the min-max pick). Each point's pseudo-weights (Deb) are
+//! `w_i = (1 - d_i) / sum_j (1 - d_j)`. The datum cancels in `d`, so it sets the reported
+//! ratios and % changes, not the pick.
 
 use super::suspension::FrontPoint;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use serde::Serialize;
 
-/// The min-max design of a front.
+/// How a design is picked from a front.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PickRule {
+    /// The thesis's min-max pick.
+    MinMax,
+    /// The knee: least `d_1 + d_2`.
+    Knee,
+    /// Achievement scalarising function with comfort weight `W` in [0, 1].
+    Asf(f64),
+}
+
+impl std::str::FromStr for PickRule {
+    type Err = RideError;
+    /// `minmax`, `knee` or `asf:W` with `0 <= W <= 1`; errors name `pick`.
+    fn from_str(s: &str) -> Result<PickRule> {
+        match s.trim() {
+            "minmax" | "min-max" => Ok(PickRule::MinMax),
+            "knee" => Ok(PickRule::Knee),
+            t => match t.strip_prefix("asf:").map(|w| w.trim().parse::<f64>()) {
+                Some(Ok(w)) if (0.0..=1.0).contains(&w) => Ok(PickRule::Asf(w)),
+                Some(_) => Err(RideError::field(
+                    "pick",
+                    format!("'{t}': the comfort weight W of asf:W must be in [0, 1]"),
+                )),
+                None => Err(RideError::field(
+                    "pick",
+                    format!("'{t}' is not minmax, knee or asf:W"),
+                )),
+            },
+        }
+    }
+}
+
+impl PickRule {
+    /// The rule's score of normalised distances `d` (least is picked).
+    fn score(self, d: [f64; 2]) -> f64 {
+        match self {
+            PickRule::MinMax => d[0].max(d[1]),
+            PickRule::Knee => d[0] + d[1],
+            PickRule::Asf(w) => (w * d[0]).max((1.0 - w) * d[1]) + 1e-6 * (d[0] + d[1]),
+        }
+    }
+
+    /// The rule as written on the command line.
+    pub fn name(self) -> String {
+        match self {
+            PickRule::MinMax => "minmax".into(),
+            PickRule::Knee => "knee".into(),
+            PickRule::Asf(w) => format!("asf:{w}"),
+        }
+    }
+}
+
+/// A design picked from a front.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Pick {
+    /// The rule that picked it (`minmax`, `knee`, `asf:W`).
+    pub rule: String,
     /// Index of the pick in the front.
     pub index: usize,
     /// Front spring rate, N/m.
@@ -25,8 +86,10 @@ pub struct Pick {
     pub ratio: [f64; 2],
     /// Normalised distances from the ideal point `(r_i - r_i,min) / (r_i,max - r_i,min)`, -.
     pub distance: [f64; 2],
-    /// The min-max score, `max_i distance_i`, -.
+    /// The rule's score (min-max: `max_i distance_i`), -.
     pub score: f64,
+    /// Pseudo-weights `[w_bacc, w_dtl]` of the pick, `w_i = (1 - d_i) / sum_j (1 - d_j)`, -.
+    pub pseudo_weights: [f64; 2],
     /// Change against the datum of `[bacc, dtl, sws]`, `100 (f / f_datum - 1)`, %.
     pub change_percent: [f64; 3],
 }
@@ -69,17 +132,34 @@ pub fn normalised_distances(front: &[FrontPoint], datum: &Criteria) -> Vec<[f64;
         .collect()
 }
 
+/// Pseudo-weights `[w_bacc, w_dtl]` of normalised distances `d` (`[0.5, 0.5]` when both
+/// are 1, a front of one point).
+pub fn pseudo_weights(d: [f64; 2]) -> [f64; 2] {
+    let (a, b) = (1.0 - d[0], 1.0 - d[1]);
+    if a + b > 0.0 {
+        [a / (a + b), b / (a + b)]
+    } else {
+        [0.5, 0.5]
+    }
+}
+
 /// The min-max pick on `front` against `datum` (the first point on ties).
 pub fn min_max_pick(front: &[FrontPoint], datum: &Criteria) -> Result<Pick> {
+    pick(front, datum, PickRule::MinMax)
+}
+
+/// The pick of `rule` on `front` against `datum` (the first point on ties).
+pub fn pick(front: &[FrontPoint], datum: &Criteria, rule: PickRule) -> Result<Pick> {
     check_datum(datum)?;
     let d = normalised_distances(front, datum);
-    let score = |k: usize| d[k][0].max(d[k][1]);
+    let score = |k: usize| rule.score(d[k]);
     let index = (0..front.len())
         .min_by(|&a, &b| score(a).total_cmp(&score(b)))
         .ok_or_else(|| RideError::field("front", "is empty, nothing to pick"))?;
     let p = front[index];
     let criteria = p.criteria();
     Ok(Pick {
+        rule: rule.name(),
         index,
         ks: p.ks,
         cs: p.cs,
@@ -87,6 +167,7 @@ pub fn min_max_pick(front: &[FrontPoint], datum: &Criteria) -> Result<Pick> {
         ratio: [p.bacc / datum.bacc, p.dtl / datum.dtl],
         distance: d[index],
         score: score(index),
+        pseudo_weights: pseudo_weights(d[index]),
         change_percent: change_percent(&criteria, datum),
     })
 }

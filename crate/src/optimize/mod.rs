@@ -21,7 +21,9 @@ mod test_problems;
 mod tests;
 
 pub use hypervolume::{front_distance, hypervolume, reference_point, FrontDistance};
-pub use minmax::{min_max_pick, normalised_distances, recheck, Pick, Recheck};
+pub use minmax::{
+    min_max_pick, normalised_distances, pick, pseudo_weights, recheck, Pick, PickRule, Recheck,
+};
 pub use nsga2::{nsga2, Nsga2Params};
 pub use problem::{dominates, non_dominated, Eval, Problem, Solution};
 pub use report::{optimize_model, optimize_report, EvaluatorSpec, OptimizeReport};

@@ -6,7 +6,7 @@
 //! against the datum car's **HiFi** criteria, whatever the evaluator: the HiFi is the
 //! reference every evaluator is judged by.
 
-use super::minmax::{recheck, Recheck};
+use super::minmax::{pick, recheck, PickRule, Recheck};
 use super::study::{run_study, Method, Study};
 use super::suspension::SuspensionProblem;
 use crate::analysis::{HiFi, LoFi, ModelKind};
@@ -82,6 +82,17 @@ pub struct OptimizeReport {
     pub datum: Criteria,
     /// The pick re-evaluated on the HiFi.
     pub hifi_recheck: Recheck,
+}
+
+impl OptimizeReport {
+    /// Replaces the pick by `rule`'s on the same front and re-checks it on the HiFi of
+    /// `car` on `road` (the report's datum is that HiFi's).
+    pub fn repick(&mut self, rule: PickRule, car: &Car, road: &Road) -> Result<()> {
+        let p = pick(&self.study.front, &self.datum, rule)?;
+        self.hifi_recheck = recheck(&p, &HiFi::new(car, road)?, &self.datum)?;
+        self.study.pick = p;
+        Ok(())
+    }
 }
 
 /// Optimises `car`'s front spring and damper on `road` over `design_box` by `method` on

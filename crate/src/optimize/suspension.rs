@@ -217,6 +217,22 @@ impl<E: Evaluator> SuspensionProblem<E> {
                 d.sws * 1e3,
                 c.sws * 1e3
             ),
+            Objective::DtlMargin => {
+                let k = self.objectives.dtl_margin.unwrap_or(f64::NAN);
+                format!(
+                    "tyre-load margin (RMS DTL at most F_static / {k} = {:.1} N) is broken everywhere in the design box (smallest DTL {:.1} N {at})",
+                    self.ctx.static_wheel_load / k,
+                    c.dtl
+                )
+            }
+            Objective::Travel => {
+                let (travel, n) = self.objectives.travel.unwrap_or((f64::NAN, f64::NAN));
+                format!(
+                    "travel budget ({n} x RMS SWS within {:.1} mm) is exceeded everywhere in the design box (smallest {n} x SWS {:.1} mm {at})",
+                    travel * 1e3,
+                    n * c.sws * 1e3
+                )
+            }
         }
     }
 }
@@ -228,6 +244,8 @@ fn field_of(objective: Objective) -> &'static str {
         Objective::BounceBand => "bounce_band",
         Objective::DampingBand => "damping_band",
         Objective::BaccDatum | Objective::DtlDatum | Objective::SwsDatum => "no_worse_than_datum",
+        Objective::DtlMargin => "dtl_margin",
+        Objective::Travel => "travel",
     }
 }
 

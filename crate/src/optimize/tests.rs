@@ -13,6 +13,7 @@ fn context() -> DosContext {
         sprung_mass: 467.7,
         tire_stiffness: 175_500.0,
         datum: QuarterCar.evaluate(20_000.0, 1_500.0).unwrap(),
+        static_wheel_load: 4_500.0,
     }
 }
 
@@ -400,5 +401,65 @@ fn recheck_on_another_evaluator_reports_the_difference() {
     assert!(r.error_percent[1].abs() < 1e-12);
     for k in 0..3 {
         assert!((r.rechecked_change_percent[k] - s.pick.change_percent[k]).abs() < 1e-9);
+    }
+}
+
+/// The picks beyond min-max on one STM front: the knee is the least `d_1 + d_2` computed
+/// here from the ratios' definition; the weighted pick at W = 0.5 is the min-max pick, at
+/// W = 1 the front's best comfort and at W = 0 its best road holding; pseudo-weights sum
+/// to 1 and are (1, 0) and (0, 1) at the extremes.
+#[test]
+fn knee_weighted_pick_and_pseudo_weights() {
+    use super::{pick, PickRule};
+    let s = run_study(&problem(0.007), &Method::Stm(StmParams::default()), None).unwrap();
+    let (front, datum) = (&s.front, context().datum);
+    let r: Vec<[f64; 2]> = front
+        .iter()
+        .map(|p| [p.bacc / datum.bacc, p.dtl / datum.dtl])
+        .collect();
+    let lo = [0, 1].map(|k| r.iter().map(|x| x[k]).fold(f64::INFINITY, f64::min));
+    let hi = [0, 1].map(|k| r.iter().map(|x| x[k]).fold(f64::NEG_INFINITY, f64::max));
+    let d = |x: &[f64; 2]| [0, 1].map(|k| (x[k] - lo[k]) / (hi[k] - lo[k]));
+    let knee_by_hand = (0..front.len())
+        .min_by(|&a, &b| {
+            let (da, db) = (d(&r[a]), d(&r[b]));
+            (da[0] + da[1]).total_cmp(&(db[0] + db[1]))
+        })
+        .unwrap();
+    let knee = pick(front, &datum, PickRule::Knee).unwrap();
+    assert_eq!(knee.index, knee_by_hand);
+    assert_eq!(knee.rule, "knee");
+    // The knee trades: both distances well inside (0, 1).
+    assert!(
+        knee.distance.iter().all(|&x| x > 0.01 && x < 0.99),
+        "{:?}",
+        knee.distance
+    );
+    let w = knee.pseudo_weights;
+    assert!((w[0] + w[1] - 1.0).abs() < 1e-15 && w.iter().all(|&x| x > 0.0 && x < 1.0));
+    assert_eq!(
+        pick(front, &datum, PickRule::Asf(0.5)).unwrap().index,
+        s.pick.index
+    );
+    let best = |k: usize| {
+        (0..front.len())
+            .min_by(|&a, &b| r[a][k].total_cmp(&r[b][k]))
+            .unwrap()
+    };
+    let comfort = pick(front, &datum, PickRule::Asf(1.0)).unwrap();
+    assert_eq!(comfort.index, best(0));
+    assert!((comfort.pseudo_weights[0] - 1.0).abs() < 1e-12);
+    let holding = pick(front, &datum, PickRule::Asf(0.0)).unwrap();
+    assert_eq!(holding.index, best(1));
+    assert!((holding.pseudo_weights[1] - 1.0).abs() < 1e-12);
+    // A heavier comfort weight never picks a less comfortable design.
+    let bacc: Vec<f64> = [0.0, 0.25, 0.5, 0.75, 1.0]
+        .iter()
+        .map(|&w| pick(front, &datum, PickRule::Asf(w)).unwrap().criteria.bacc)
+        .collect();
+    assert!(bacc.windows(2).all(|x| x[1] <= x[0]), "{bacc:?}");
+    for bad in ["asf:2", "asf:x", "median"] {
+        let e = bad.parse::<PickRule>().unwrap_err().to_string();
+        assert!(e.starts_with("pick:"), "{e}");
     }
 }

@@ -15,7 +15,9 @@ const STYLE: &str = "body{font:16px/1.45 system-ui,-apple-system,'Segoe UI',sans
 h1{font-size:1.6rem}h2{font-size:1.3rem;margin-top:2.2rem;border-bottom:1px solid #ccc}h3{font-size:1.1rem}\
 table{border-collapse:collapse;margin:.6rem 0;font-variant-numeric:tabular-nums}\
 th,td{border:1px solid #bbb;padding:.2rem .5rem;text-align:left;vertical-align:top}th{background:#f0f0f0}\
-figure{margin:1rem 0;display:inline-block;vertical-align:top;max-width:100%}figure svg{max-width:100%;height:auto}\
+/* consecutive figures share a grid: two or three a row on a laptop, one on a phone */\
+.figures{display:grid;grid-template-columns:repeat(auto-fill,minmax(20rem,1fr));gap:1rem 1.5rem;margin:1rem 0}\
+figure{margin:0}figure svg{width:100%;height:auto}\
 figcaption{font-size:.9rem;color:#333;max-width:640px}";
 
 /// The HTML document of `blocks`, titled `title`.
@@ -24,7 +26,17 @@ pub fn render(title: &str, blocks: &[Block]) -> String {
         "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n",
         esc(title)
     );
+    let mut in_figures = false;
     for b in blocks {
+        let figure = matches!(b, Block::Figure(_));
+        if figure != in_figures {
+            s += if figure {
+                "<div class=\"figures\">\n"
+            } else {
+                "</div>\n"
+            };
+            in_figures = figure;
+        }
         match b {
             Block::Heading(level, text) => {
                 s += &format!("<h{level}>{}</h{level}>\n", esc(text));
@@ -55,6 +67,9 @@ pub fn render(title: &str, blocks: &[Block]) -> String {
                 );
             }
         }
+    }
+    if in_figures {
+        s += "</div>\n";
     }
     s + "</body>\n</html>\n"
 }

@@ -27,9 +27,10 @@
 //! improvement `HV(P + y) - HV(P)`.
 //!
 //! **PoF**: the SWS limit `l` is met with probability `Phi((l - mu_sws) / s_sws)`, each
-//! "no worse than the datum" objective likewise against the datum's value; the body-bounce
-//! and damping-ratio bands depend on `(Ks, Cs)` alone (0 or 1). The product assumes
-//! independence.
+//! "no worse than the datum" objective likewise against the datum's value, the tyre-load
+//! margin `k DTL <= F_static` against `F_static / k` and the travel budget `n SWS <= travel`
+//! against `travel / n`; the body-bounce and damping-ratio bands depend on `(Ks, Cs)`
+//! alone (0 or 1). The product assumes independence.
 //!
 //! **Incumbent front** ([`Infill`]): the feasible non-dominated HiFi samples (EGO's
 //! classic choice), or the surrogate's own predicted front (improvement over what the
@@ -201,6 +202,11 @@ pub fn probability_feasible(
             Objective::BaccDatum => below(ctx.datum.bacc, 0),
             Objective::DtlDatum => below(ctx.datum.dtl, 1),
             Objective::SwsDatum => below(ctx.datum.sws, 2),
+            // k DTL <= F_static and n SWS <= travel: bounds on DTL and on SWS.
+            Objective::DtlMargin => objectives
+                .dtl_margin
+                .map_or(1.0, |k| below(ctx.static_wheel_load / k, 1)),
+            Objective::Travel => objectives.travel.map_or(1.0, |(t, n)| below(t / n, 2)),
             Objective::BounceBand | Objective::DampingBand if g <= 0.0 => 1.0,
             Objective::BounceBand | Objective::DampingBand => 0.0,
         };
@@ -437,6 +443,7 @@ mod tests {
             sprung_mass: 467.7,
             tire_stiffness: 175_500.0,
             datum: Criteria::from_array([1.0, 400.0, 0.006]),
+            static_wheel_load: 4000.0,
         };
         let o = DesignObjectives::default();
         let mean = Criteria::from_array([1.0, 400.0, 0.007]);
@@ -462,6 +469,32 @@ mod tests {
             probability_feasible(&banded, &ctx, 20_000.0, 1500.0, &below, [0.0, 0.0, 0.1]),
             0.0
         );
+        // The tyre-load margin k DTL <= F_static (k = 8: DTL <= 500 N) and the travel
+        // budget n SWS <= travel (3 SWS <= 0.021 m: SWS <= 7 mm), with the SWS limit off:
+        // on the bound one half, 1 sigma below it Phi(1), and both together the product.
+        let none = DesignObjectives {
+            sws_limit: None,
+            ..o
+        };
+        let margin = DesignObjectives {
+            dtl_margin: Some(8.0),
+            ..none
+        };
+        let on = Criteria::from_array([1.0, 500.0, 0.007]);
+        let p = probability_feasible(&margin, &ctx, 20_000.0, 1500.0, &on, [0.0, 0.1, 0.0]);
+        assert!((p - 0.5).abs() < 1e-12, "{p}");
+        let inside = Criteria {
+            dtl: 500.0 / 1.1,
+            ..on
+        };
+        let p = probability_feasible(&margin, &ctx, 20_000.0, 1500.0, &inside, [0.0, 0.1, 0.0]);
+        assert!((p - normal_cdf(1.0)).abs() < 1e-12, "{p}");
+        let travel = DesignObjectives {
+            travel: Some((0.021, 3.0)),
+            ..margin
+        };
+        let p = probability_feasible(&travel, &ctx, 20_000.0, 1500.0, &inside, [0.0, 0.1, 0.1]);
+        assert!((p - 0.5 * normal_cdf(1.0)).abs() < 1e-12, "{p}");
         assert!(Infill::parse("x")
             .unwrap_err()
             .to_string()

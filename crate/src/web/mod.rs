@@ -412,3 +412,17 @@ impl AdaptiveRun {
         Ok(Float64Array::from(m.as_slice()))
     }
 }
+
+/// The study report of the view's scenario (as `ridelab report`, seed 1, the view's
+/// surrogate and plan): `{title, html, markdown}`, the HTML one self-contained file.
+/// Takes seconds: the page calls it in its worker.
+#[wasm_bindgen(js_name = studyReport)]
+pub fn study_report_js(state: JsValue) -> Result<JsValue, JsValue> {
+    let report = with_session(state, |s| s.study_report())?;
+    let docs = report.documents().map_err(js_error)?;
+    to_js(&serde_json::json!({
+        "title": report.title(),
+        "html": docs.html,
+        "markdown": docs.markdown,
+    }))
+}

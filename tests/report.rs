@@ -1,0 +1,223 @@
+//! The study report (`ridelab report`): its tables are the library's numbers, every
+//! figure is drawn, the HTML needs nothing from another origin, an infeasible scenario
+//! says why, and the same inputs give the same report.
+
+use ridelab::analysis::{report, ModelKind};
+use ridelab::report::{build, MethodReport, ReportInputs, SECTIONS};
+use ridelab::road::{Road, RoadClass};
+use ridelab::{Car, Evaluator, HiFi};
+use std::sync::OnceLock;
+
+/// The default report (the datum sedan on a class B road), built once for these tests.
+fn sedan() -> &'static MethodReport {
+    static R: OnceLock<MethodReport> = OnceLock::new();
+    R.get_or_init(|| {
+        let mut sections = Vec::new();
+        let r = build(&ReportInputs::new(Car::datum(), Road::default()), |k| {
+            sections.push(k)
+        })
+        .expect("the default report builds");
+        // Progress is reported for every section in order, then once at the end.
+        assert_eq!(sections, (0..=SECTIONS.len()).collect::<Vec<_>>());
+        r
+    })
+}
+
+/// The SUV on a class C road: the 7 mm SWS limit is out of reach in the whole box.
+fn suv_on_class_c() -> ReportInputs {
+    let road = Road {
+        class: RoadClass::C,
+        ..Road::default()
+    };
+    ReportInputs::new(Car::preset("suv").expect("preset"), road)
+}
+
+fn relative(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs().max(1e-300)
+}
+
+/// Section 1's tables are the library's criteria: every exact route agrees with the
+/// library's own report to 1e-10 (they are independent computations), the quadrature of
+/// the frequency integration to 1e-8, and the
+/// 100 s time-domain record agrees to its statistical error (5 %).
+#[test]
+fn verification_tables_are_the_library_numbers() {
+    let r = sedan();
+    let car = Car::datum();
+    let road = Road::default();
+    for (kind, rows) in [
+        (ModelKind::Quarter, &r.verification.lofi),
+        (ModelKind::Full, &r.verification.hifi),
+    ] {
+        let lib = report(kind, &car, &road).unwrap();
+        assert!(rows.len() >= 3, "{kind:?}: {} routes", rows.len());
+        for row in rows {
+            let tol = if row.route.starts_with("time domain") {
+                0.05
+            } else if row.route.starts_with("frequency integration") {
+                1e-8
+            } else {
+                1e-10
+            };
+            for (name, got, want) in [
+                ("BAcc", row.criteria.bacc, lib.bacc),
+                ("DTL", row.criteria.dtl, lib.dtl),
+                ("SWS", row.criteria.sws, lib.sws),
+            ] {
+                assert!(
+                    relative(got, want) <= tol,
+                    "{kind:?} {} {name}: {got} vs {want} (tol {tol})",
+                    row.route
+                );
+            }
+        }
+        assert!(rows.iter().any(|r| r.route.starts_with("time domain")));
+    }
+}
+
+/// The before/after table: the datum row is the car's own design; every HiFi row is the
+/// HiFi evaluated at that design, as a change against the HiFi datum, to 1e-10.
+#[test]
+fn pick_table_rows_are_hifi_evaluations_against_the_datum() {
+    let r = sedan();
+    let car = Car::datum();
+    let hifi = HiFi::new(&car, &Road::default()).unwrap();
+    let datum = hifi.evaluate(car.front.spring, car.front.damper).unwrap();
+    let table = &r.optimisation.table;
+    assert!(r.optimisation.infeasible.is_none());
+    assert_eq!(table[0].design, "datum");
+    assert_eq!(
+        (table[0].ks, table[0].cs),
+        (car.front.spring, car.front.damper)
+    );
+    let hifi_rows: Vec<_> = table
+        .iter()
+        .filter(|p| p.design.contains("HiFi") || p.design == "datum")
+        .collect();
+    // The datum, two re-checked surrogate picks and the HiFi front's own pick.
+    assert_eq!(hifi_rows.len(), 4, "{table:?}");
+    for p in hifi_rows {
+        let c = hifi.evaluate(p.ks, p.cs).unwrap();
+        let bacc = 100.0 * (c.bacc / datum.bacc - 1.0);
+        let dtl = 100.0 * (c.dtl / datum.dtl - 1.0);
+        assert!((p.bacc_percent - bacc).abs() < 1e-10, "{}: BAcc", p.design);
+        assert!((p.dtl_percent - dtl).abs() < 1e-10, "{}: DTL", p.design);
+        assert!(relative(p.sws, c.sws) < 1e-10, "{}: SWS", p.design);
+        // Every pick meets the 7 mm limit on the model that picked it or re-checked it
+        // (the re-check may break it by the surrogate's error; allow 2 %).
+        assert!(p.sws <= 0.007 * 1.02, "{}: SWS {} m", p.design, p.sws);
+    }
+    // The HiFi front's pick is a trade-off: better comfort than the datum.
+    let own = table
+        .iter()
+        .find(|p| p.design.starts_with("HiFi STM"))
+        .unwrap();
+    assert!(own.bacc_percent < 0.0, "{own:?}");
+}
+
+/// Every figure is an SVG with drawing in it, each key once, each inlined in the HTML and
+/// linked from the Markdown; the HTML loads nothing from anywhere.
+#[test]
+fn every_figure_is_drawn_and_the_html_is_self_contained() {
+    let docs = sedan().documents().unwrap();
+    assert_eq!(docs.figures.len(), 17);
+    let mut keys: Vec<&str> = docs.figures.iter().map(|f| f.key.as_str()).collect();
+    keys.sort();
+    keys.dedup();
+    assert_eq!(keys.len(), docs.figures.len(), "keys are unique");
+    for f in &docs.figures {
+        assert!(f.svg.starts_with("<svg"), "{}", f.key);
+        assert!(f.svg.contains("viewBox="), "{}", f.key);
+        let marks = ["<polyline", "<path", "<rect", "<circle", "<line"]
+            .iter()
+            .map(|m| f.svg.matches(m).count())
+            .sum::<usize>();
+        assert!(marks >= 20, "{}: {marks} marks", f.key);
+        assert!(!f.caption.is_empty(), "{}", f.key);
+        assert!(
+            docs.html.contains(&format!("<figure id=\"{}\">", f.key)),
+            "{}",
+            f.key
+        );
+        assert!(
+            docs.markdown.contains(&format!("(figures/{}.svg)", f.key)),
+            "{}",
+            f.key
+        );
+    }
+    let html = &docs.html;
+    for banned in [
+        "<script", "<link", "<img", "<iframe", " src=", "@import", "url(",
+    ] {
+        assert!(!html.contains(banned), "HTML contains {banned}");
+    }
+    // The only URLs are the SVG namespace (a name, never fetched).
+    let urls = html.matches("http").count();
+    let namespaces = html.matches("http://www.w3.org/2000/svg").count();
+    assert_eq!(urls, namespaces, "URLs other than the SVG namespace");
+    assert!(html.contains("<h2>5 Pareto fronts and the min-max pick</h2>"));
+}
+
+/// An infeasible scenario builds and says why: the field, the limit and the smallest SWS
+/// in the box, which is the HiFi's at the stiffest, most damped corner within 3 %; no
+/// fronts are drawn. The same inputs give the same report, byte for byte.
+#[test]
+fn an_infeasible_scenario_says_why_and_reports_are_deterministic() {
+    let inputs = suv_on_class_c();
+    let r = build(&inputs, |_| {}).unwrap();
+    let why = r.optimisation.infeasible.as_deref().expect("infeasible");
+    assert!(why.starts_with("sws_limit: "), "{why}");
+    assert!(why.contains("7.0 mm"), "{why}");
+    let smallest: f64 = why
+        .split("smallest SWS ")
+        .nth(1)
+        .and_then(|s| s.split(' ').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no smallest SWS in '{why}'"));
+    let b = inputs.design_box;
+    let corner = HiFi::new(&inputs.car, &inputs.road)
+        .unwrap()
+        .evaluate(b.ks_max, b.cs_max)
+        .unwrap();
+    assert!(corner.sws > 0.007);
+    assert!(
+        relative(smallest / 1000.0, corner.sws) < 0.03,
+        "{smallest} mm vs {}",
+        corner.sws
+    );
+    assert!(r.optimisation.table.is_empty());
+    let docs = r.documents().unwrap();
+    assert!(docs.figures.iter().all(|f| !f.key.starts_with("front")));
+    assert!(docs.markdown.contains(why));
+    let again = build(&inputs, |_| {}).unwrap();
+    assert_eq!(
+        serde_json::to_string(&r).unwrap(),
+        serde_json::to_string(&again).unwrap()
+    );
+    assert_eq!(docs.html, again.documents().unwrap().html);
+}
+
+/// The page's "Download report" is the same report: the explorer session's study report
+/// of a view equals `build` on that view's car, road, box, objectives and surrogate.
+#[test]
+fn the_page_session_builds_the_same_report() {
+    use ridelab::explorer::{Session, State};
+    let state = State {
+        car: "suv".into(),
+        class: "C".into(),
+        ..State::default()
+    };
+    let session = Session::new(state).unwrap();
+    let page = session.study_report().unwrap();
+    let s = session.scenario();
+    let inputs = ReportInputs {
+        surrogate: Some((s.surrogate, s.plan)),
+        ..suv_on_class_c()
+    };
+    let lib = build(&inputs, |_| {}).unwrap();
+    assert_eq!(
+        serde_json::to_string(&page).unwrap(),
+        serde_json::to_string(&lib).unwrap()
+    );
+    assert!(page.optimisation.infeasible.is_some());
+}
