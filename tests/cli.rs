@@ -386,6 +386,130 @@ fn optimize_json_equals_the_library() {
     }
 }
 
+/// `--plan ae:5 --adaptive 2` (issue #15): the CLI's JSON is the library's loop; the
+/// samples come in the order added (the plan's five, then the two adaptive runs, each
+/// with its reason), each holds the HiFi's criteria at its design, and the optimisation
+/// runs on the surrogate refitted here to exactly those samples.
+#[test]
+fn adaptive_json_equals_the_library_and_lists_the_samples_in_order() {
+    use ridelab::surrogate::adaptive::{self, AdaptiveOptions};
+    let (car, road, b) = (Car::datum(), Road::default(), ridelab::DesignBox::default());
+    let hifi = HiFi::new(&car, &road).unwrap();
+    let options = AdaptiveOptions {
+        runs: 2,
+        candidates: 11,
+        ..AdaptiveOptions::default()
+    };
+    let spec = SurrogateSpec::parse("gp-mul").unwrap();
+    let ae5 = PlanSpec::AudzeEglais(5);
+    // ridelab surrogate
+    let v = json(&[
+        "surrogate",
+        "--approach",
+        "gp-mul",
+        "--plan",
+        "ae:5",
+        "--adaptive",
+        "2",
+        "--candidates",
+        "11",
+        "--predict",
+        "grid:4",
+    ]);
+    let lib = adaptive::surrogate_report(spec, ae5, &car, &road, &b, Some(4), options).unwrap();
+    assert_same_json(&v, &to_json(&lib), "surrogate --adaptive");
+    let samples = v["samples"].as_array().unwrap();
+    assert_eq!(samples.len(), 7);
+    let initial = sample_plan(&hifi, &ae5.plan().unwrap(), &b).unwrap();
+    assert_same_json(
+        &Value::Array(samples[..5].to_vec()),
+        &to_json(&initial),
+        "plan",
+    );
+    let added = v["adaptive"]["added"].as_array().unwrap();
+    assert_eq!(added.len(), 2);
+    for (i, a) in added.iter().enumerate() {
+        assert_eq!(a["run"], 6 + i);
+        assert_same_json(&a["sample"], &samples[5 + i], "added sample");
+        assert!(a["reason"]
+            .as_str()
+            .unwrap()
+            .starts_with("largest expected hypervolume improvement"));
+        let (ks, cs) = (
+            a["sample"]["ks"].as_f64().unwrap(),
+            a["sample"]["cs"].as_f64().unwrap(),
+        );
+        let c = hifi.evaluate(ks, cs).unwrap();
+        assert_same_json(&a["sample"]["hifi"], &to_json(&c), "added HiFi");
+    }
+    // 7 samples, the 4 x 4 validation grid and the datum (the SWS limit's context).
+    assert_eq!(v["hifi_evaluations"], 7 + 16 + 1);
+    assert_eq!(v["uncertainty"][0]["method"], "model");
+    assert_eq!(v["uncertainty"][1]["method"], "loo");
+    // ridelab optimize
+    let v = json(&[
+        "optimize",
+        "--json",
+        "--evaluator",
+        "gp-mul",
+        "--plan",
+        "ae:5",
+        "--adaptive",
+        "2",
+        "--candidates",
+        "11",
+        "--grid",
+        "41",
+    ]);
+    let method = Method::Stm(StmParams {
+        grid: 41,
+        ..StmParams::default()
+    });
+    let lib = adaptive::optimize_report(
+        &car,
+        &road,
+        &b,
+        "gp-mul".parse().unwrap(),
+        ae5,
+        &method,
+        DesignObjectives::default(),
+        options,
+    )
+    .unwrap();
+    assert_same_json(&v, &to_json(&lib), "optimize --adaptive");
+    let mut samples = initial;
+    for a in &lib.adaptive.added {
+        samples.push(a.sample);
+    }
+    let setting = Setting::new(&car, &road, &b).unwrap();
+    let model = spec.fit(&setting, &samples, &LmOptions::default()).unwrap();
+    let datum = hifi.evaluate(car.front.spring, car.front.damper).unwrap();
+    let ctx = DosContext::new(&car, datum);
+    let problem = SuspensionProblem::new(model, b, DesignObjectives::default(), ctx).unwrap();
+    let study = run_study(&problem, &method, None).unwrap();
+    assert_same_json(&v["front"], &to_json(&study.front), "front on the refit");
+    assert_same_json(&v["pick"], &to_json(&study.pick), "pick on the refit");
+    let check = recheck(&study.pick, &hifi, &datum).unwrap();
+    assert_same_json(&v["hifi_recheck"], &to_json(&check), "re-check");
+    // Text output names each added run.
+    let (code, text, err) = ridelab(&[
+        "optimize",
+        "--evaluator",
+        "gp-mul",
+        "--plan",
+        "ae:5",
+        "--adaptive",
+        "2",
+        "--candidates",
+        "11",
+        "--grid",
+        "41",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(text.contains("adaptive: ae:5 + 2 HiFi runs (ehvi-front, model uncertainty)"));
+    assert!(text.contains("  run   7: Ks "), "{text}");
+}
+
 #[test]
 fn simulate_json_and_csv_equal_the_library() {
     // The linear model only (no --bump/--rebound): the time-domain record and its RMS.
@@ -604,6 +728,105 @@ fn bad_input_is_one_line_naming_the_option_with_exit_code_2() {
         (
             &["surrogate", "--approach", "vba-qts", "--predict", "grid:x"],
             "predict",
+        ),
+        // The adaptive loop (issue #15): ae:10 + 91 exceeds the 100 HiFi runs allowed.
+        (
+            &["surrogate", "--approach", "gp-mul", "--adaptive", "91"],
+            "adaptive",
+        ),
+        (
+            &["surrogate", "--approach", "gp-mul", "--adaptive", "x"],
+            "adaptive",
+        ),
+        (
+            &["surrogate", "--approach", "gp-mul", "--infill", "ehvi"],
+            "adaptive",
+        ),
+        (
+            &[
+                "surrogate",
+                "--approach",
+                "gp-mul",
+                "--adaptive",
+                "1",
+                "--infill",
+                "best",
+            ],
+            "infill",
+        ),
+        (
+            &[
+                "surrogate",
+                "--approach",
+                "gp-mul",
+                "--adaptive",
+                "1",
+                "--uncertainty",
+                "sure",
+            ],
+            "uncertainty",
+        ),
+        (
+            &[
+                "surrogate",
+                "--approach",
+                "vba-qts",
+                "--adaptive",
+                "1",
+                "--uncertainty",
+                "model",
+            ],
+            "uncertainty",
+        ),
+        (
+            &[
+                "surrogate",
+                "--approach",
+                "gp-mul",
+                "--adaptive",
+                "1",
+                "--candidates",
+                "202",
+            ],
+            "candidates",
+        ),
+        (
+            &[
+                "surrogate",
+                "--approach",
+                "gp-mul",
+                "--adaptive",
+                "1",
+                "--min-distance",
+                "0",
+            ],
+            "min-distance",
+        ),
+        (
+            &["optimize", "--evaluator", "full", "--adaptive", "2"],
+            "adaptive",
+        ),
+        (
+            &[
+                "optimize",
+                "--evaluator",
+                "gp-mul",
+                "--plan",
+                "ae:1",
+                "--adaptive",
+                "2",
+            ],
+            "plan",
+        ),
+        (&["study", "--adaptive", "nonsense"], "adaptive"),
+        (&["study", "--initial", "3"], "adaptive"),
+        (
+            &["study", "--adaptive", "gp-mul", "--max-runs", "101"],
+            "max-runs",
+        ),
+        (
+            &["study", "--adaptive", "gp-mul", "--min-runs", "5"],
+            "min-runs",
         ),
         (&["study", "--class", "Z"], "class"),
         (&["study", "--tracks", "both"], "tracks"),

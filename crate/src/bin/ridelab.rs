@@ -20,6 +20,11 @@ use ridelab::optimize::{
 };
 use ridelab::report::{build, ReportInputs, SECTIONS};
 use ridelab::road::{Road, RoadClass, Tracks};
+use ridelab::surrogate::adaptive::{
+    self, adaptive_study, AdaptiveOptions, StudyOptions, DEFAULT_CANDIDATES, DEFAULT_MIN_DISTANCE,
+};
+use ridelab::surrogate::infill::Infill;
+use ridelab::surrogate::uncertainty::UncertaintyMethod;
 use ridelab::surrogate::{study, surrogate_report_in, PlanSpec, SurrogateSpec};
 use ridelab::time_domain::{simulate, Damper, Knee, TimeOptions, TimeResponse};
 use std::path::{Path, PathBuf};
@@ -132,6 +137,8 @@ struct OptimizeArgs {
     #[arg(long, default_value_t = Nsga2Params::default().seed, value_parser = count_u64, allow_negative_numbers = true)]
     seed: u64,
     #[command(flatten)]
+    adaptive: AdaptiveArgs,
+    #[command(flatten)]
     car: CarRoad,
     #[arg(long)]
     json: bool,
@@ -208,13 +215,72 @@ struct SurrogateArgs {
     #[arg(long, value_name = "grid:N", value_parser = predict_grid)]
     predict: Option<usize>,
     #[command(flatten)]
+    adaptive: AdaptiveArgs,
+    #[command(flatten)]
     car: CarRoad,
     #[arg(long)]
     json: bool,
 }
 
+/// The adaptive loop after the plan (issue #15): `--plan ae:5 --adaptive 5` is 10 HiFi
+/// runs, the last 5 placed one at a time by the infill criterion.
+#[derive(Args)]
+struct AdaptiveArgs {
+    /// HiFi runs added one at a time after the plan (plan + runs <= 100).
+    #[arg(long, value_name = "K", value_parser = count)]
+    adaptive: Option<usize>,
+    /// Infill criterion: ehvi-front (expected hypervolume improvement of the surrogate's
+    /// predicted front x probability of meeting the SWS limit) or ehvi (of the feasible
+    /// HiFi samples' front) [default: ehvi-front].
+    #[arg(long, requires = "adaptive")]
+    infill: Option<Infill>,
+    /// Uncertainty estimate: model (gp-mul's own variance) or loo (leave-one-out, any
+    /// surrogate) [default: model for gp-mul, else loo].
+    #[arg(long, requires = "adaptive")]
+    uncertainty: Option<UncertaintyMethod>,
+    /// Candidate grid of the infill, points per axis, 2..201 [default: 41].
+    #[arg(long, value_parser = count, requires = "adaptive")]
+    candidates: Option<usize>,
+    /// Smallest normalised distance of a new run to every sample, (0, 0.5] [default: 0.02].
+    #[arg(long, value_name = "D", value_parser = number, allow_negative_numbers = true, requires = "adaptive")]
+    min_distance: Option<f64>,
+}
+
+impl AdaptiveArgs {
+    /// The loop's options, `None` without `--adaptive`.
+    fn options(&self) -> Option<AdaptiveOptions> {
+        let d = AdaptiveOptions::default();
+        self.adaptive.map(|runs| AdaptiveOptions {
+            runs,
+            criterion: self.infill.unwrap_or(d.criterion),
+            uncertainty: self.uncertainty,
+            candidates: self.candidates.unwrap_or(DEFAULT_CANDIDATES),
+            min_distance: self.min_distance.unwrap_or(DEFAULT_MIN_DISTANCE),
+            ..d
+        })
+    }
+}
+
 #[derive(Args)]
 struct StudyArgs {
+    /// The adaptive study of this surrogate instead of the fidelity study: for every
+    /// total of HiFi runs, Audze-Eglais + adaptive runs against an Audze-Eglais plan of
+    /// that size, judged on the HiFi.
+    #[arg(long, value_name = "SURROGATE")]
+    adaptive: Option<SurrogateSpec>,
+    /// Audze-Eglais points of the adaptive study's initial plan, 2.. [default: 5].
+    #[arg(long, value_parser = count, requires = "adaptive")]
+    initial: Option<usize>,
+    /// Smallest total of HiFi runs of the adaptive study [default: 6].
+    #[arg(long, value_parser = count, requires = "adaptive")]
+    min_runs: Option<usize>,
+    /// Largest total of HiFi runs of the adaptive study, ..100 [default: 20].
+    #[arg(long, value_parser = count, requires = "adaptive")]
+    max_runs: Option<usize>,
+    /// STM grid points per variable of every front of the adaptive study (the HiFi's own
+    /// included), 2..2001 [default: 201].
+    #[arg(long, value_parser = count, requires = "adaptive")]
+    grid: Option<usize>,
     #[command(flatten)]
     car: CarRoad,
     #[arg(long)]
@@ -601,15 +667,34 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
             ..Nsga2Params::default()
         })
     };
-    let mut out = optimize_report(
-        &car,
-        &road,
-        &DesignBox::default(),
-        a.evaluator,
-        a.plan,
-        &method,
-        objectives,
-    )?;
+    let design_box = DesignBox::default();
+    let (mut out, looped) = match a.adaptive.options() {
+        None => (
+            optimize_report(
+                &car,
+                &road,
+                &design_box,
+                a.evaluator,
+                a.plan,
+                &method,
+                objectives,
+            )?,
+            None,
+        ),
+        Some(options) => {
+            let r = adaptive::optimize_report(
+                &car,
+                &road,
+                &design_box,
+                a.evaluator,
+                a.plan,
+                &method,
+                objectives,
+                options,
+            )?;
+            (r.optimize, Some(r.adaptive))
+        }
+    };
     if a.pick != PickRule::MinMax {
         out.repick(a.pick, &car, &road)?;
     }
@@ -623,10 +708,38 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
             ))?,
         )?;
     }
+    if let Some(looped) = looped {
+        let report = adaptive::AdaptiveOptimizeReport {
+            optimize: out,
+            adaptive: looped,
+        };
+        if a.json {
+            return json(&report);
+        }
+        return Ok(optimize_text(&report.optimize) + &adaptive_text(&report.adaptive));
+    }
     if a.json {
         return json(&out);
     }
     Ok(optimize_text(&out))
+}
+
+/// The loop's added runs, one line each.
+fn adaptive_text(r: &adaptive::AdaptiveReport) -> String {
+    let mut s = format!(
+        "adaptive: {} + {} HiFi runs ({}, {} uncertainty)\n",
+        r.plan,
+        r.added.len(),
+        r.options.criterion.name(),
+        r.uncertainty.name()
+    );
+    for a in &r.added {
+        s += &format!(
+            "  run {:>3}: Ks {:.1} N/m, Cs {:.1} N s/m: {}\n",
+            a.run, a.sample.ks, a.sample.cs, a.reason
+        );
+    }
+    s
 }
 
 fn optimize_text(out: &OptimizeReport) -> String {
@@ -798,14 +911,19 @@ fn map_cmd(a: MapArgs) -> Result<String> {
 
 fn surrogate_cmd(a: SurrogateArgs) -> Result<String> {
     let (car, road) = car_and_road(&a.car)?;
-    let r = surrogate_report_in(
-        a.approach,
-        a.plan,
-        &car,
-        &road,
-        &DesignBox::default(),
-        a.predict,
-    )
+    let design_box = DesignBox::default();
+    let r = match a.adaptive.options() {
+        None => surrogate_report_in(a.approach, a.plan, &car, &road, &design_box, a.predict),
+        Some(options) => adaptive::surrogate_report(
+            a.approach,
+            a.plan,
+            &car,
+            &road,
+            &design_box,
+            a.predict,
+            options,
+        ),
+    }
     .map_err(|e| match e {
         RideError::Field { field, reason } if field == "predict-grid" => {
             RideError::field("predict", reason)
@@ -817,6 +935,28 @@ fn surrogate_cmd(a: SurrogateArgs) -> Result<String> {
 
 fn study_cmd(a: StudyArgs) -> Result<String> {
     let (car, road) = car_and_road(&a.car)?;
+    if let Some(spec) = a.adaptive {
+        let d = StudyOptions::default();
+        let options = StudyOptions {
+            initial: a.initial.unwrap_or(d.initial),
+            min_runs: a.min_runs.unwrap_or(d.min_runs),
+            max_runs: a.max_runs.unwrap_or(d.max_runs),
+            stm: StmParams {
+                grid: a.grid.unwrap_or(d.stm.grid),
+                ..d.stm.clone()
+            },
+            ..d
+        };
+        let r = adaptive_study(&car, &road, spec, &options).map_err(|e| match e {
+            RideError::Field { field, reason } => RideError::field(field.replace('_', "-"), reason),
+            other => other,
+        })?;
+        return if a.markdown {
+            Ok(r.to_markdown())
+        } else {
+            json(&r)
+        };
+    }
     let r = study(&car, &road)?;
     if a.markdown {
         Ok(r.to_markdown())

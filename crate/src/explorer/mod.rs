@@ -4,6 +4,7 @@
 //! maps of any model, fronts with their HiFi re-check, spectra and time responses.
 //! Everything here builds and is tested natively.
 
+pub mod adaptive;
 pub mod fields;
 pub mod maps;
 pub mod session;
@@ -13,6 +14,7 @@ pub mod surrogate;
 #[cfg(test)]
 mod tests;
 
+pub use adaptive::{PageLoop, PageStep};
 pub use fields::ui_field;
 pub use maps::{MapModel, ModelMap};
 pub use session::{EvaluatorKind, Session};

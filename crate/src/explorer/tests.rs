@@ -306,6 +306,66 @@ fn surrogate_spectra_carry_the_surrogate_rms() {
     }
 }
 
+/// The page's "next HiFi run" is the CLI's loop: two steps from the state's gp-mul on
+/// `ae:5` give the samples, reasons and history of `adaptive::run` with the default
+/// decision (`ridelab surrogate --approach gp-mul --plan ae:5 --adaptive 2`), exactly; each
+/// step's re-check is the pick re-run on the HiFi, and the uncertainty map is the estimate
+/// at the cell centres in the maps' layout.
+#[test]
+fn the_pages_adaptive_loop_is_the_clis() {
+    use crate::surrogate::adaptive::{run, AdaptiveOptions, Decision};
+    use crate::surrogate::{PlanSpec, Setting, SurrogateSpec};
+    let s = session(|s| {
+        s.surrogate = Some("gp-mul".into());
+        s.plan = Some("ae:5".into());
+    });
+    let sc = s.scenario();
+    // `runs` is only recorded by the page's loop (the page steps), as the CLI's.
+    let options = AdaptiveOptions {
+        runs: 2,
+        candidates: 11,
+        ..AdaptiveOptions::default()
+    };
+    let mut page = PageLoop::new(sc, options).unwrap();
+    let hifi = sc.hifi().unwrap();
+    let mut steps = Vec::new();
+    for _ in 0..2 {
+        let p = page.propose().unwrap();
+        let st = page.step().unwrap();
+        assert_eq!(st.added.candidate, p.candidate);
+        let c = hifi.evaluate(st.step.pick.ks, st.step.pick.cs).unwrap();
+        assert_eq!(st.recheck.rechecked, c);
+        steps.push(st);
+    }
+    let setting = Setting::new(&sc.datum, &sc.road, &sc.dbox).unwrap();
+    let cli = run(
+        SurrogateSpec::parse("gp-mul").unwrap(),
+        &setting,
+        &hifi,
+        PlanSpec::AudzeEglais(5),
+        &Decision::of_car(&sc.datum, &hifi).unwrap(),
+        options,
+    )
+    .unwrap();
+    assert_eq!(page.report(), cli.report());
+    assert_eq!(page.front(), cli.front());
+    assert_eq!(steps[1].step, cli.report().history[2]);
+    let (nx, ny) = (5, 4);
+    let map = page.uncertainty_map(nx, ny).unwrap();
+    let grid = crate::maps::Grid::cells(&sc.dbox, nx, ny).unwrap();
+    for j in 0..ny {
+        for i in 0..nx {
+            let (ks, cs) = grid.point(i, j);
+            let want = cli.uncertain().relative_std(ks, cs).unwrap();
+            for k in 0..3 {
+                assert_eq!(map[k * nx * ny + j * nx + i], 100.0 * want[k]);
+            }
+        }
+    }
+    let e = page.uncertainty_map(1, 4).unwrap_err().to_string();
+    assert!(e.starts_with("nx: "), "{e}");
+}
+
 /// The page's list of state keys (unknown keys are refused against it) is exactly the
 /// keys a state serialises to, every optional field set.
 #[test]

@@ -107,9 +107,22 @@ pub fn optimize_report(
     objectives: DesignObjectives,
 ) -> Result<OptimizeReport> {
     objectives.validate()?;
+    let model = evaluator.build(car, road, design_box, plan)?;
+    optimize_model(car, road, design_box, model, method, objectives)
+}
+
+/// [`optimize_report`] on an evaluator built already (the adaptive loop's surrogate).
+pub fn optimize_model(
+    car: &Car,
+    road: &Road,
+    design_box: &DesignBox,
+    model: Box<dyn Evaluator + Sync>,
+    method: &Method,
+    objectives: DesignObjectives,
+) -> Result<OptimizeReport> {
+    objectives.validate()?;
     let hifi = HiFi::new(car, road)?;
     let datum = hifi.evaluate(car.front.spring, car.front.damper)?;
-    let model = evaluator.build(car, road, design_box, plan)?;
     let problem =
         SuspensionProblem::new(model, *design_box, objectives, DosContext::new(car, datum))?;
     let study = run_study(&problem, method, None)?;

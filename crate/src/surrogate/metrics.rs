@@ -143,6 +143,53 @@ impl ErrorMap {
     }
 }
 
+/// Pearson's correlation `sum (x_i - mean x)(y_i - mean y) / sqrt(sum (x_i - mean x)^2 sum (y_i - mean y)^2)`
+/// of two equally long sets; `None` when they differ in length, hold fewer than 2 values,
+/// a non-finite value, or one of them has no spread.
+pub fn pearson(x: &[f64], y: &[f64]) -> Option<f64> {
+    if x.len() != y.len() || x.len() < 2 || !x.iter().chain(y).all(|v| v.is_finite()) {
+        return None;
+    }
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
+    for (a, b) in x.iter().zip(y) {
+        sxy += (a - mx) * (b - my);
+        sxx += (a - mx) * (a - mx);
+        syy += (b - my) * (b - my);
+    }
+    (sxx > 0.0 && syy > 0.0).then(|| sxy / (sxx * syy).sqrt())
+}
+
+/// Spearman's rank correlation: Pearson's correlation of the ranks, tied values sharing
+/// their mean rank; `None` as for [`pearson`].
+pub fn spearman(x: &[f64], y: &[f64]) -> Option<f64> {
+    if x.len() != y.len() || !x.iter().chain(y).all(|v| v.is_finite()) {
+        return None;
+    }
+    pearson(&ranks(x), &ranks(y))
+}
+
+/// Ranks `1..=n` of `x` (finite values), ties given the mean of their ranks.
+fn ranks(x: &[f64]) -> Vec<f64> {
+    let mut order: Vec<usize> = (0..x.len()).collect();
+    order.sort_by(|&a, &b| x[a].total_cmp(&x[b]));
+    let mut rank = vec![0.0; x.len()];
+    let mut i = 0;
+    while i < order.len() {
+        let mut j = i;
+        while j + 1 < order.len() && x[order[j + 1]] == x[order[i]] {
+            j += 1;
+        }
+        // positions i..=j (0-based) share the mean rank (i + j) / 2 + 1
+        for &k in &order[i..=j] {
+            rank[k] = (i + j) as f64 / 2.0 + 1.0;
+        }
+        i = j + 1;
+    }
+    rank
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -191,5 +238,25 @@ mod tests {
         assert!((map.relative_error.bacc[0] - 10.0).abs() < 1e-12);
         assert!((map.relative_error.dtl[1] + 5.0).abs() < 1e-12);
         assert!((map.relative_error.sws[0] + 10.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn correlations_by_hand() {
+        // x = [1, 2, 3, 4], y = [2, 1, 4, 3]: means 2.5; deviations (-1.5, -0.5, 0.5, 1.5)
+        // and (-0.5, -1.5, 1.5, 0.5); Sxy = 0.75 + 0.75 + 0.75 + 0.75 = 3, Sxx = Syy = 5,
+        // r = 0.6. The values are their own ranks, so Spearman is 0.6 too.
+        let (x, y) = ([1.0, 2.0, 3.0, 4.0], [2.0, 1.0, 4.0, 3.0]);
+        assert!((pearson(&x, &y).unwrap() - 0.6).abs() < 1e-12);
+        assert!((spearman(&x, &y).unwrap() - 0.6).abs() < 1e-12);
+        // A monotone but nonlinear y: Spearman 1, Pearson below 1.
+        let y3 = [1.0, 8.0, 27.0, 1000.0];
+        assert!((spearman(&x, &y3).unwrap() - 1.0).abs() < 1e-12);
+        assert!(pearson(&x, &y3).unwrap() < 0.9);
+        // Ties share their mean rank: [1, 1, 2] -> [1.5, 1.5, 3].
+        assert_eq!(ranks(&[1.0, 1.0, 2.0]), vec![1.5, 1.5, 3.0]);
+        assert_eq!(ranks(&[3.0, 1.0, 3.0, 2.0]), vec![3.5, 1.0, 3.5, 2.0]);
+        assert!(pearson(&[1.0, 1.0], &[1.0, 2.0]).is_none());
+        assert!(pearson(&[1.0], &[1.0]).is_none());
+        assert!(spearman(&[1.0, f64::NAN], &[1.0, 2.0]).is_none());
     }
 }

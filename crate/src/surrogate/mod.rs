@@ -12,6 +12,13 @@
 //! - **VBA** ([`vba`]): `S = f~(tau(x))`, a per-variable transform of the design.
 //! - **PBA** ([`pba`]): `S = f~(x; p(a))`, scaled LoFi masses (and tyre rate).
 //! - **Data fits** ([`datafit`]): quadratic response surface or RBF on the HiFi samples alone.
+//! - **GP correction** ([`gp`]): `S = f~(x) exp(g(x))`, `g` a Kriging model ([`kriging`]) of
+//!   `ln(F / f~)` with its own predictive variance.
+//!
+//! Every surrogate has an uncertainty estimate over the box ([`uncertainty`]: leave-one-out
+//! errors spread by a Kriging-variance shape, or the GP's own variance); [`infill`] picks
+//! the next HiFi run for the decision (expected hypervolume improvement of the feasible
+//! front) and [`adaptive`] runs the loop and compares it with fixed Audze-Eglais plans.
 //!
 //! VBA and PBA fit their tuning by Levenberg-Marquardt on relative errors ([`fit`]);
 //! [`metrics`] scores a surrogate on a validation grid and [`study`] runs every approach,
@@ -20,8 +27,12 @@
 //! Coordinates: `u = (ks - ks_min) / (ks_max - ks_min)`, `v = (cs - cs_min) / (cs_max - cs_min)`
 //! ([`DesignBox::normalize`]); criteria index `k`: 0 BAcc (m/s^2), 1 DTL (N), 2 SWS (m).
 
+pub mod adaptive;
 pub mod datafit;
 pub mod fit;
+pub mod gp;
+pub mod infill;
+pub mod kriging;
 pub mod metrics;
 pub mod pba;
 pub mod rba;
@@ -29,10 +40,12 @@ pub mod response;
 pub mod spec;
 pub mod study;
 mod tuned;
+pub mod uncertainty;
 pub mod vba;
 
 pub use datafit::{DataFit, DataFitParams};
 pub use fit::{FitDiagnostics, LmOptions, Tuning};
+pub use gp::{Gp, GpParams};
 pub use metrics::{ByCriterion, ErrorMap, Metrics};
 pub use pba::{PbaParams, Scaling};
 pub use rba::{Form, Rba, RbaParams};
@@ -171,6 +184,14 @@ pub trait Surrogate: Evaluator + Send + Sync {
     /// (the same car three times in the shared scheme); `None` when the surrogate has no
     /// physical model (RBA corrects outputs, data fits have no model).
     fn tuned_quarters(&self, _ks: f64, _cs: f64) -> Result<Option<[QuarterCar; 3]>> {
+        Ok(None)
+    }
+
+    /// The surrogate's own predictive standard deviation of the relative error
+    /// `S_k / F_k - 1` of each criterion `[bacc, dtl, sws]` at `(ks, cs)`, -; `None` when it
+    /// has none (only the GP correction has one; [`uncertainty`] estimates one for every
+    /// surrogate by leave-one-out).
+    fn relative_std(&self, _ks: f64, _cs: f64) -> Result<Option<[f64; 3]>> {
         Ok(None)
     }
 }

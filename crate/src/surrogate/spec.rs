@@ -2,7 +2,8 @@
 //! dispatch from a parsed name to the fit.
 //!
 //! Surrogates: `rba-{mul|add}-{poly1|poly2|rbf-gauss|rbf-mq|rbf-tps}`, `vba-{lts|mts|qts}`,
-//! `pba-{smts|umts|kt, joined in that order}`, `data-{quad|lin|rbf-gauss|rbf-mq|rbf-tps}`;
+//! `pba-{smts|umts|kt, joined in that order}`, `data-{quad|lin|rbf-gauss|rbf-mq|rbf-tps}`,
+//! `gp-mul` (the Gaussian-process correction, one model per criterion);
 //! `rbf` alone means `rbf-gauss`. A `-per-criterion` suffix asks for one tuning per
 //! criterion; without it the tuning is shared where the approach allows (VBA, PBA and the
 //! multiplicative polynomial RBA), and per criterion otherwise.
@@ -10,6 +11,7 @@
 
 use super::datafit::DataFitParams;
 use super::fit::LmOptions;
+use super::gp::GpParams;
 use super::pba::{PbaParams, Scaling};
 use super::rba::{Form, RbaParams};
 use super::response::{Kernel, ResponseKind};
@@ -42,6 +44,9 @@ pub enum Approach {
     Pba(Scaling),
     /// Data fit on the HiFi samples alone (baseline).
     Data(ResponseKind),
+    /// Gaussian-process correction `S = f~ exp(g)`, `g` Kriging of `ln(F / f~)`
+    /// ([`super::gp`]), with its own predictive variance.
+    Gp,
 }
 
 impl Approach {
@@ -62,6 +67,7 @@ impl Approach {
         all.extend(Transform::ALL.iter().map(|&(t, _)| Approach::Vba(t)));
         all.extend(Scaling::all().into_iter().map(Approach::Pba));
         all.extend(responses.iter().map(|&r| Approach::Data(r)));
+        all.push(Approach::Gp);
         all
     }
 
@@ -70,7 +76,7 @@ impl Approach {
         match self {
             Approach::Rba { form, response } => form.shareable(response),
             Approach::Vba(_) | Approach::Pba(_) => true,
-            Approach::Data(_) => false,
+            Approach::Data(_) | Approach::Gp => false,
         }
     }
 
@@ -83,6 +89,7 @@ impl Approach {
             Approach::Data(ResponseKind::Poly(2)) => "data-quad".into(),
             Approach::Data(ResponseKind::Poly(_)) => "data-lin".into(),
             Approach::Data(r) => format!("data-{}", r.name()),
+            Approach::Gp => "gp-mul".into(),
         }
     }
 
@@ -188,6 +195,11 @@ impl SurrogateSpec {
                 "scheme",
                 "a data fit has one response per criterion",
             )),
+            Approach::Gp if self.scheme == Scheme::PerCriterion => GpParams.check(samples),
+            Approach::Gp => Err(RideError::field(
+                "scheme",
+                "a GP correction has one model per criterion",
+            )),
         }
     }
 
@@ -226,6 +238,7 @@ impl SurrogateSpec {
                 .fit(setting, samples)?,
             ),
             Approach::Data(response) => Box::new(DataFitParams { response }.fit(setting, samples)?),
+            Approach::Gp => Box::new(GpParams.fit(setting, samples)?),
         })
     }
 }
@@ -343,6 +356,7 @@ mod tests {
             "pba-umts",
             "pba-smts-umts",
             "data-quad",
+            "gp-mul",
         ] {
             assert_eq!(SurrogateSpec::parse(name).unwrap().name(), name);
         }

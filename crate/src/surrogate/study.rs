@@ -3,10 +3,12 @@
 //! grid over the design box (evaluated once and reused), and the one-surrogate report the CLI
 //! prints.
 
+use super::adaptive::AdaptiveReport;
 use super::fit::{FitDiagnostics, LmOptions};
 use super::metrics::{metrics_by_criterion, ByCriterion, ErrorMap, Metrics};
 use super::spec::{Approach, PlanSpec, SurrogateSpec};
-use super::{sample_plan, Parameter, Sample, Scheme, Setting};
+use super::uncertainty::{estimates, UncertaintyOutcome};
+use super::{sample_plan, Parameter, Sample, Scheme, Setting, Surrogate};
 use crate::analysis::HiFi;
 use crate::car::{Car, QuarterCar};
 use crate::design::DesignBox;
@@ -93,9 +95,10 @@ pub struct SurrogateReport {
     pub road: Road,
     /// Design box of the plan, the normalisation and the validation grid.
     pub design_box: DesignBox,
-    /// The HiFi samples the surrogate was fitted to.
+    /// The HiFi samples the surrogate was fitted to (in the order added).
     pub samples: Vec<Sample>,
-    /// HiFi evaluations made: samples plus validation grid.
+    /// HiFi evaluations made: samples plus validation grid (plus the datum for an
+    /// adaptive plan, whose decision judges the SWS limit against it).
     pub hifi_evaluations: usize,
     /// Tuning parameters.
     pub tuning: Vec<Parameter>,
@@ -110,6 +113,12 @@ pub struct SurrogateReport {
     pub metrics: ByCriterion<Metrics>,
     /// Signed relative error at each validation point, %.
     pub error_map: ErrorMap,
+    /// Where the surrogate may be wrong: each uncertainty estimate (leave-one-out for
+    /// every surrogate, the model's own for gp-mul), how it is computed, its correlation
+    /// with the true error and its map at the validation points (beside the error map).
+    pub uncertainty: Vec<UncertaintyOutcome>,
+    /// The adaptive loop that chose the samples, `None` for a plain plan.
+    pub adaptive: Option<AdaptiveReport>,
     /// Surrogate and HiFi values at the validation points, when asked for.
     pub predictions: Option<GridPredictions>,
 }
@@ -151,34 +160,79 @@ pub fn surrogate_report_in(
     let hifi = Counted::new(HiFi::new(car, road)?);
     let plan = plan_spec.plan()?;
     let samples = sample_plan(&hifi, &plan, design_box)?;
-    let model = spec.fit(&setting, &samples, &LmOptions::default())?;
-    let levels = predict_grid.unwrap_or(VALIDATION_LEVELS);
-    let validation = ValidationSet::new(&hifi, design_box, levels).map_err(|e| match e {
-        RideError::Field { reason, .. } => RideError::field("predict-grid", reason),
-        e => e,
-    })?;
-    let predicted = validation.predict(&*model)?;
-    Ok(SurrogateReport {
-        surrogate: spec.name(),
+    let options = LmOptions::default();
+    let model = spec.fit(&setting, &samples, &options)?;
+    let fitted = Fitted {
         spec,
         plan: plan_spec.name(),
         plan_method: plan.method,
-        car: car.name.clone(),
-        road: *road,
-        design_box: *design_box,
         samples,
-        hifi_evaluations: hifi.count(),
-        tuning: model.tuning(),
-        diagnostics: model.diagnostics(),
-        tuned_quarters: model.tuned_quarters(car.front.spring, car.front.damper)?,
-        validation_levels: levels,
-        metrics: validation.metrics(&predicted)?,
-        error_map: ErrorMap::new(&validation.points, &validation.hifi, &predicted),
-        predictions: predict_grid.map(|_| GridPredictions {
-            surrogate: predicted,
-            hifi: validation.hifi.clone(),
-        }),
-    })
+        model,
+        options,
+        adaptive: None,
+    };
+    fitted.report(&setting, &hifi, predict_grid)
+}
+
+/// A fitted surrogate with what a [`SurrogateReport`] says about its samples.
+pub(crate) struct Fitted {
+    pub spec: SurrogateSpec,
+    pub plan: String,
+    pub plan_method: String,
+    pub samples: Vec<Sample>,
+    pub model: Box<dyn Surrogate>,
+    pub options: LmOptions,
+    pub adaptive: Option<AdaptiveReport>,
+}
+
+impl Fitted {
+    /// Validates the fit on a `predict_grid` (default 20 x 20) HiFi grid of `hifi`.
+    /// Errors name `predict-grid` for a bad grid.
+    pub fn report(
+        self,
+        setting: &Setting,
+        hifi: &Counted<HiFi>,
+        predict_grid: Option<usize>,
+    ) -> Result<SurrogateReport> {
+        let (car, design_box) = (&setting.lofi.car, &setting.design_box);
+        let levels = predict_grid.unwrap_or(VALIDATION_LEVELS);
+        let validation = ValidationSet::new(hifi, design_box, levels).map_err(|e| match e {
+            RideError::Field { reason, .. } => RideError::field("predict-grid", reason),
+            e => e,
+        })?;
+        let predicted = validation.predict(&*self.model)?;
+        Ok(SurrogateReport {
+            surrogate: self.spec.name(),
+            spec: self.spec,
+            plan: self.plan,
+            plan_method: self.plan_method,
+            car: car.name.clone(),
+            road: setting.lofi.road,
+            design_box: *design_box,
+            uncertainty: estimates(
+                &self.spec,
+                setting,
+                &self.samples,
+                &self.options,
+                &validation,
+            )?,
+            samples: self.samples,
+            hifi_evaluations: hifi.count(),
+            tuning: self.model.tuning(),
+            diagnostics: self.model.diagnostics(),
+            tuned_quarters: self
+                .model
+                .tuned_quarters(car.front.spring, car.front.damper)?,
+            validation_levels: levels,
+            metrics: validation.metrics(&predicted)?,
+            error_map: ErrorMap::new(&validation.points, &validation.hifi, &predicted),
+            adaptive: self.adaptive,
+            predictions: predict_grid.map(|_| GridPredictions {
+                surrogate: predicted,
+                hifi: validation.hifi.clone(),
+            }),
+        })
+    }
 }
 
 /// The validation of one fitted surrogate of the study.

@@ -421,6 +421,66 @@ pub fn damper_curve_js(damper: JsValue, v_max: f64) -> Result<JsValue, JsValue> 
     })
 }
 
+/// The page's "next HiFi run" (issue #15): `new AdaptiveRun(state, options?)` runs the
+/// state's plan on the HiFi and fits its surrogate. Then `propose()` says where the next
+/// HiFi run would go and why: `{candidate: {ks, cs, on_front, predicted, relative_std,
+/// ehvi, probability_feasible, value, distance}, reason}`. `step()` runs it, refits and
+/// returns `{added, step: {hifi_runs, front_points, hypervolume, pick}, recheck}`.
+/// `report()` is the loop so far (samples in order with reasons, the `history` of
+/// hypervolume and pick per HiFi run, as `ridelab surrogate ... --adaptive K` gives it),
+/// `front()` the surrogate's front and `uncertaintyMap(nx, ny)` the estimate, %, in the
+/// maps' layout. `options` (optional, the CLI's names): `{criterion: "ehvi-front" |
+/// "ehvi", uncertainty: "model" | "loo", candidates, min_distance, seed}`.
+#[wasm_bindgen(js_name = AdaptiveRun)]
+pub struct AdaptiveRun(crate::explorer::PageLoop);
+
+#[wasm_bindgen(js_class = AdaptiveRun)]
+impl AdaptiveRun {
+    /// The loop on `state`'s scenario; errors name the field.
+    #[wasm_bindgen(constructor)]
+    pub fn new(state: JsValue, options: JsValue) -> Result<AdaptiveRun, JsValue> {
+        let scenario = parse_state(state)?.scenario().map_err(js_error)?;
+        let options: crate::surrogate::adaptive::AdaptiveOptions =
+            if options.is_undefined() || options.is_null() {
+                Default::default()
+            } else {
+                serde_wasm_bindgen::from_value(options)
+                    .map_err(|e| js_error(RideError::field("adaptive", e.to_string())))?
+            };
+        crate::explorer::PageLoop::new(&scenario, options)
+            .map(AdaptiveRun)
+            .map_err(js_error)
+    }
+
+    /// Where the next HiFi run would go, and why.
+    pub fn propose(&self) -> Result<JsValue, JsValue> {
+        to_js(&self.0.propose().map_err(js_error)?)
+    }
+
+    /// Runs the HiFi at the proposal, refits, re-checks the new pick on the HiFi.
+    pub fn step(&mut self) -> Result<JsValue, JsValue> {
+        to_js(&self.0.step().map_err(js_error)?)
+    }
+
+    /// The loop so far.
+    pub fn report(&self) -> Result<JsValue, JsValue> {
+        to_js(&self.0.report())
+    }
+
+    /// The surrogate's current feasible front.
+    pub fn front(&self) -> Result<JsValue, JsValue> {
+        to_js(&self.0.front())
+    }
+
+    /// The uncertainty estimate, %, at `nx` x `ny` cell centres: three planes (BAcc,
+    /// DTL, SWS), index `k nx ny + j nx + i`.
+    #[wasm_bindgen(js_name = uncertaintyMap)]
+    pub fn uncertainty_map(&self, nx: usize, ny: usize) -> Result<Float64Array, JsValue> {
+        let m = self.0.uncertainty_map(nx, ny).map_err(js_error)?;
+        Ok(Float64Array::from(m.as_slice()))
+    }
+}
+
 /// The study report of the view's scenario (as `ridelab report`, seed 1, the view's
 /// surrogate and plan): `{title, html, markdown}`, the HTML one self-contained file.
 /// Takes seconds: the page calls it in its worker.

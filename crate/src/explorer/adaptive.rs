@@ -1,0 +1,119 @@
+//! The page's "next HiFi run" (issue #15): the adaptive loop of
+//! [`crate::surrogate::adaptive`] on the state's scenario, one HiFi run per step, with what
+//! the page draws after each: where the run went and why, the surrogate's new front and
+//! pick, the pick's HiFi re-check, and the uncertainty map.
+//!
+//! The loop starts from the state's surrogate and plan and judges fronts by the state's
+//! design objectives against the datum's HiFi criteria, with STM on a 201 x 201 grid refined
+//! 3 times: for the default objectives this is `ridelab surrogate --approach A --plan P
+//! --adaptive K`, sample for sample.
+
+use super::state::Scenario;
+use crate::analysis::HiFi;
+use crate::dos::DosContext;
+use crate::error::{Result, RideError};
+use crate::maps::Grid;
+use crate::optimize::{recheck, FrontPoint, Recheck, StmParams};
+use crate::surrogate::adaptive::{
+    AdaptiveLoop, AdaptiveOptions, AdaptiveReport, Added, Decision, Proposal, Step,
+};
+use crate::surrogate::sample_plan;
+use crate::surrogate::Setting;
+use serde::Serialize;
+
+/// What one "next HiFi run" gives the page.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PageStep {
+    /// The sample added, its scores and the reason.
+    pub added: Added,
+    /// The surrogate's front and pick after it.
+    pub step: Step,
+    /// The new pick re-run on the HiFi (one HiFi run).
+    pub recheck: Recheck,
+}
+
+/// An adaptive loop on one scenario, with the HiFi it runs.
+pub struct PageLoop {
+    state: AdaptiveLoop,
+    hifi: HiFi,
+}
+
+impl PageLoop {
+    /// Runs the scenario's plan on the HiFi, fits its surrogate and finds the front.
+    /// `options.runs` is only recorded in the report (the page steps); the rest are
+    /// checked, naming the field.
+    pub fn new(s: &Scenario, options: AdaptiveOptions) -> Result<PageLoop> {
+        let setting = Setting::new(&s.datum, &s.road, &s.dbox)?;
+        let hifi = s.hifi()?;
+        let decision = Decision {
+            objectives: s.objectives.clone(),
+            ctx: DosContext::of_model(&s.datum, &hifi)?,
+            stm: StmParams::default(),
+        };
+        let points = s.plan.plan()?;
+        options.check(points.unit.len())?;
+        let initial = sample_plan(&hifi, &points, &s.dbox)?;
+        let state = AdaptiveLoop::new(
+            s.surrogate,
+            setting,
+            decision,
+            s.plan.name(),
+            initial,
+            options,
+        )?;
+        Ok(PageLoop { state, hifi })
+    }
+
+    /// Where the next HiFi run would go, and why (the marker before the run).
+    pub fn propose(&self) -> Result<Proposal> {
+        self.state.propose()
+    }
+
+    /// Runs the HiFi at the proposal, refits, and re-checks the new pick on the HiFi.
+    pub fn step(&mut self) -> Result<PageStep> {
+        let added = self.state.step(&self.hifi)?.clone();
+        let step = self
+            .state
+            .report()
+            .history
+            .pop()
+            .ok_or_else(|| RideError::Numerical("the loop kept no history".into()))?;
+        let datum = self.state.decision().ctx.datum;
+        let recheck = recheck(self.state.pick(), &self.hifi, &datum)?;
+        Ok(PageStep {
+            added,
+            step,
+            recheck,
+        })
+    }
+
+    /// The loop so far: samples in order with reasons, and the history of fronts.
+    pub fn report(&self) -> AdaptiveReport {
+        self.state.report()
+    }
+
+    /// The surrogate's current feasible front.
+    pub fn front(&self) -> &[FrontPoint] {
+        self.state.front()
+    }
+
+    /// The uncertainty estimate `sigma_k`, %, at the centres of `nx` x `ny` cells of the
+    /// design box ([`Grid::cells`]), as `[bacc plane, dtl plane, sws plane]`: index
+    /// `k nx ny + j nx + i` (the maps' layout). Errors name `nx` or `ny`.
+    pub fn uncertainty_map(&self, nx: usize, ny: usize) -> Result<Vec<f64>> {
+        let grid = Grid::cells(&self.state.setting().design_box, nx, ny)?;
+        let n = grid.len();
+        let mut out = vec![0.0; 3 * n];
+        for j in 0..ny {
+            for i in 0..nx {
+                let (ks, cs) = grid.point(i, j);
+                let s = self.state.uncertain().relative_std(ks, cs)?;
+                let at = grid.index(i, j);
+                for k in 0..3 {
+                    out[k * n + at] = 100.0 * s[k];
+                }
+            }
+        }
+        Ok(out)
+    }
+}

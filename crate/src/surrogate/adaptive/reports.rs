@@ -1,0 +1,108 @@
+//! The CLI's reports of the adaptive loop: `ridelab surrogate ... --adaptive K` and
+//! `ridelab optimize --evaluator SURROGATE ... --adaptive K`.
+
+use super::{run, AdaptiveOptions, AdaptiveReport, Decision};
+use crate::analysis::HiFi;
+use crate::car::Car;
+use crate::design::DesignBox;
+use crate::dos::{DesignObjectives, DosContext};
+use crate::error::{Result, RideError};
+use crate::evaluate::Evaluator;
+use crate::optimize::{optimize_model, Counted, EvaluatorSpec, Method, OptimizeReport, StmParams};
+use crate::road::Road;
+use crate::surrogate::study::{Fitted, SurrogateReport};
+use crate::surrogate::{PlanSpec, Setting, SurrogateSpec};
+use serde::Serialize;
+
+/// `ridelab surrogate --plan PLAN --adaptive K`: the loop on `car` and `road` over
+/// `design_box` (default objectives, the datum's HiFi criteria, default STM), then the
+/// final surrogate's report as [`super::surrogate_report_in`] gives it for a plain plan,
+/// with the loop's report in `adaptive`. Errors name the loop's fields, `plan` or
+/// `predict-grid`.
+pub fn surrogate_report(
+    spec: SurrogateSpec,
+    plan: PlanSpec,
+    car: &Car,
+    road: &Road,
+    design_box: &DesignBox,
+    predict_grid: Option<usize>,
+    options: AdaptiveOptions,
+) -> Result<SurrogateReport> {
+    let setting = Setting::new(car, road, design_box)?;
+    let hifi = Counted::new(HiFi::new(car, road)?);
+    let decision = Decision::of_car(car, &hifi)?;
+    let state = run(spec, &setting, &hifi, plan, &decision, options)?;
+    let report = state.report();
+    let fitted = Fitted {
+        spec,
+        plan: format!(
+            "{} + {} adaptive ({})",
+            plan.name(),
+            options.runs,
+            options.criterion.name()
+        ),
+        plan_method: format!(
+            "{}, then {} HiFi runs by {} on the {} uncertainty",
+            plan.plan()?.method,
+            options.runs,
+            options.criterion.name(),
+            report.uncertainty.name()
+        ),
+        samples: state.samples().to_vec(),
+        model: state.into_model(),
+        options: options.lm(),
+        adaptive: Some(report),
+    };
+    fitted.report(&setting, &hifi, predict_grid)
+}
+
+/// `ridelab optimize` with an adaptive surrogate: the optimisation report with the loop's
+/// report beside it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AdaptiveOptimizeReport {
+    /// Front, pick and HiFi re-check, as `ridelab optimize` gives them.
+    #[serde(flatten)]
+    pub optimize: OptimizeReport,
+    /// The loop that chose the surrogate's samples.
+    pub adaptive: AdaptiveReport,
+}
+
+/// `ridelab optimize --evaluator SURROGATE --plan PLAN --adaptive K`: the loop judged by the
+/// same objectives (against the datum's HiFi criteria) and, for STM, the same STM settings
+/// as the optimisation, then [`optimize_model`] on its final surrogate. Errors name
+/// `adaptive` for a model evaluator (the loop refits a surrogate), and the loop's fields.
+pub fn optimize_report(
+    car: &Car,
+    road: &Road,
+    design_box: &DesignBox,
+    evaluator: EvaluatorSpec,
+    plan: PlanSpec,
+    method: &Method,
+    objectives: DesignObjectives,
+    options: AdaptiveOptions,
+) -> Result<AdaptiveOptimizeReport> {
+    let EvaluatorSpec::Surrogate(spec) = evaluator else {
+        return Err(RideError::field(
+            "adaptive",
+            "the adaptive loop refits a surrogate; give a surrogate --evaluator",
+        ));
+    };
+    objectives.validate()?;
+    let setting = Setting::new(car, road, design_box)?;
+    let hifi = HiFi::new(car, road)?;
+    let decision = Decision {
+        objectives: objectives.clone(),
+        ctx: DosContext::of_model(car, &hifi)?,
+        stm: match method {
+            Method::Stm(p) => p.clone(),
+            Method::Nsga2(_) => StmParams::default(),
+        },
+    };
+    let state = run(spec, &setting, &hifi, plan, &decision, options)?;
+    let adaptive = state.report();
+    let model: Box<dyn Evaluator + Sync> = Box::new(state.into_model());
+    Ok(AdaptiveOptimizeReport {
+        optimize: optimize_model(car, road, design_box, model, method, objectives)?,
+        adaptive,
+    })
+}
