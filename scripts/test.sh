@@ -5,8 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-tools.sh
 
-echo "== Rust unit, integration and doc tests"
-cargo test --workspace
+echo "== Rust unit, integration and doc tests (the GPU tests on lavapipe: required, not skipped)"
+RIDELAB_REQUIRE_GPU=1 cargo test --workspace
 
 # `cargo test` has built the native CLI too (target/debug/ridelab, for tests/cli.rs): the
 # end-to-end suite compares the page with it. A separate `cargo build` would rebuild the

@@ -21,6 +21,10 @@ pub enum RideError {
     /// A computation cannot give a finite answer (for example an unstable model).
     #[error("{0}")]
     Numerical(String),
+    /// The GPU path cannot run: no adapter where one is required, a device or driver
+    /// error, or a map larger than the device takes.
+    #[error("GPU: {0}")]
+    Gpu(String),
 }
 
 impl RideError {

@@ -11,8 +11,10 @@
 //! is in [`crate::explorer`].
 
 mod charts;
+mod gpu;
 mod screen;
 pub use charts::{line_chart_svg_js, map_chart_svg_js};
+pub use gpu::GpuMaps;
 pub use screen::{draw_line_chart_js, draw_map_frame_js};
 
 use crate::analysis::ModelKind;
