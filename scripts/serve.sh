@@ -3,4 +3,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-tools.sh
+# npm's wasm-opt (binaryen) for Trunk's release build.
+export PATH="$PWD/node_modules/.bin:$PATH"
 exec trunk serve --release --offline

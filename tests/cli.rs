@@ -33,6 +33,84 @@ fn json(args: &[&str]) -> Value {
     serde_json::from_str(&out).expect("valid JSON")
 }
 
+/// The page's maps (the explorer's session, cell centres of the design box) and the
+/// CLI's maps over the same points are one computation: equal bit for bit, values and
+/// objective masks.
+#[test]
+fn the_page_and_the_cli_maps_are_the_same_numbers() {
+    use ridelab::explorer::{MapModel, Session, State};
+    let mut session = Session::new(State {
+        no_worse: Some([false, true, false]),
+        ..State::default()
+    })
+    .unwrap();
+    for (model, kind, nx, ny) in [
+        (MapModel::LoFi, "quarter", 16, 12),
+        (MapModel::HiFi, "full", 5, 4),
+    ] {
+        let page = session.map(model, nx, ny).unwrap();
+        let g = page.grid();
+        // Shortest round-trip decimals: the CLI reads back exactly these axes.
+        let range = |a: &ridelab::maps::Axis| format!("{:?}:{:?}:{}", a.min, a.max, a.n);
+        let v = json(&[
+            "map",
+            "--model",
+            kind,
+            "--ks-range",
+            &range(&g.ks),
+            "--cs-range",
+            &range(&g.cs),
+            "--compute",
+            "cpu",
+            "--json",
+        ]);
+        let values = &page.values;
+        for (name, field) in [
+            ("bacc", &values.bacc),
+            ("dtl", &values.dtl),
+            ("sws", &values.sws),
+        ] {
+            let cli: Vec<f64> = serde_json::from_value(v[name].clone()).unwrap();
+            assert_eq!(&cli, field, "{kind} {name}");
+        }
+        // The page judges "DTL no worse than the datum" too; the CLI's default objectives
+        // are the SWS limit only, so compare that bit.
+        let cli_mask: Vec<u8> = serde_json::from_value(v["feasibility"]["mask"].clone()).unwrap();
+        let sws_bit: Vec<u8> = page.broken().iter().map(|m| m & 1).collect();
+        assert_eq!(cli_mask, sws_bit, "{kind} mask");
+        assert!(
+            page.broken().iter().any(|m| m & 16 != 0),
+            "{kind}: the DTL objective shows"
+        );
+    }
+}
+
+#[test]
+fn help_and_version_go_to_stdout() {
+    let (code, out, _) = ridelab(&["--help"]);
+    assert_eq!(code, 0);
+    for command in [
+        "eval",
+        "doe",
+        "optimize",
+        "map",
+        "surrogate",
+        "study",
+        "simulate",
+        "presets",
+    ] {
+        assert!(out.contains(command), "{command} in --help");
+    }
+    let (code, out, _) = ridelab(&["simulate", "--help"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("--rebound-high"), "{out}");
+    let (code, out, _) = ridelab(&["--version"]);
+    assert_eq!(
+        (code, out.trim()),
+        (0, format!("ridelab {}", env!("CARGO_PKG_VERSION")).as_str())
+    );
+}
+
 #[test]
 fn eval_json_equals_the_library() {
     for (model, kind) in [("quarter", ModelKind::Quarter), ("full", ModelKind::Full)] {
@@ -142,6 +220,8 @@ fn map_json_and_csv_equal_the_library() {
                 "c",
                 "--speed",
                 "25",
+                "--compute",
+                "cpu",
             ];
             if relative {
                 args.push("--relative");
@@ -193,6 +273,72 @@ fn map_json_and_csv_equal_the_library() {
                     );
                 }
             }
+        }
+    }
+}
+
+/// `--compute`: `cpu` is the library's CPU map and says so; `gpu` is the GPU route
+/// (within 1e-4 of it on every cell) where there is an adapter, and one line naming the
+/// option, exit code 2, where there is none (no adapter: `WGPU_BACKEND` names a backend
+/// this platform lacks) or the build has no GPU path.
+#[test]
+fn map_compute_says_which_path_ran() {
+    let args = [
+        "map",
+        "--model",
+        "full",
+        "--ks-range",
+        "10000:40000:4",
+        "--cs-range",
+        "500:4000:3",
+        "--json",
+        "--compute",
+    ];
+    let with = |path: &'static str| [&args[..], &[path]].concat();
+    let cpu = json(&with("cpu"));
+    assert_eq!(cpu["compute"], "cpu");
+    assert!(cpu.get("adapter").is_none());
+    let no_adapter = Command::new(env!("CARGO_BIN_EXE_ridelab"))
+        .args(with("gpu"))
+        .env(
+            "WGPU_BACKEND",
+            if cfg!(target_os = "macos") {
+                "dx12"
+            } else {
+                "metal"
+            },
+        )
+        .output()
+        .expect("runs");
+    let err = String::from_utf8_lossy(&no_adapter.stderr);
+    assert_eq!(no_adapter.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    let why = if cfg!(feature = "gpu") {
+        "error: compute: gpu: no GPU adapter"
+    } else {
+        "error: compute: gpu: this build has no GPU path"
+    };
+    assert!(err.starts_with(why), "{err}");
+    let (code, out, err) = ridelab(&with("gpu"));
+    if code != 0 {
+        // Past the harness's capture, so the skip shows in a passing run.
+        use std::io::Write;
+        let _ = writeln!(
+            std::io::stderr(),
+            "map --compute gpu: SKIPPED ({})",
+            err.trim()
+        );
+        return;
+    }
+    let gpu: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(gpu["compute"], "gpu");
+    assert!(gpu["adapter"].as_str().is_some_and(|a| !a.is_empty()));
+    for name in ["bacc", "dtl", "sws"] {
+        let (g, c) = (gpu[name].as_array().unwrap(), cpu[name].as_array().unwrap());
+        assert_eq!(g.len(), 12);
+        for (g, c) in g.iter().zip(c) {
+            let (g, c) = (g.as_f64().unwrap(), c.as_f64().unwrap());
+            assert!((g / c - 1.0).abs() <= 1e-4, "{name}: {g} vs {c}");
         }
     }
 }
@@ -483,6 +629,11 @@ fn bad_input_is_one_line_naming_the_option_with_exit_code_2() {
             "cs-range",
         ),
         (&["map", "--ks-range", "10000:40000:5"], "model"),
+        (&["map", "--model", "full", "--compute", "tpu"], "compute"),
+        (
+            &["map", "--model", "quarter", "--compute", "gpu"],
+            "compute",
+        ),
         (&["simulate"], "model"),
         (
             &["simulate", "--model", "full", "--duration", "-1"],
@@ -516,6 +667,111 @@ fn bad_input_is_one_line_naming_the_option_with_exit_code_2() {
         (&["presets", "extra"], "extra"),
         (&["eval", "--model", "full", "--ks", "inf"], "ks"),
         (&["frobnicate"], "command"),
+        // Every size has a bound with a message (this one once aborted on a 14 GB allocation).
+        (
+            &["optimize", "--method", "nsga2", "--population", "100000000"],
+            "population",
+        ),
+        (
+            &["optimize", "--method", "nsga2", "--generations", "100000"],
+            "generations",
+        ),
+        (&["optimize", "--grid", "5000"], "grid"),
+        (&["doe", "--points", "5000"], "points"),
+        (
+            &["map", "--model", "quarter", "--ks-range", "1:2:2000"],
+            "ks-range",
+        ),
+        (
+            &[
+                "surrogate",
+                "--approach",
+                "vba-qts",
+                "--predict",
+                "grid:1000",
+            ],
+            "predict",
+        ),
+        (
+            &["surrogate", "--approach", "vba-qts", "--plan", "ae:5000"],
+            "plan",
+        ),
+        (
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--duration",
+                "3600",
+                "--dt",
+                "0.0001",
+            ],
+            "dt",
+        ),
+        // The asymmetric damper: rates come together, and the design's Cs is their mean.
+        (&["simulate", "--model", "full", "--bump", "500"], "rebound"),
+        (
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--bump",
+                "500",
+                "--rebound",
+                "-1",
+            ],
+            "rebound",
+        ),
+        (
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--bump",
+                "500",
+                "--rebound",
+                "900",
+                "--cs",
+                "1000",
+            ],
+            "cs",
+        ),
+        (
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--bump",
+                "1",
+                "--rebound",
+                "2",
+                "--knee",
+                "0.1",
+            ],
+            "bump-high",
+        ),
+        (
+            &[
+                "simulate",
+                "--model",
+                "full",
+                "--bump",
+                "1",
+                "--rebound",
+                "2",
+                "--knee",
+                "-0.1",
+                "--bump-high",
+                "1",
+                "--rebound-high",
+                "1",
+            ],
+            "knee",
+        ),
+        (
+            &["eval", "--model", "full", "--speed", "3", "--speed", "4"],
+            "speed",
+        ),
     ];
     for &(args, field) in cases {
         let (code, out, err) = ridelab(args);

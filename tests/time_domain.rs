@@ -83,14 +83,14 @@ fn nonlinear_outputs_are_the_records_own_motion() {
             // DTL is kt (zu - zr) and SWS zs - zu of the same record, to rounding.
             let u = model.n_body; // the front-right wheel's coordinate
             let kt = car.front.tire_stiffness;
-            for i in 0..n {
+            for (i, &zs) in zs.iter().enumerate() {
                 let zu = r.positions[u][i];
                 let dtl = kt * (zu - r.road[i]);
                 assert!(
                     (r.outputs[1][i] - dtl).abs() <= 1e-9 * r.rms[1],
                     "{kind:?} DTL at {i}"
                 );
-                let sws = zs[i] - zu;
+                let sws = zs - zu;
                 assert!(
                     (r.outputs[2][i] - sws).abs() <= 1e-12,
                     "{kind:?} SWS at {i}"

@@ -5,8 +5,8 @@ use crate::car::{Car, QuarterCar};
 use crate::criteria::{criteria_exact, criteria_fast_exact, criteria_spectral, quarter_car_rms};
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
+use crate::model::Mode;
 use crate::model::{full_car, quarter_car, symmetric_half, LinearModel};
-use crate::modes::Mode;
 use crate::road::{Road, Tracks};
 use serde::{Deserialize, Serialize};
 
@@ -18,6 +18,13 @@ pub enum ModelKind {
     Quarter,
     /// HiFi: 7-DOF full car.
     Full,
+}
+
+impl std::str::FromStr for ModelKind {
+    type Err = RideError;
+    fn from_str(s: &str) -> Result<ModelKind> {
+        ModelKind::parse(s)
+    }
 }
 
 impl ModelKind {

@@ -57,6 +57,15 @@ impl DesignBox {
         Ok(())
     }
 
+    /// Parses `min:max` (N/m or N s/m) of one range; errors name `field`.
+    pub fn parse_range(field: &str, text: &str) -> Result<(f64, f64)> {
+        let bad = || RideError::field(field, format!("'{text}' is not min:max (e.g. 10000:40000)"));
+        let (lo, hi) = text.split_once(':').ok_or_else(bad)?;
+        let lo: f64 = lo.trim().parse().map_err(|_| bad())?;
+        let hi: f64 = hi.trim().parse().map_err(|_| bad())?;
+        Ok((lo, hi))
+    }
+
     /// Maps unit coordinates `(u, v)` in [0, 1]^2 to `(ks, cs)`.
     pub fn scale(&self, u: f64, v: f64) -> (f64, f64) {
         (

@@ -111,60 +111,14 @@ impl Plan {
     pub fn gaps(&self) -> Vec<f64> {
         gaps(&self.lattice())
     }
-}
-
-/// A set of design points on the unit square, scaled onto a [`DesignBox`] on demand.
-pub trait SamplingPlan {
-    /// The plan behind the points (levels, energy, method).
-    fn plan(&self) -> &Plan;
-
-    /// The points on the unit square, `[u, v]` in [0, 1]^2 (Ks and Cs fractions of the box).
-    fn unit_points(&self) -> Vec<[f64; 2]> {
-        self.plan().unit.clone()
-    }
 
     /// The points scaled to the box, `(ks N/m, cs N s/m)`: `ks = ks_min + u (ks_max - ks_min)`,
-    /// `cs = cs_min + v (cs_max - cs_min)`.
-    fn points(&self, design_box: &DesignBox) -> Vec<(f64, f64)> {
-        self.plan()
-            .unit
+    /// `cs = cs_min + v (cs_max - cs_min)` for each unit point `[u, v]`.
+    pub fn points(&self, design_box: &DesignBox) -> Vec<(f64, f64)> {
+        self.unit
             .iter()
             .map(|p| design_box.scale(p[0], p[1]))
             .collect()
-    }
-}
-
-/// An `N`-point Audze-Eglais Latin hypercube (see [`audze_eglais`]).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct AudzeEglais(Plan);
-
-impl AudzeEglais {
-    /// Builds the plan of `n` points; `seed` drives the heuristic used above the tabulated `N`.
-    pub fn new(n: usize, seed: u64) -> Result<Self> {
-        audze_eglais(n, seed).map(AudzeEglais)
-    }
-}
-
-impl SamplingPlan for AudzeEglais {
-    fn plan(&self) -> &Plan {
-        &self.0
-    }
-}
-
-/// An `n x n` full factorial grid (see [`full_factorial`]).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct FullFactorial(Plan);
-
-impl FullFactorial {
-    /// Builds the grid with `n` levels per axis.
-    pub fn new(n: usize) -> Result<Self> {
-        full_factorial(n).map(FullFactorial)
-    }
-}
-
-impl SamplingPlan for FullFactorial {
-    fn plan(&self) -> &Plan {
-        &self.0
     }
 }
 
@@ -741,21 +695,19 @@ pub struct DoeReport {
 /// Builds the Audze-Eglais plan of `n` points and scales it to `design_box`.
 pub fn doe_report(n: usize, seed: u64, design_box: &DesignBox) -> Result<DoeReport> {
     design_box.validate()?;
-    let plan = AudzeEglais::new(n, seed)?;
+    let plan = audze_eglais(n, seed)?;
     let samples = plan
-        .plan()
         .levels
         .iter()
-        .zip(plan.unit_points())
+        .zip(&plan.unit)
         .zip(plan.points(design_box))
-        .map(|((&level, unit), (ks, cs))| DoeSample {
+        .map(|((&level, &unit), (ks, cs))| DoeSample {
             level,
             unit,
             ks,
             cs,
         })
         .collect();
-    let plan = plan.0;
     Ok(DoeReport {
         points: n,
         seed,
@@ -1049,8 +1001,8 @@ mod tests {
 
     #[test]
     fn full_factorial_grid() {
-        let grid = FullFactorial::new(3).unwrap();
-        let unit = grid.unit_points();
+        let grid = full_factorial(3).unwrap();
+        let unit = grid.unit.clone();
         assert_eq!(unit.len(), 9);
         for (i, p) in unit.iter().enumerate() {
             assert!(unit[i + 1..].iter().all(|q| q != p), "duplicate {p:?}");
@@ -1060,15 +1012,15 @@ mod tests {
         }
         // 12 pairs at L^2 = 1, 6 at 4, 8 at 2, 8 at 5, 2 at 8.
         let want = 12.0 + 6.0 / 4.0 + 8.0 / 2.0 + 8.0 / 5.0 + 2.0 / 8.0;
-        assert!((grid.plan().energy - want).abs() < 1e-12);
-        assert_eq!(grid.plan().gaps().len(), 36);
-        assert!(!grid.plan().optimal);
+        assert!((grid.energy - want).abs() < 1e-12);
+        assert_eq!(grid.gaps().len(), 36);
+        assert!(!grid.optimal);
     }
 
     #[test]
     fn points_scale_to_box_corners() {
         let b = DesignBox::default();
-        let pts = FullFactorial::new(2).unwrap().points(&b);
+        let pts = full_factorial(2).unwrap().points(&b);
         let want = [
             (10_000.0, 500.0),
             (10_000.0, 4_000.0),
@@ -1078,7 +1030,7 @@ mod tests {
         for (got, want) in pts.iter().zip(want) {
             assert!((got.0 - want.0).abs() < 1e-9 && (got.1 - want.1).abs() < 1e-9);
         }
-        let ae = AudzeEglais::new(2, 0).unwrap();
+        let ae = audze_eglais(2, 0).unwrap();
         let mut pts = ae.points(&b);
         pts.sort_by(|p, q| p.0.total_cmp(&q.0));
         assert!((pts[0].0 - 10_000.0).abs() < 1e-9 && (pts[1].0 - 40_000.0).abs() < 1e-9);

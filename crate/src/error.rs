@@ -15,6 +15,15 @@ pub enum RideError {
         /// Why it was rejected.
         reason: String,
     },
+    /// No design in the box meets the design objectives: `field` names the binding
+    /// objective's field (`sws_limit`, ...), `reason` says why (the closest any design came).
+    #[error("{field}: {reason}")]
+    Infeasible {
+        /// The binding objective's field.
+        field: String,
+        /// Why nothing is feasible.
+        reason: String,
+    },
     /// A JSON document could not be parsed at all.
     #[error("invalid JSON: {0}")]
     Json(String),

@@ -67,6 +67,20 @@ pub enum Tracks {
     Independent,
 }
 
+impl std::str::FromStr for RoadClass {
+    type Err = RideError;
+    fn from_str(s: &str) -> Result<RoadClass> {
+        RoadClass::parse(s)
+    }
+}
+
+impl std::str::FromStr for Tracks {
+    type Err = RideError;
+    fn from_str(s: &str) -> Result<Tracks> {
+        Tracks::parse(s)
+    }
+}
+
 impl Tracks {
     /// Parses "correlated" or "independent".
     pub fn parse(s: &str) -> Result<Tracks> {

@@ -1,52 +1,316 @@
 //! `ridelab`: the command-line shell over the RideLab core (scripting, batch studies,
-//! reports). Argument parsing and printing only; every number comes from the library.
+//! reports). Argument parsing (clap's derive API, with the core's types parsed by their
+//! `FromStr`) and printing only; every number and every rule comes from the library.
 //!
-//! The parser is hand-written rather than clap so that every bad input gives exactly
-//! one line naming the option at fault (the same messages as the page) and exit code 2.
+//! Every bad input gives exactly one line on stderr, `error: <option>: <reason>`, naming
+//! the option at fault (the same messages as the page), and exit code 2.
 
+use clap::error::{ContextKind, ContextValue, ErrorKind};
+use clap::{Args, Parser, Subcommand};
 use ridelab::analysis::{report, ModelKind, Report};
 use ridelab::car::Car;
 use ridelab::chart::{front_chart, line_chart_svg, map_chart_svg, map_report_charts};
 use ridelab::design::DesignBox;
 use ridelab::doe::doe_report;
-use ridelab::dos::{DesignObjectives, DosContext};
+use ridelab::dos::DesignObjectives;
 use ridelab::error::{Result, RideError};
-use ridelab::maps::{map_csv, map_report, Grid, MapSettings, Scale};
-use ridelab::optimize::{recheck, run_study, Method, Nsga2Params, StmParams, SuspensionProblem};
-use ridelab::road::{Road, RoadClass, Tracks};
-use ridelab::surrogate::{
-    sample_plan, study, surrogate_report, LmOptions, PlanSpec, Setting, SurrogateSpec,
+use ridelab::gpu::Compute;
+use ridelab::maps::{map_csv, map_report_on, Axis, Grid, MapSettings, Scale};
+use ridelab::optimize::{
+    optimize_report, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, StmParams,
 };
-use ridelab::time_domain::{simulate, Damper, Knee, TimeOptions};
-use ridelab::{Evaluator, HiFi, LoFi};
-use std::collections::HashMap;
+use ridelab::report::{build, ReportInputs, SECTIONS};
+use ridelab::road::{Road, RoadClass, Tracks};
+use ridelab::surrogate::{study, surrogate_report_in, PlanSpec, SurrogateSpec};
+use ridelab::time_domain::{simulate, Damper, Knee, TimeOptions, TimeResponse};
 use std::path::{Path, PathBuf};
 
-const USAGE: &str = "usage: ridelab <command> [options]
-commands:
-  eval      --model quarter|full [--car FILE|PRESET] [--class B] [--speed 20] [--tracks correlated|independent]
-            [--ks N/m] [--cs Ns/m] [--json]
-  doe       --points N [--seed S] [--json]
-  optimize  --evaluator quarter|full|SURROGATE [--plan ae:10] --method stm|nsga2 [car/road options]
-            [--ks N/m --cs Ns/m for the datum] [--sws-limit m] [--grid 201] [--population 100]
-            [--generations 100] [--seed 1] [--json] [--svg FILE]
-  map       --model quarter|full [car/road options] [--ks-range 10000:40000:41] [--cs-range 500:4000:41]
-            [--relative] --json|--csv [--svg PREFIX]
-  surrogate --approach rba-mul-poly2|vba-qts|pba-smts|... --plan ae:10|grid:5 [car/road options]
-            [--predict grid:20] [--json]
-  study     [car/road options] --json|--markdown
-  simulate  --model quarter|full [car/road options] [--ks] [--cs] [--duration 20] [--dt 0.001] [--seed 1]
-            [--bump Ns/m --rebound Ns/m [--knee m/s --bump-high Ns/m --rebound-high Ns/m]]
-            [--decimate 10] [--json|--csv]
-            (with --bump and --rebound the design's Cs is their mean; leave --cs out)
-  presets   [--json]
-car: a JSON file or a preset name (sedan, compact, suv); default sedan (the datum car)
---svg: optimize writes the front chart to FILE; map writes PREFIX-bacc.svg, PREFIX-dtl.svg and
-       PREFIX-sws.svg (a trailing .svg on PREFIX is dropped); stdout is unchanged";
+/// Surrogate-based suspension design: ride criteria, design maps, sampling plans,
+/// surrogates and Pareto fronts of a passenger car's front suspension.
+#[derive(Parser)]
+#[command(name = "ridelab", version, disable_help_subcommand = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// BAcc, DTL and SWS of one design by both routes, modes and ride properties.
+    Eval(EvalArgs),
+    /// An Audze-Eglais sampling plan in the default design box.
+    Doe(DoeArgs),
+    /// The Pareto front of BAcc and DTL, its min-max pick and the pick's HiFi re-check.
+    Optimize(OptimizeArgs),
+    /// The design criteria and objective maps over a Ks x Cs grid.
+    Map(MapArgs),
+    /// A surrogate fitted to HiFi samples and validated on a HiFi grid.
+    Surrogate(SurrogateArgs),
+    /// The fidelity study: every surrogate on every plan against the HiFi.
+    Study(StudyArgs),
+    /// A time response on a seeded road realisation.
+    Simulate(SimulateArgs),
+    /// The shipped cars with their literature sources.
+    Presets(PresetsArgs),
+    /// The study report: the method end to end as one HTML file, its Markdown twin,
+    /// the figures as SVG and the data as JSON and CSV.
+    Report(ReportArgs),
+}
+
+/// The car, the road and the front design.
+#[derive(Args)]
+struct CarRoad {
+    /// A car file (JSON) or a preset name: sedan (the datum), compact, suv.
+    #[arg(long, value_name = "FILE|PRESET")]
+    car: Option<String>,
+    /// ISO 8608 road class A..H [default: B].
+    #[arg(long)]
+    class: Option<RoadClass>,
+    /// Speed, m/s [default: 20].
+    #[arg(long, value_name = "M/S", value_parser = number, allow_negative_numbers = true)]
+    speed: Option<f64>,
+    /// Left and right tracks: correlated or independent [default: correlated].
+    #[arg(long)]
+    tracks: Option<Tracks>,
+    /// Front spring rate, N/m [default: the car's].
+    #[arg(long, value_name = "N/M", value_parser = number, allow_negative_numbers = true)]
+    ks: Option<f64>,
+    /// Front damper rate, N s/m [default: the car's].
+    #[arg(long, value_name = "NS/M", value_parser = number, allow_negative_numbers = true)]
+    cs: Option<f64>,
+}
+
+#[derive(Args)]
+struct EvalArgs {
+    /// quarter (LoFi) or full (HiFi).
+    #[arg(long)]
+    model: ModelKind,
+    #[command(flatten)]
+    car: CarRoad,
+    /// Machine-readable output.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Args)]
+struct DoeArgs {
+    /// Number of points, 2..1000.
+    #[arg(long, value_parser = count)]
+    points: usize,
+    /// Seed of the annealing (plans beyond the stored optima).
+    #[arg(long, default_value_t = 1, value_parser = count_u64)]
+    seed: u64,
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Args)]
+struct OptimizeArgs {
+    /// quarter, full or a surrogate name (see `ridelab surrogate`).
+    #[arg(long, default_value = "full")]
+    evaluator: EvaluatorSpec,
+    /// The surrogate's HiFi sampling plan: ae:N or grid:n.
+    #[arg(long, default_value = "ae:10")]
+    plan: PlanSpec,
+    /// stm (space transformation) or nsga2.
+    #[arg(long, default_value = "stm", value_parser = ["stm", "nsga2"])]
+    method: String,
+    /// RMS SWS limit, m [default: 0.007].
+    #[arg(long, value_name = "M", value_parser = number, allow_negative_numbers = true)]
+    sws_limit: Option<f64>,
+    /// STM grid points per variable, 2..2001.
+    #[arg(long, default_value_t = StmParams::default().grid, value_parser = count)]
+    grid: usize,
+    /// NSGA-II population, an even number 4..10000.
+    #[arg(long, default_value_t = Nsga2Params::default().population, value_parser = count)]
+    population: usize,
+    /// NSGA-II generations, 1..10000.
+    #[arg(long, default_value_t = Nsga2Params::default().generations, value_parser = count)]
+    generations: usize,
+    /// NSGA-II seed.
+    #[arg(long, default_value_t = Nsga2Params::default().seed, value_parser = count_u64)]
+    seed: u64,
+    #[command(flatten)]
+    car: CarRoad,
+    #[arg(long)]
+    json: bool,
+    /// Also write the front in the BAcc-DTL plane as an SVG file.
+    #[arg(long, value_name = "FILE")]
+    svg: Option<String>,
+}
+
+#[derive(Args)]
+struct MapArgs {
+    /// quarter (LoFi) or full (HiFi).
+    #[arg(long)]
+    model: ModelKind,
+    /// Ks axis, min:max:points (N/m).
+    #[arg(long, default_value = "10000:40000:41", value_parser = |s: &str| Axis::parse("ks-range", s))]
+    ks_range: Axis,
+    /// Cs axis, min:max:points (N s/m).
+    #[arg(long, default_value = "500:4000:41", value_parser = |s: &str| Axis::parse("cs-range", s))]
+    cs_range: Axis,
+    /// Criteria relative to the datum car's.
+    #[arg(long)]
+    relative: bool,
+    /// Where the HiFi map is computed: gpu, cpu, or auto (a hardware GPU when there is
+    /// one, else the CPU); the JSON's `compute` says which ran.
+    #[arg(long, default_value = "auto")]
+    compute: Compute,
+    #[command(flatten)]
+    car: CarRoad,
+    #[arg(long)]
+    json: bool,
+    /// One row per grid point instead of JSON.
+    #[arg(long)]
+    csv: bool,
+    /// Also write PREFIX-bacc.svg, PREFIX-dtl.svg and PREFIX-sws.svg.
+    #[arg(long, value_name = "PREFIX")]
+    svg: Option<String>,
+}
+
+#[derive(Args)]
+struct SurrogateArgs {
+    /// The surrogate, e.g. rba-mul-rbf-mq, vba-qts, pba-smts.
+    #[arg(long)]
+    approach: SurrogateSpec,
+    /// Its HiFi sampling plan: ae:N or grid:n.
+    #[arg(long, default_value = "ae:10")]
+    plan: PlanSpec,
+    /// Validate on a grid:N HiFi grid instead of 20 x 20 and print the predictions.
+    #[arg(long, value_name = "grid:N", value_parser = predict_grid)]
+    predict: Option<usize>,
+    #[command(flatten)]
+    car: CarRoad,
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Args)]
+struct StudyArgs {
+    #[command(flatten)]
+    car: CarRoad,
+    #[arg(long)]
+    json: bool,
+    /// The study as a Markdown table.
+    #[arg(long)]
+    markdown: bool,
+}
+
+#[derive(Args)]
+struct SimulateArgs {
+    /// quarter (LoFi) or full (HiFi).
+    #[arg(long)]
+    model: ModelKind,
+    /// Length of the road record, s.
+    #[arg(long, value_name = "S", default_value_t = TimeOptions::default().duration, value_parser = number, allow_negative_numbers = true)]
+    duration: f64,
+    /// Time step, s (the road's highest frequency follows it: at most 0.4 / dt).
+    #[arg(long, value_name = "S", value_parser = number, allow_negative_numbers = true)]
+    dt: Option<f64>,
+    /// Seed of the road's random phases.
+    #[arg(long, default_value_t = 1, value_parser = count_u64)]
+    seed: u64,
+    /// Front damper bump (compression) rate, N s/m; the design's Cs is then the mean
+    /// of bump and rebound, so --cs is left out.
+    #[arg(long, value_name = "NS/M", value_parser = number, allow_negative_numbers = true, requires = "rebound")]
+    bump: Option<f64>,
+    /// Front damper rebound (extension) rate, N s/m.
+    #[arg(long, value_name = "NS/M", value_parser = number, allow_negative_numbers = true, requires = "bump")]
+    rebound: Option<f64>,
+    /// Knee velocity of a digressive damper, m/s.
+    #[arg(long, value_name = "M/S", value_parser = number, allow_negative_numbers = true, requires_all = ["bump", "bump_high", "rebound_high"])]
+    knee: Option<f64>,
+    /// Bump slope above the knee, N s/m.
+    #[arg(long, value_name = "NS/M", value_parser = number, allow_negative_numbers = true, requires = "knee")]
+    bump_high: Option<f64>,
+    /// Rebound slope above the knee, N s/m.
+    #[arg(long, value_name = "NS/M", value_parser = number, allow_negative_numbers = true, requires = "knee")]
+    rebound_high: Option<f64>,
+    /// Keep every n-th sample in the output.
+    #[arg(long, default_value_t = 10, value_parser = count)]
+    decimate: usize,
+    #[command(flatten)]
+    car: CarRoad,
+    #[arg(long)]
+    json: bool,
+    /// One row per kept sample instead of JSON.
+    #[arg(long)]
+    csv: bool,
+}
+
+#[derive(Args)]
+struct ReportArgs {
+    #[command(flatten)]
+    car: CarRoad,
+    /// Ks range of the design box, min:max (N/m).
+    #[arg(long, value_name = "MIN:MAX", default_value = "10000:40000", value_parser = |s: &str| DesignBox::parse_range("ks-range", s))]
+    ks_range: (f64, f64),
+    /// Cs range of the design box, min:max (N s/m).
+    #[arg(long, value_name = "MIN:MAX", default_value = "500:4000", value_parser = |s: &str| DesignBox::parse_range("cs-range", s))]
+    cs_range: (f64, f64),
+    /// RMS SWS limit, m [default: 0.007].
+    #[arg(long, value_name = "M", value_parser = number, allow_negative_numbers = true)]
+    sws_limit: Option<f64>,
+    /// The surrogate of sections 4 and 5 [default: the study's best at 10 HiFi samples].
+    #[arg(long, requires = "plan")]
+    approach: Option<SurrogateSpec>,
+    /// Its HiFi sampling plan: ae:N or grid:n.
+    #[arg(long, requires = "approach")]
+    plan: Option<PlanSpec>,
+    /// Seed of the time-domain record and of NSGA-II.
+    #[arg(long, default_value_t = 1, value_parser = count_u64)]
+    seed: u64,
+    /// Directory for report.html, report.md, figures/, report.json and the CSV tables
+    /// (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "report")]
+    out: PathBuf,
+}
+
+#[derive(Args)]
+struct PresetsArgs {
+    #[arg(long)]
+    json: bool,
+}
+
+/// A finite number.
+fn number(s: &str) -> Result<f64> {
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| RideError::field("", format!("'{s}' is not a number")))?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(RideError::field("", "must be a finite number"))
+    }
+}
+
+/// A whole number.
+fn count(s: &str) -> Result<usize> {
+    s.trim()
+        .parse()
+        .map_err(|_| RideError::field("", format!("'{s}' is not a whole number")))
+}
+
+fn count_u64(s: &str) -> Result<u64> {
+    count(s).map(|n| n as u64)
+}
+
+/// `grid:N` of `--predict`: a grid plan's side.
+fn predict_grid(s: &str) -> Result<usize> {
+    match PlanSpec::parse(s) {
+        Ok(PlanSpec::Grid(n)) => Ok(n),
+        _ => Err(RideError::field("", format!("'{s}' is not grid:N"))),
+    }
+}
 
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    match run(&args) {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => exit_on_parse_error(e),
+    };
+    match run(cli.command) {
         Ok(text) => {
             // Not `print!`: it panics when the reader has gone (`ridelab map ... | head`).
             // A closed pipe is the reader's choice, so it ends the run quietly.
@@ -66,83 +330,97 @@ fn main() {
     }
 }
 
-/// Parsed `--name value` options and `--flag` switches.
-struct Opts {
-    values: HashMap<String, String>,
-    flags: Vec<String>,
+/// Help and version go to stdout (exit 0); every other parse error is one line naming
+/// the option (exit 2).
+fn exit_on_parse_error(e: clap::Error) -> ! {
+    if matches!(
+        e.kind(),
+        ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+    ) {
+        e.exit()
+    }
+    eprintln!("error: {}", parse_error_line(&e));
+    std::process::exit(2)
 }
 
-impl Opts {
-    fn parse(args: &[String], flags: &[&str], values: &[&str]) -> Result<Opts> {
-        let mut o = Opts {
-            values: HashMap::new(),
-            flags: Vec::new(),
-        };
-        let mut i = 0;
-        while i < args.len() {
-            let a = &args[i];
-            let name = a.strip_prefix("--").ok_or_else(|| {
-                RideError::field(a.clone(), "unexpected argument (options start with --)")
-            })?;
-            if flags.contains(&name) {
-                o.flags.push(name.to_string());
-                i += 1;
-            } else if values.contains(&name) {
-                let v = args
-                    .get(i + 1)
-                    .ok_or_else(|| RideError::field(name, "needs a value"))?;
-                if o.values.insert(name.to_string(), v.clone()).is_some() {
-                    return Err(RideError::field(name, "given twice"));
-                }
-                i += 2;
-            } else {
-                return Err(RideError::field(a.clone(), "unknown option"));
+/// `option: reason` for a clap error, the option without its dashes and value name.
+fn parse_error_line(e: &clap::Error) -> String {
+    let context = |kind: ContextKind| match e.get(kind) {
+        Some(ContextValue::String(s)) => s.clone(),
+        Some(ContextValue::Strings(v)) => v.join(", "),
+        _ => String::new(),
+    };
+    let arg = context(ContextKind::InvalidArg);
+    let option = arg
+        .split_whitespace()
+        .next()
+        .unwrap_or_default()
+        .trim_start_matches('-')
+        .replace('_', "-");
+    match e.kind() {
+        ErrorKind::InvalidSubcommand | ErrorKind::MissingSubcommand => format!(
+            "command: {} (eval, doe, optimize, map, surrogate, study, simulate, presets; --help lists them)",
+            match context(ContextKind::InvalidSubcommand) {
+                s if s.is_empty() => "missing".to_string(),
+                s => format!("unknown command '{s}'"),
             }
+        ),
+        ErrorKind::UnknownArgument if arg.starts_with('-') => format!("{arg}: unknown option"),
+        ErrorKind::UnknownArgument => {
+            format!("{arg}: unexpected argument (options start with --)")
         }
-        Ok(o)
-    }
-
-    fn flag(&self, name: &str) -> bool {
-        self.flags.iter().any(|f| f == name)
-    }
-
-    fn str(&self, name: &str) -> Option<&str> {
-        self.values.get(name).map(String::as_str)
-    }
-
-    fn num(&self, name: &str) -> Result<Option<f64>> {
-        match self.str(name) {
-            None => Ok(None),
-            Some(s) => {
-                let v: f64 = s
-                    .trim()
-                    .parse()
-                    .map_err(|_| RideError::field(name, format!("'{s}' is not a number")))?;
-                if v.is_finite() {
-                    Ok(Some(v))
-                } else {
-                    Err(RideError::field(name, "must be a finite number"))
-                }
-            }
+        ErrorKind::MissingRequiredArgument => format!("{option}: missing"),
+        ErrorKind::ArgumentConflict => format!("{option}: given twice or with a conflicting option"),
+        ErrorKind::InvalidValue if context(ContextKind::InvalidValue).is_empty() => {
+            format!("{option}: needs a value")
         }
-    }
-
-    fn count(&self, name: &str, default: usize) -> Result<usize> {
-        match self.str(name) {
-            None => Ok(default),
-            Some(s) => s
-                .trim()
-                .parse()
-                .map_err(|_| RideError::field(name, format!("'{s}' is not a whole number"))),
+        ErrorKind::InvalidValue => format!(
+            "{option}: '{}' is not one of {}",
+            context(ContextKind::InvalidValue),
+            context(ContextKind::ValidValue)
+        ),
+        ErrorKind::ValueValidation => {
+            let reason = match std::error::Error::source(e)
+                .and_then(|s| s.downcast_ref::<RideError>())
+            {
+                Some(RideError::Field { reason, .. }) => reason.clone(),
+                Some(other) => other.to_string(),
+                None => context(ContextKind::InvalidValue),
+            };
+            format!("{option}: {reason}")
+        }
+        _ => {
+            // Anything else: clap's own first line, without its "error: " prefix.
+            let text = e.to_string();
+            let line = text.lines().next().unwrap_or_default();
+            format!(
+                "{}: {}",
+                if option.is_empty() { "arguments" } else { &option },
+                line.trim_start_matches("error: ")
+            )
         }
     }
 }
 
-const CAR_ROAD: [&str; 6] = ["car", "class", "speed", "tracks", "ks", "cs"];
+fn run(command: Command) -> Result<String> {
+    match command {
+        Command::Eval(a) => eval(a),
+        Command::Doe(a) => doe(a),
+        Command::Optimize(a) => optimize(a),
+        Command::Map(a) => map_cmd(a),
+        Command::Surrogate(a) => surrogate_cmd(a),
+        Command::Study(a) => study_cmd(a),
+        Command::Simulate(a) => simulate_cmd(a),
+        Command::Presets(a) => presets(a),
+        Command::Report(a) => report_cmd(a),
+    }
+}
 
 /// Car (with `--ks/--cs` applied to the front) and road from the options.
-fn car_and_road(o: &Opts) -> Result<(Car, Road)> {
-    let car = match o.str("car") {
+fn car_and_road(o: &CarRoad) -> Result<(Car, Road)> {
+    let car = match o.car.as_deref() {
         None => Car::datum(),
         Some(name) if ridelab::car::PRESETS.iter().any(|(n, _)| *n == name) => Car::preset(name)?,
         Some(path) => {
@@ -151,26 +429,19 @@ fn car_and_road(o: &Opts) -> Result<(Car, Road)> {
             Car::from_json(&text)?
         }
     };
-    let ks = o.num("ks")?.unwrap_or(car.front.spring);
-    let cs = o.num("cs")?.unwrap_or(car.front.damper);
-    let car = car.with_front(ks, cs).map_err(|e| match e {
-        RideError::Field { field, reason } if field == "front.spring" => {
-            RideError::field("ks", reason)
-        }
-        RideError::Field { field, reason } if field == "front.damper" => {
-            RideError::field("cs", reason)
-        }
-        other => other,
-    })?;
+    let ks = o.ks.unwrap_or(car.front.spring);
+    let cs = o.cs.unwrap_or(car.front.damper);
+    ridelab::car::check_design(ks, cs)?;
+    let car = car.with_front(ks, cs)?;
     let mut road = Road::default();
-    if let Some(c) = o.str("class") {
-        road.class = RoadClass::parse(c)?;
+    if let Some(c) = o.class {
+        road.class = c;
     }
-    if let Some(v) = o.num("speed")? {
+    if let Some(v) = o.speed {
         road.speed = v;
     }
-    if let Some(t) = o.str("tracks") {
-        road.tracks = Tracks::parse(t)?;
+    if let Some(t) = o.tracks {
+        road.tracks = t;
     }
     road.validate()?;
     Ok((car, road))
@@ -184,8 +455,8 @@ fn json<T: serde::Serialize>(v: &T) -> Result<String> {
 
 /// The `--svg` target, checked before any work: a file name (not a directory) in a
 /// directory that exists.
-fn svg_target(o: &Opts) -> Result<Option<PathBuf>> {
-    let Some(text) = o.str("svg") else {
+fn svg_target(text: Option<&str>) -> Result<Option<PathBuf>> {
+    let Some(text) = text else {
         return Ok(None);
     };
     if text.trim().is_empty() {
@@ -215,42 +486,10 @@ fn write_svg(path: &Path, svg: &str) -> Result<()> {
         .map_err(|e| RideError::field("svg", format!("cannot write '{}': {e}", path.display())))
 }
 
-fn run(args: &[String]) -> Result<String> {
-    let Some((cmd, rest)) = args.split_first() else {
-        return Err(RideError::field("command", format!("missing\n{USAGE}")));
-    };
-    match cmd.as_str() {
-        "eval" => eval(rest),
-        "doe" => doe(rest),
-        "optimize" => optimize(rest),
-        "simulate" => simulate_cmd(rest),
-        "map" => map_cmd(rest),
-        "surrogate" => surrogate_cmd(rest),
-        "study" => study_cmd(rest),
-        "presets" => presets(rest),
-        "help" | "--help" | "-h" => Ok(format!("{USAGE}\n")),
-        other => Err(RideError::field(
-            "command",
-            format!("unknown command '{other}' (eval, doe, optimize, map, surrogate, study, simulate, presets)"),
-        )),
-    }
-}
-
-fn model_kind(o: &Opts) -> Result<ModelKind> {
-    ModelKind::parse(
-        o.str("model")
-            .ok_or_else(|| RideError::field("model", "missing (quarter or full)"))?,
-    )
-}
-
-fn eval(args: &[String]) -> Result<String> {
-    let mut values = vec!["model"];
-    values.extend(CAR_ROAD);
-    let o = Opts::parse(args, &["json"], &values)?;
-    let kind = model_kind(&o)?;
-    let (car, road) = car_and_road(&o)?;
-    let r = report(kind, &car, &road)?;
-    if o.flag("json") {
+fn eval(a: EvalArgs) -> Result<String> {
+    let (car, road) = car_and_road(&a.car)?;
+    let r = report(a.model, &car, &road)?;
+    if a.json {
         json(&r)
     } else {
         Ok(text_report(&r))
@@ -295,15 +534,9 @@ fn text_report(r: &Report) -> String {
     s
 }
 
-fn doe(args: &[String]) -> Result<String> {
-    let o = Opts::parse(args, &["json"], &["points", "seed"])?;
-    let n = match o.str("points") {
-        None => return Err(RideError::field("points", "missing")),
-        Some(_) => o.count("points", 0)?,
-    };
-    let seed = o.count("seed", 1)? as u64;
-    let r = doe_report(n, seed, &DesignBox::default())?;
-    if o.flag("json") {
+fn doe(a: DoeArgs) -> Result<String> {
+    let r = doe_report(a.points, a.seed, &DesignBox::default())?;
+    if a.json {
         return json(&r);
     }
     let mut s = format!(
@@ -322,92 +555,55 @@ fn doe(args: &[String]) -> Result<String> {
     Ok(s)
 }
 
-fn optimize(args: &[String]) -> Result<String> {
-    let mut values = vec![
-        "evaluator",
-        "plan",
-        "method",
-        "sws-limit",
-        "grid",
-        "population",
-        "generations",
-        "seed",
-        "svg",
-    ];
-    values.extend(CAR_ROAD);
-    let o = Opts::parse(args, &["json"], &values)?;
-    let svg = svg_target(&o)?;
-    let (car, road) = car_and_road(&o)?;
-    let mut objectives = DesignObjectives::default();
-    if let Some(l) = o.num("sws-limit")? {
-        objectives.sws_limit = Some(l);
-    }
-    objectives.validate()?;
-    let method = match o.str("method").unwrap_or("stm") {
-        "stm" => Method::Stm(StmParams {
-            grid: o.count("grid", 201)?,
+fn optimize(a: OptimizeArgs) -> Result<String> {
+    let svg = svg_target(a.svg.as_deref())?;
+    let (car, road) = car_and_road(&a.car)?;
+    let objectives = DesignObjectives {
+        sws_limit: a.sws_limit.or(DesignObjectives::default().sws_limit),
+        ..DesignObjectives::default()
+    };
+    let method = if a.method == "stm" {
+        Method::Stm(StmParams {
+            grid: a.grid,
             ..StmParams::default()
-        }),
-        "nsga2" => Method::Nsga2(Nsga2Params {
-            population: o.count("population", 100)?,
-            generations: o.count("generations", 100)?,
-            seed: o.count("seed", 1)? as u64,
+        })
+    } else {
+        Method::Nsga2(Nsga2Params {
+            population: a.population,
+            generations: a.generations,
+            seed: a.seed,
             ..Nsga2Params::default()
-        }),
-        other => {
-            return Err(RideError::field(
-                "method",
-                format!("'{other}' is not stm or nsga2"),
-            ))
-        }
+        })
     };
-    let hifi = HiFi::new(&car, &road)?;
-    let datum = hifi.evaluate(car.front.spring, car.front.damper)?;
-    let ctx = DosContext::new(&car, datum);
-    let design_box = DesignBox::default();
-    let evaluator: Box<dyn Evaluator> = match o.str("evaluator").unwrap_or("full") {
-        "full" | "hifi" => Box::new(hifi.clone()),
-        "quarter" | "lofi" => Box::new(LoFi {
-            car: car.clone(),
-            road,
-        }),
-        name => {
-            let spec = SurrogateSpec::parse(name).map_err(|e| match e {
-                RideError::Field { reason, .. } => RideError::field("evaluator", reason),
-                other => other,
-            })?;
-            let plan = PlanSpec::parse(o.str("plan").unwrap_or("ae:10"))?.plan()?;
-            let samples = sample_plan(&hifi, &plan, &design_box)?;
-            let setting = Setting::new(&car, &road, &design_box)?;
-            Box::new(spec.fit(&setting, &samples, &LmOptions::default())?)
-        }
-    };
-    let problem = SuspensionProblem::new(evaluator, design_box, objectives, ctx)?;
-    let study = run_study(&problem, &method, None)?;
-    let check = recheck(&study.pick, &hifi, &datum)?;
+    let out = optimize_report(
+        &car,
+        &road,
+        &DesignBox::default(),
+        a.evaluator,
+        a.plan,
+        &method,
+        objectives,
+    )?;
     if let Some(path) = &svg {
         write_svg(
             path,
-            &line_chart_svg(&front_chart(&study, &datum, Some(&check)))?,
+            &line_chart_svg(&front_chart(
+                &out.study,
+                &out.datum,
+                Some(&out.hifi_recheck),
+            ))?,
         )?;
     }
-    #[derive(serde::Serialize)]
-    struct Out<'a> {
-        #[serde(flatten)]
-        study: &'a ridelab::optimize::Study,
-        datum: ridelab::Criteria,
-        hifi_recheck: ridelab::optimize::Recheck,
-    }
-    let out = Out {
-        study: &study,
-        datum,
-        hifi_recheck: check,
-    };
-    if o.flag("json") {
+    if a.json {
         return json(&out);
     }
+    Ok(optimize_text(&out))
+}
+
+fn optimize_text(out: &OptimizeReport) -> String {
+    let (study, check) = (&out.study, &out.hifi_recheck);
     let p = &study.pick;
-    Ok(format!(
+    format!(
         "front: {} points on {} ({} evaluations), hypervolume {:.4} (m/s^2) N against [{:.4}, {:.2}]\n\
          min-max pick: Ks {:.1} N/m, Cs {:.1} N s/m\n  BAcc {:+.2} %, DTL {:+.2} %, SWS {:+.2} % against the datum\n\
          HiFi re-check: BAcc {:+.2} %, DTL {:+.2} %, SWS {:+.2} % (prediction error {:.3} / {:.3} / {:.3} %)\n",
@@ -422,113 +618,70 @@ fn optimize(args: &[String]) -> Result<String> {
         p.change_percent[0],
         p.change_percent[1],
         p.change_percent[2],
-        out.hifi_recheck.rechecked_change_percent[0],
-        out.hifi_recheck.rechecked_change_percent[1],
-        out.hifi_recheck.rechecked_change_percent[2],
-        out.hifi_recheck.error_percent[0],
-        out.hifi_recheck.error_percent[1],
-        out.hifi_recheck.error_percent[2],
-    ))
+        check.rechecked_change_percent[0],
+        check.rechecked_change_percent[1],
+        check.rechecked_change_percent[2],
+        check.error_percent[0],
+        check.error_percent[1],
+        check.error_percent[2],
+    )
 }
 
-/// The front damper law of `--bump --rebound [--knee --bump-high --rebound-high]`.
-fn damper_law(o: &Opts) -> Result<Option<Damper>> {
-    let knee = match (o.num("knee")?, o.num("bump-high")?, o.num("rebound-high")?) {
-        (None, None, None) => None,
+/// The front damper law of `--bump --rebound [--knee --bump-high --rebound-high]`
+/// (clap makes sure they come together); the core's field names become the options'.
+fn damper_law(a: &SimulateArgs) -> Result<Option<Damper>> {
+    let (Some(bump), Some(rebound)) = (a.bump, a.rebound) else {
+        return Ok(None);
+    };
+    let knee = match (a.knee, a.bump_high, a.rebound_high) {
         (Some(velocity), Some(bump), Some(rebound)) => Some(Knee {
             velocity,
             bump,
             rebound,
         }),
-        _ => {
-            return Err(RideError::field(
-                "knee",
-                "give --knee m/s with both --bump-high and --rebound-high",
-            ))
-        }
+        _ => None,
     };
-    match (o.num("bump")?, o.num("rebound")?) {
-        (None, None) if knee.is_some() => Err(RideError::field(
-            "bump",
-            "a knee needs the low-speed --bump and --rebound rates",
-        )),
-        (None, None) => Ok(None),
-        (Some(bump), Some(rebound)) => {
-            let law = Damper {
-                bump,
-                rebound,
-                knee,
-            };
-            // Errors name the option: knee.bump is --bump-high, and so on.
-            law.validate().map_err(|e| match e {
-                RideError::Field { field, reason } => {
-                    let option = match field.as_str() {
-                        "knee.velocity" => "knee",
-                        "knee.bump" => "bump-high",
-                        "knee.rebound" => "rebound-high",
-                        other => other,
-                    };
-                    RideError::field(option, reason)
-                }
+    let law = Damper {
+        bump,
+        rebound,
+        knee,
+    };
+    law.validate().map_err(|e| match e {
+        RideError::Field { field, reason } => {
+            let option = match field.as_str() {
+                "knee.velocity" => "knee",
+                "knee.bump" => "bump-high",
+                "knee.rebound" => "rebound-high",
                 other => other,
-            })?;
-            Ok(Some(law))
+            };
+            RideError::field(option, reason)
         }
-        _ => Err(RideError::field("bump", "give both --bump and --rebound")),
+        other => other,
+    })?;
+    if let Some(cs) = a.car.cs {
+        law.check_design_cs(cs)?;
     }
+    Ok(Some(law))
 }
 
-fn simulate_cmd(args: &[String]) -> Result<String> {
-    let mut values = vec![
-        "model",
-        "duration",
-        "dt",
-        "seed",
-        "bump",
-        "rebound",
-        "knee",
-        "bump-high",
-        "rebound-high",
-        "decimate",
-    ];
-    values.extend(CAR_ROAD);
-    let o = Opts::parse(args, &["json", "csv"], &values)?;
-    let kind = model_kind(&o)?;
-    let (car, road) = car_and_road(&o)?;
-    let mut opt = TimeOptions::default();
-    if let Some(v) = o.num("duration")? {
-        opt.duration = v;
+fn simulate_cmd(a: SimulateArgs) -> Result<String> {
+    let (car, road) = car_and_road(&a.car)?;
+    let mut opt = TimeOptions {
+        duration: a.duration,
+        seed: a.seed,
+        decimate: a.decimate,
+        damper: damper_law(&a)?,
+        ..TimeOptions::default()
+    };
+    if let Some(dt) = a.dt {
+        opt = opt.with_step(dt);
     }
-    if let Some(v) = o.num("dt")? {
-        opt = opt.with_step(v);
-    }
-    opt.seed = o.count("seed", 1)? as u64;
-    opt.decimate = o.count("decimate", 10)?;
-    opt.damper = damper_law(&o)?;
-    if let (Some(law), Some(cs)) = (opt.damper, o.num("cs")?) {
-        if cs != law.linear_rate() {
-            return Err(RideError::field(
-                "cs",
-                format!(
-                    "with --bump and --rebound the design's Cs is their mean {} Ns/m: leave --cs out",
-                    law.linear_rate()
-                ),
-            ));
-        }
-    }
-    let r = simulate(kind, &car, &road, &opt)?;
-    if o.flag("json") {
+    let r = simulate(a.model, &car, &road, &opt)?;
+    if a.json {
         return json(&r);
     }
-    if o.flag("csv") {
-        let mut s = String::from("t_s,road_m,bacc_m_per_s2,dtl_n,sws_m\n");
-        for i in 0..r.t.len() {
-            s += &format!(
-                "{},{},{},{},{}\n",
-                r.t[i], r.road[i], r.outputs[0][i], r.outputs[1][i], r.outputs[2][i]
-            );
-        }
-        return Ok(s);
+    if a.csv {
+        return Ok(simulate_csv(&r));
     }
     let damper = match opt.damper {
         None => format!("linear front damper Cs {} Ns/m", r.damper_rate),
@@ -554,13 +707,23 @@ fn simulate_cmd(args: &[String]) -> Result<String> {
     ))
 }
 
-fn presets(args: &[String]) -> Result<String> {
-    let o = Opts::parse(args, &["json"], &[])?;
+fn simulate_csv(r: &TimeResponse) -> String {
+    let mut s = String::from("t_s,road_m,bacc_m_per_s2,dtl_n,sws_m\n");
+    for i in 0..r.t.len() {
+        s += &format!(
+            "{},{},{},{},{}\n",
+            r.t[i], r.road[i], r.outputs[0][i], r.outputs[1][i], r.outputs[2][i]
+        );
+    }
+    s
+}
+
+fn presets(a: PresetsArgs) -> Result<String> {
     let cars: Vec<Car> = ridelab::car::PRESETS
         .iter()
         .map(|(n, _)| Car::preset(n))
         .collect::<Result<_>>()?;
-    if o.flag("json") {
+    if a.json {
         return json(&cars);
     }
     Ok(ridelab::car::PRESETS
@@ -570,26 +733,19 @@ fn presets(args: &[String]) -> Result<String> {
         .collect())
 }
 
-fn map_cmd(args: &[String]) -> Result<String> {
-    let mut values = vec!["model", "ks-range", "cs-range", "svg"];
-    values.extend(CAR_ROAD);
-    let o = Opts::parse(args, &["json", "csv", "relative"], &values)?;
-    let svg = svg_target(&o)?;
-    let kind = model_kind(&o)?;
-    let (car, road) = car_and_road(&o)?;
+fn map_cmd(a: MapArgs) -> Result<String> {
+    let svg = svg_target(a.svg.as_deref())?;
+    let (car, road) = car_and_road(&a.car)?;
     let settings = MapSettings {
-        grid: Grid::parse(
-            o.str("ks-range").unwrap_or("10000:40000:41"),
-            o.str("cs-range").unwrap_or("500:4000:41"),
-        )?,
-        scale: if o.flag("relative") {
+        grid: Grid::new(a.ks_range, a.cs_range)?,
+        scale: if a.relative {
             Scale::Relative
         } else {
             Scale::Absolute
         },
         ..MapSettings::default()
     };
-    let r = map_report(kind, &car, &road, &settings)?;
+    let r = map_report_on(a.model, &car, &road, &settings, a.compute)?;
     if let Some(prefix) = svg {
         let prefix = prefix.to_string_lossy();
         let prefix = prefix.strip_suffix(".svg").unwrap_or(&prefix);
@@ -600,41 +756,110 @@ fn map_cmd(args: &[String]) -> Result<String> {
             )?;
         }
     }
-    if o.flag("csv") {
+    if a.csv {
         Ok(map_csv(&r))
     } else {
         json(&r)
     }
 }
 
-fn surrogate_cmd(args: &[String]) -> Result<String> {
-    let mut values = vec!["approach", "plan", "predict"];
-    values.extend(CAR_ROAD);
-    let o = Opts::parse(args, &["json"], &values)?;
-    let (car, road) = car_and_road(&o)?;
-    let approach = o
-        .str("approach")
-        .ok_or_else(|| RideError::field("approach", "missing"))?;
-    let plan = o.str("plan").unwrap_or("ae:10");
-    let predict = match o.str("predict") {
-        None => None,
-        Some(p) => Some(
-            p.strip_prefix("grid:")
-                .and_then(|n| n.parse::<usize>().ok())
-                .ok_or_else(|| RideError::field("predict", format!("'{p}' is not grid:N")))?,
-        ),
-    };
-    let r = surrogate_report(approach, plan, &car, &road, predict)?;
+fn surrogate_cmd(a: SurrogateArgs) -> Result<String> {
+    let (car, road) = car_and_road(&a.car)?;
+    let r = surrogate_report_in(
+        a.approach,
+        a.plan,
+        &car,
+        &road,
+        &DesignBox::default(),
+        a.predict,
+    )
+    .map_err(|e| match e {
+        RideError::Field { field, reason } if field == "predict-grid" => {
+            RideError::field("predict", reason)
+        }
+        other => other,
+    })?;
     json(&r)
 }
 
-fn study_cmd(args: &[String]) -> Result<String> {
-    let o = Opts::parse(args, &["json", "markdown"], &CAR_ROAD)?;
-    let (car, road) = car_and_road(&o)?;
+fn study_cmd(a: StudyArgs) -> Result<String> {
+    let (car, road) = car_and_road(&a.car)?;
     let r = study(&car, &road)?;
-    if o.flag("markdown") {
+    if a.markdown {
         Ok(r.to_markdown())
     } else {
         json(&r)
     }
+}
+
+fn report_cmd(a: ReportArgs) -> Result<String> {
+    let (car, road) = car_and_road(&a.car)?;
+    let design_box = DesignBox {
+        ks_min: a.ks_range.0,
+        ks_max: a.ks_range.1,
+        cs_min: a.cs_range.0,
+        cs_max: a.cs_range.1,
+    };
+    design_box.validate()?;
+    let inputs = ReportInputs {
+        design_box,
+        objectives: DesignObjectives {
+            sws_limit: a.sws_limit.or(DesignObjectives::default().sws_limit),
+            ..DesignObjectives::default()
+        },
+        surrogate: a.approach.zip(a.plan),
+        seed: a.seed,
+        ..ReportInputs::new(car, road)
+    };
+    let figures_dir = a.out.join("figures");
+    std::fs::create_dir_all(&figures_dir).map_err(|e| {
+        RideError::field(
+            "out",
+            format!("cannot create '{}': {e}", figures_dir.display()),
+        )
+    })?;
+    // Progress on stderr, one line per section with its time.
+    let start = std::time::Instant::now();
+    let mut last = (start, None::<usize>);
+    let report = build(&inputs, |k| {
+        let now = std::time::Instant::now();
+        if let Some(prev) = last.1 {
+            eprintln!(
+                "report: {} took {:.2} s",
+                SECTIONS[prev],
+                (now - last.0).as_secs_f64()
+            );
+        }
+        if k < SECTIONS.len() {
+            eprintln!("report: {} ...", SECTIONS[k]);
+        }
+        last = (now, Some(k));
+    })?;
+    let render = std::time::Instant::now();
+    let docs = report.documents()?;
+    let write = |name: &Path, text: &str| {
+        std::fs::write(name, text)
+            .map_err(|e| RideError::field("out", format!("cannot write '{}': {e}", name.display())))
+    };
+    write(&a.out.join("report.html"), &docs.html)?;
+    write(&a.out.join("report.md"), &docs.markdown)?;
+    write(&a.out.join("report.json"), &json(&report)?)?;
+    for (name, text) in report.csv_files() {
+        write(&a.out.join(name), &text)?;
+    }
+    for f in &docs.figures {
+        write(&figures_dir.join(format!("{}.svg", f.key)), &f.svg)?;
+    }
+    eprintln!(
+        "report: rendering {} figures took {:.2} s; {:.2} s in all",
+        docs.figures.len(),
+        render.elapsed().as_secs_f64(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(format!(
+        "{}: {} (and report.md, report.json, {} figures, CSV tables)\n",
+        report.title(),
+        a.out.join("report.html").display(),
+        docs.figures.len()
+    ))
 }

@@ -8,6 +8,7 @@ use plotters::coord::Shift;
 use plotters::drawing::{DrawingArea, DrawingAreaErrorKind, IntoDrawingArea};
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::{FontDesc, FontFamily, FontStyle, TextStyle, WHITE};
+use plotters_backend::{BackendColor, BackendCoord, BackendStyle, BackendTextStyle};
 
 /// A drawing area in plain pixel coordinates on any plotters backend (the SVG backend
 /// for documents, the page's canvas for the screen).
@@ -43,15 +44,102 @@ pub(crate) const DESC_PX: f64 = 14.0;
 /// Title size, px.
 pub(crate) const TITLE_PX: f64 = 16.0;
 
+/// plotters' SVG backend with one text metric everywhere. The SVG backend cannot know
+/// how wide a viewer will draw a text; plotters estimates it natively with a fixed
+/// advance per byte, but on wasm32 it measures through the page's DOM (and fails without
+/// one, in a Web Worker). This wrapper always uses the native estimate, so an SVG is the
+/// same document natively, on the page's main thread and in a worker.
+pub(crate) struct SvgDocument<'a>(SVGBackend<'a>);
+
+/// plotters' native text box of `text` at font size `size` (plotters-0.3.7
+/// `style/font/naive.rs`): `em = size / 1.24^2`, width `round(0.7 em bytes)`, height
+/// `round(em) + round(0.24 em)`.
+fn naive_text_size(text: &str, size: f64) -> (u32, u32) {
+    let em = size / 1.24 / 1.24;
+    (
+        (em * 0.7 * text.len() as f64).round() as u32,
+        (em.round() + (em * 0.24).round()) as u32,
+    )
+}
+
+type SvgError = <SVGBackend<'static> as DrawingBackend>::ErrorType;
+type SvgDrawn = std::result::Result<(), plotters_backend::DrawingErrorKind<SvgError>>;
+
+impl DrawingBackend for SvgDocument<'_> {
+    type ErrorType = SvgError;
+
+    fn get_size(&self) -> (u32, u32) {
+        self.0.get_size()
+    }
+    fn ensure_prepared(&mut self) -> SvgDrawn {
+        self.0.ensure_prepared()
+    }
+    fn present(&mut self) -> SvgDrawn {
+        self.0.present()
+    }
+    fn draw_pixel(&mut self, p: BackendCoord, c: BackendColor) -> SvgDrawn {
+        self.0.draw_pixel(p, c)
+    }
+    fn draw_line<S: BackendStyle>(&mut self, a: BackendCoord, b: BackendCoord, s: &S) -> SvgDrawn {
+        self.0.draw_line(a, b, s)
+    }
+    fn draw_rect<S: BackendStyle>(
+        &mut self,
+        a: BackendCoord,
+        b: BackendCoord,
+        s: &S,
+        fill: bool,
+    ) -> SvgDrawn {
+        self.0.draw_rect(a, b, s, fill)
+    }
+    fn draw_path<S: BackendStyle, I: IntoIterator<Item = BackendCoord>>(
+        &mut self,
+        path: I,
+        s: &S,
+    ) -> SvgDrawn {
+        self.0.draw_path(path, s)
+    }
+    fn draw_circle<S: BackendStyle>(
+        &mut self,
+        centre: BackendCoord,
+        radius: u32,
+        s: &S,
+        fill: bool,
+    ) -> SvgDrawn {
+        self.0.draw_circle(centre, radius, s, fill)
+    }
+    fn fill_polygon<S: BackendStyle, I: IntoIterator<Item = BackendCoord>>(
+        &mut self,
+        vertices: I,
+        s: &S,
+    ) -> SvgDrawn {
+        self.0.fill_polygon(vertices, s)
+    }
+    fn draw_text<T: BackendTextStyle>(&mut self, text: &str, s: &T, pos: BackendCoord) -> SvgDrawn {
+        self.0.draw_text(text, s, pos)
+    }
+    fn estimate_text_size<T: BackendTextStyle>(
+        &self,
+        text: &str,
+        s: &T,
+    ) -> std::result::Result<(u32, u32), plotters_backend::DrawingErrorKind<SvgError>> {
+        Ok(naive_text_size(text, s.size()))
+    }
+    fn blit_bitmap(&mut self, pos: BackendCoord, size: (u32, u32), src: &[u8]) -> SvgDrawn {
+        self.0.blit_bitmap(pos, size, src)
+    }
+}
+
 /// Draws an SVG document of `width` x `height` px on a white background with `draw`.
 pub(crate) fn render(
     width: u32,
     height: u32,
-    draw: impl FnOnce(&Area<SVGBackend<'_>>) -> Result<()>,
+    draw: impl FnOnce(&Area<SvgDocument<'_>>) -> Result<()>,
 ) -> Result<String> {
     let mut buf = String::new();
     {
-        let root = SVGBackend::with_string(&mut buf, (width, height)).into_drawing_area();
+        let root =
+            SvgDocument(SVGBackend::with_string(&mut buf, (width, height))).into_drawing_area();
         root.fill(&WHITE).map_err(drawing_error)?;
         draw(&root)?;
         root.present().map_err(drawing_error)?;

@@ -89,7 +89,10 @@ fn cmul<F: Float>(a: C<F>, b: C<F>) -> C<F> {
 
 fn cdiv<F: Float>(a: C<F>, b: C<F>) -> C<F> {
     let d = b.re * b.re + b.im * b.im;
-    c((a.re * b.re + a.im * b.im) / d, (a.im * b.re - a.re * b.im) / d)
+    c(
+        (a.re * b.re + a.im * b.im) / d,
+        (a.im * b.re - a.re * b.im) / d,
+    )
 }
 
 fn norm2<F: Float>(a: C<F>) -> F {
@@ -152,8 +155,7 @@ pub fn cell_variances<F: Float>(
 /// angular frequency `w` (see the module doc).
 fn transfers<F: Float>(h: &[F; HALF_STRIDE], d: &Design<F>, w: F) -> [[C<F>; N_OUT]; 2] {
     let w2 = w * w;
-    let z: [C<F>; 9] =
-        std::array::from_fn(|s| c(d.k[s] - w2 * h[offset::M + s], w * d.c[s]));
+    let z: [C<F>; 9] = std::array::from_fn(|s| c(d.k[s] - w2 * h[offset::M + s], w * d.c[s]));
     // Slots: 0 (0,0), 1 (0,1), 2 (1,1), 3 (0,2), 4 (0,3), 5 (1,2), 6 (1,3), 7 (2,2), 8 (3,3).
     let one = c(F::one(), F::zero());
     let d2 = cdiv(one, z[7]);
@@ -163,9 +165,8 @@ fn transfers<F: Float>(h: &[F; HALF_STRIDE], d: &Design<F>, w: F) -> [[C<F>; N_O
     let s01 = z[1] - cmul(cmul(z02, d2), z12) - cmul(cmul(z03, d3), z13);
     let s11 = z[2] - cmul(cmul(z12, d2), z12) - cmul(cmul(z13, d3), z13);
     std::array::from_fn(|g| {
-        let f: [C<F>; N_COORD] = std::array::from_fn(|i| {
-            c(h[offset::KR + 4 * g + i], w * h[offset::CR + 4 * g + i])
-        });
+        let f: [C<F>; N_COORD] =
+            std::array::from_fn(|i| c(h[offset::KR + 4 * g + i], w * h[offset::CR + 4 * g + i]));
         let r0 = f[0] - cmul(cmul(z02, d2), f[2]) - cmul(cmul(z03, d3), f[3]);
         let r1 = f[1] - cmul(cmul(z12, d2), f[2]) - cmul(cmul(z13, d3), f[3]);
         let (p0, p1) = solve2(s00, s01, s11, r0, r1);

@@ -53,6 +53,24 @@ pub enum ComputePath {
     Cpu,
 }
 
+/// The mapper `compute` asks for: none for `Cpu`, a hardware adapter's for `Auto` (none
+/// without one), any adapter's for `Gpu` (an error naming `compute` without one).
+#[cfg(feature = "gpu")]
+fn gpu_mapper(compute: Compute) -> Result<Option<super::GpuMapper>> {
+    use super::GpuMapper;
+    match compute {
+        Compute::Cpu => Ok(None),
+        Compute::Auto => Ok(GpuMapper::new()?.filter(|m| !m.is_software())),
+        Compute::Gpu => GpuMapper::new()?.map(Some).ok_or_else(|| {
+            RideError::field(
+                "compute",
+                "gpu: no GPU adapter (natively a Vulkan, Metal or DX12 driver; on Debian \
+                 without a GPU: apt-get install mesa-vulkan-drivers), use --compute cpu or auto",
+            )
+        }),
+    }
+}
+
 /// HiFi criteria precomputed on a grid: a grid point returns its stored value, any
 /// other design (the datum, STM's refinements) is evaluated by the CPU HiFi.
 #[derive(Debug, Clone)]
@@ -66,8 +84,8 @@ pub struct HiFiGrid {
 
 impl HiFiGrid {
     /// The HiFi of `car` on `road` over `grid` on the path `compute` asks for, with
-    /// `threads` threads on the CPU path. `Compute::Gpu` without an adapter fails with
-    /// a [`RideError::Gpu`] that says so.
+    /// `threads` threads on the CPU path. `Compute::Gpu` without an adapter (or in a
+    /// build without the `gpu` feature) is an error naming `compute`.
     pub fn compute(
         car: &crate::car::Car,
         road: &crate::road::Road,
@@ -75,37 +93,36 @@ impl HiFiGrid {
         compute: Compute,
         threads: usize,
     ) -> Result<HiFiGrid> {
-        use super::{GpuMapper, MapInput};
-        use crate::maps::evaluate_grid;
         let hifi = HiFi::new(car, road)?;
         grid.validate()?;
-        let mapper = match compute {
-            Compute::Cpu => None,
-            Compute::Auto => GpuMapper::new()?.filter(|m| !m.is_software()),
-            Compute::Gpu => Some(GpuMapper::new()?.ok_or_else(|| {
-                RideError::Gpu(
-                    "--compute gpu: no GPU adapter (natively a Vulkan, Metal or DX12 driver; \
-                     on Debian without a GPU: apt-get install mesa-vulkan-drivers)"
-                        .into(),
-                )
-            })?),
-        };
-        match mapper {
-            Some(m) => {
-                let values = m.map(&MapInput::new(car, road, grid)?)?;
-                Ok(HiFiGrid {
-                    hifi,
-                    grid: *grid,
-                    values,
-                    path: ComputePath::Gpu,
-                    adapter: Some(m.adapter_name().to_string()),
-                })
-            }
-            None => {
-                let values = evaluate_grid(&hifi, grid, threads)?;
-                Ok(HiFiGrid::from_values(hifi, *grid, values, ComputePath::Cpu))
+        #[cfg(feature = "gpu")]
+        if let Some(m) = gpu_mapper(compute)? {
+            // `Auto` falls back to the CPU where the route cannot run (a mode damped too
+            // weakly for its rule, a device failure); `Gpu` reports why.
+            match super::MapInput::new(car, road, grid).and_then(|input| m.map(&input)) {
+                Ok(values) => {
+                    return Ok(HiFiGrid {
+                        hifi,
+                        grid: *grid,
+                        values,
+                        path: ComputePath::Gpu,
+                        adapter: Some(m.adapter_name().to_string()),
+                    })
+                }
+                Err(e) if compute == Compute::Gpu => return Err(e),
+                Err(_) => {}
             }
         }
+        #[cfg(not(feature = "gpu"))]
+        if compute == Compute::Gpu {
+            return Err(RideError::field(
+                "compute",
+                "gpu: this build has no GPU path (build with --features gpu), \
+                 use --compute cpu or auto",
+            ));
+        }
+        let values = crate::maps::evaluate_grid(&hifi, grid, threads)?;
+        Ok(HiFiGrid::from_values(hifi, *grid, values, ComputePath::Cpu))
     }
 
     /// Wraps values already computed on `grid` (row-major, Cs rows) by `path`.

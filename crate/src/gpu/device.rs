@@ -283,9 +283,8 @@ impl GpuMapper {
         // Natively this drives the work to completion; on the web it does nothing and
         // the browser calls back.
         let polled = d.poll(wgpu::PollType::wait_indefinitely());
-        let failed = |what: &str| -> RideError {
-            RideError::Gpu(format!("{what} on {}", self.info.name))
-        };
+        let failed =
+            |what: &str| -> RideError { RideError::Gpu(format!("{what} on {}", self.info.name)) };
         if let Err(e) = polled {
             return Err(RideError::Gpu(format!("{e} on {}", self.info.name)));
         }

@@ -143,8 +143,7 @@ fn project(
         let off_slots = (0..N_COORD).any(|i| {
             (0..N_COORD).any(|j| {
                 let listed = SLOTS.contains(&(i.min(j), i.max(j)));
-                (mat[(i, j)] - mat[(j, i)]).abs() > 1e-12 * scale
-                    || (!listed && mat[(i, j)] != 0.0)
+                (mat[(i, j)] - mat[(j, i)]).abs() > 1e-12 * scale || (!listed && mat[(i, j)] != 0.0)
             })
         });
         if off_slots {

@@ -14,9 +14,11 @@
 //! frequency route exploits.
 
 mod full;
+pub mod modes;
 mod quarter;
 
 pub use full::{full_car, symmetric_half};
+pub use modes::Mode;
 pub use quarter::quarter_car;
 
 use crate::error::{Result, RideError};
@@ -169,8 +171,8 @@ impl LinearModel {
     }
 
     /// Natural frequencies and damping ratios of the model (eigenvalues of `A`).
-    pub fn modes(&self) -> Result<Vec<crate::modes::Mode>> {
-        crate::modes::modes(self)
+    pub fn modes(&self) -> Result<Vec<Mode>> {
+        modes::modes(self)
     }
 }
 

@@ -11,6 +11,7 @@ pub mod hypervolume;
 pub mod minmax;
 pub mod nsga2;
 pub mod problem;
+pub mod report;
 pub mod stm;
 pub mod study;
 pub mod suspension;
@@ -23,6 +24,7 @@ pub use hypervolume::{front_distance, hypervolume, reference_point, FrontDistanc
 pub use minmax::{min_max_pick, normalised_distances, recheck, Pick, Recheck};
 pub use nsga2::{nsga2, Nsga2Params};
 pub use problem::{dominates, non_dominated, Eval, Problem, Solution};
+pub use report::{optimize_report, EvaluatorSpec, OptimizeReport};
 pub use stm::{stm, StmParams};
 pub use study::{run_study, Method, Study};
 pub use suspension::{Counted, FrontPoint, SuspensionProblem};

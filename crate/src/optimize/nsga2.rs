@@ -46,17 +46,43 @@ impl Default for Nsga2Params {
     }
 }
 
+/// Largest population accepted (a population is held twice over, parents and children).
+pub const MAX_POPULATION: usize = 10_000;
+/// Most generations accepted.
+pub const MAX_GENERATIONS: usize = 10_000;
+/// Most evaluations one run may cost, `population (generations + 1)` (on the HiFi at
+/// about 25 us a point, some 8 minutes).
+pub const MAX_EVALUATIONS: usize = 20_000_000;
+
 impl Nsga2Params {
     /// Checks every setting; errors name the field.
     pub fn validate(&self) -> Result<()> {
-        if self.population < 4 || !self.population.is_multiple_of(2) {
+        if self.population < 4
+            || !self.population.is_multiple_of(2)
+            || self.population > MAX_POPULATION
+        {
             return Err(RideError::field(
                 "population",
-                "must be an even number >= 4",
+                format!(
+                    "must be an even number from 4 to {MAX_POPULATION} (got {})",
+                    self.population
+                ),
             ));
         }
-        if self.generations == 0 {
-            return Err(RideError::field("generations", "must be >= 1"));
+        if self.generations == 0 || self.generations > MAX_GENERATIONS {
+            return Err(RideError::field(
+                "generations",
+                format!("must be 1 to {MAX_GENERATIONS} (got {})", self.generations),
+            ));
+        }
+        let cost = self.population.saturating_mul(self.generations + 1);
+        if cost > MAX_EVALUATIONS {
+            return Err(RideError::field(
+                "generations",
+                format!(
+                    "population x (generations + 1) = {cost} evaluations; at most {MAX_EVALUATIONS}"
+                ),
+            ));
         }
         let unit = |name: &str, p: f64| {
             if (0.0..=1.0).contains(&p) {

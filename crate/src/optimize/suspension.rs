@@ -275,10 +275,10 @@ impl<E: Evaluator> Problem for SuspensionProblem<E> {
         everywhere.sort_by(|a, b| b.g.total_cmp(&a.g));
         if let Some(first) = everywhere.first() {
             let reasons: Vec<String> = everywhere.iter().map(|e| self.describe(e)).collect();
-            return RideError::field(
-                field_of(first.objective),
-                format!("no feasible design: {}", reasons.join("; ")),
-            );
+            return RideError::Infeasible {
+                field: field_of(first.objective).into(),
+                reason: format!("no feasible design: {}", reasons.join("; ")),
+            };
         }
         match self.least.borrow().as_ref() {
             Some(l) => {
@@ -289,9 +289,9 @@ impl<E: Evaluator> Problem for SuspensionProblem<E> {
                     .map(|e| e.objective.label())
                     .collect();
                 let broken: Vec<&str> = l.broken.iter().map(|o| o.label()).collect();
-                RideError::field(
-                    l.broken.first().map_or("objectives", |&o| field_of(o)),
-                    format!(
+                RideError::Infeasible {
+                    field: l.broken.first().map_or("objectives", |&o| field_of(o)).into(),
+                    reason: format!(
                         "no feasible design: {} are each met somewhere in the design box but never together; \
                          the closest design (Ks = {:.0} N/m, Cs = {:.0} N s/m) breaks {}",
                         all.join(" and "),
@@ -299,7 +299,7 @@ impl<E: Evaluator> Problem for SuspensionProblem<E> {
                         l.cs,
                         broken.join(" and ")
                     ),
-                )
+                }
             }
             None => RideError::Numerical("no feasible design: nothing was evaluated".into()),
         }

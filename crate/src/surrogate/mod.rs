@@ -39,7 +39,8 @@ pub use rba::{Form, Rba, RbaParams};
 pub use response::{Kernel, ResponseKind};
 pub use spec::{Approach, PlanSpec, SurrogateSpec};
 pub use study::{
-    study, surrogate_report, surrogate_report_in, StudyReport, SurrogateReport, ValidationSet,
+    study, study_in, surrogate_report, surrogate_report_in, StudyReport, SurrogateReport,
+    ValidationSet,
 };
 pub use tuned::Tuned;
 pub use vba::{Transform, VbaParams};
@@ -71,10 +72,9 @@ pub fn sample_plan<E: Evaluator>(
     plan: &Plan,
     design_box: &DesignBox,
 ) -> Result<Vec<Sample>> {
-    plan.unit
-        .iter()
-        .map(|p| {
-            let (ks, cs) = design_box.scale(p[0], p[1]);
+    plan.points(design_box)
+        .into_iter()
+        .map(|(ks, cs)| {
             Ok(Sample {
                 ks,
                 cs,

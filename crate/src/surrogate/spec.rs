@@ -240,6 +240,20 @@ pub enum PlanSpec {
     Grid(usize),
 }
 
+impl std::str::FromStr for PlanSpec {
+    type Err = RideError;
+    fn from_str(s: &str) -> Result<PlanSpec> {
+        PlanSpec::parse(s)
+    }
+}
+
+impl std::str::FromStr for SurrogateSpec {
+    type Err = RideError;
+    fn from_str(s: &str) -> Result<SurrogateSpec> {
+        SurrogateSpec::parse(s)
+    }
+}
+
 impl PlanSpec {
     /// The seed's study: Audze-Eglais with 2, 3, 4, 5 and 10 points, then the grids with
     /// the same numbers of levels.

@@ -359,7 +359,12 @@ pub fn best_per_budget(rows: &[StudyRow]) -> Vec<BudgetBest> {
 /// The whole study for `car` on `road`: the default design box, [`study_specs`], the plans
 /// of [`PlanSpec::study`], the `20 x 20` validation grid, default fit options.
 pub fn study(car: &Car, road: &Road) -> Result<StudyReport> {
-    let design_box = DesignBox::default();
+    study_in(car, road, &DesignBox::default())
+}
+
+/// [`study`] over any design box (plans, normalisation and validation grid span it).
+pub fn study_in(car: &Car, road: &Road, design_box: &DesignBox) -> Result<StudyReport> {
+    let design_box = *design_box;
     let setting = Setting::new(car, road, &design_box)?;
     let hifi = Counted::new(HiFi::new(car, road)?);
     let validation = ValidationSet::new(&hifi, &design_box, VALIDATION_LEVELS)?;

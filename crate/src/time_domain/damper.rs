@@ -98,6 +98,23 @@ impl Damper {
         v.into_iter().map(|v| (v, self.force(v))).collect()
     }
 
+    /// Checks a design's Cs given together with this law: by the rule of the module,
+    /// the design's Cs is the law's [`Damper::linear_rate`], so any other Cs is refused
+    /// (errors name `cs`).
+    pub fn check_design_cs(&self, cs: f64) -> Result<()> {
+        if cs == self.linear_rate() {
+            Ok(())
+        } else {
+            Err(RideError::field(
+                "cs",
+                format!(
+                    "with bump and rebound rates the design's Cs is their mean {} Ns/m (got {cs}): leave Cs out",
+                    self.linear_rate()
+                ),
+            ))
+        }
+    }
+
     /// Checks every rate and the knee; messages name the field.
     pub fn validate(&self) -> Result<()> {
         let rate = |field: &str, x: f64, zero_ok: bool| {

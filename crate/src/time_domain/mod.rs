@@ -298,8 +298,8 @@ fn run(model: &LinearModel, road: &Road, opt: &TimeOptions, rate: f64) -> Result
             if i.is_multiple_of(keep) {
                 out.t.push(i as f64 * h);
                 out.road.push(r_now[0]);
-                for o in 0..N_OUT {
-                    out.outputs[o].push(y[o]);
+                for (record, value) in out.outputs.iter_mut().zip(y) {
+                    record.push(value);
                 }
                 for d in 0..nq {
                     out.positions[d].push(q[d]);

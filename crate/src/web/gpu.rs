@@ -33,9 +33,7 @@ impl GpuMaps {
     /// WebGPU adapter (the page then stays on the CPU path and says so).
     pub async fn request() -> Result<GpuMaps, JsValue> {
         match GpuMapper::request().await.map_err(js_error)? {
-            Some(m) => Ok(GpuMaps {
-                mapper: Rc::new(m),
-            }),
+            Some(m) => Ok(GpuMaps { mapper: Rc::new(m) }),
             None => Err(js_error(RideError::Gpu(
                 "no WebGPU adapter in this browser: the HiFi maps use the CPU path".into(),
             ))),

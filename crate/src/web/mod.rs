@@ -11,9 +11,11 @@
 //! is in [`crate::explorer`].
 
 mod charts;
+#[cfg(feature = "gpu")]
 mod gpu;
 mod screen;
 pub use charts::{line_chart_svg_js, map_chart_svg_js};
+#[cfg(feature = "gpu")]
 pub use gpu::GpuMaps;
 pub use screen::{draw_line_chart_js, draw_map_frame_js};
 
@@ -32,7 +34,7 @@ use wasm_bindgen::prelude::*;
 /// Converts a core error to a JS `Error` with a `field` property.
 fn js_error(e: RideError) -> JsValue {
     let field = match &e {
-        RideError::Field { field, .. } => ui_field(field),
+        RideError::Field { field, .. } | RideError::Infeasible { field, .. } => ui_field(field),
         // The only JSON the core parses is a car file.
         RideError::Json(_) => "car".into(),
         _ => String::new(),

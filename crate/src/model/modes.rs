@@ -2,8 +2,8 @@
 //! pair of the state matrix, labelled by the coordinate that dominates its shape, one
 //! coordinate per oscillatory mode (see [`modes`]).
 
+use super::LinearModel;
 use crate::error::{Result, RideError};
-use crate::model::LinearModel;
 use nalgebra::DMatrix;
 use num_complex::Complex64 as C64;
 use serde::Serialize;

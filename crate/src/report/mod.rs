@@ -1,0 +1,663 @@
+//! The study report: the method end to end for one car, road and design box, as the
+//! data behind `ridelab report` and the page's "Download report" (one function builds
+//! it for both), rendered as one self-contained HTML file ([`html`]) and its Markdown
+//! twin ([`markdown`]), with the figures as SVG ([`figures`], the core's plotters charts).
+//!
+//! Sections (the thesis's chapters 3 to 5):
+//! 1. the car, road and design box; model verification: the closed form against the
+//!    Lyapunov route against frequency integration against a long time-domain record,
+//!    for the LoFi and the HiFi; their FRFs and modes;
+//! 2. design-criteria maps of both models and the design objective space;
+//! 3. the Audze-Eglais plans with their energies and gap distributions;
+//! 4. the fidelity study and the chosen surrogate's error maps;
+//! 5. STM and NSGA-II fronts on the surrogate, a brute-force HiFi front, hypervolumes,
+//!    the min-max pick against the datum re-checked on the HiFi, beside the seed thesis's
+//!    own result. An infeasible scenario says why instead.
+//!
+//! Deterministic for given inputs (seeded); nothing in it depends on the clock.
+
+pub mod document;
+pub mod figures;
+pub mod html;
+pub mod markdown;
+
+use crate::analysis::{HiFi, ModelKind};
+use crate::car::{Car, QuarterCar};
+use crate::criteria::{
+    criteria_exact, criteria_modal, criteria_spectral, quarter_car_rms, Spectrum,
+};
+use crate::design::DesignBox;
+use crate::doe::{audze_eglais, gap_histogram};
+use crate::dos::DesignObjectives;
+use crate::error::{Result, RideError};
+use crate::evaluate::{Criteria, Evaluator};
+use crate::maps::{map_report, Grid, MapReport, MapSettings};
+use crate::model::Mode;
+use crate::optimize::{
+    front_distance, optimize_report, EvaluatorSpec, FrontDistance, Method, Nsga2Params,
+    OptimizeReport, StmParams,
+};
+use crate::road::Road;
+use crate::surrogate::{
+    study_in, surrogate_report_in, PlanSpec, StudyReport, SurrogateReport, SurrogateSpec,
+};
+use crate::time_domain::{simulate, TimeOptions};
+use serde::Serialize;
+
+/// What a report is made of.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReportInputs {
+    /// The datum car (its own front spring and damper are the datum design).
+    pub car: Car,
+    /// The road.
+    pub road: Road,
+    /// The design box of the maps, plans, surrogates and fronts.
+    pub design_box: DesignBox,
+    /// The design objectives.
+    pub objectives: DesignObjectives,
+    /// The surrogate of sections 4 and 5 and its plan; `None`: the fidelity study's best
+    /// at 10 HiFi samples.
+    pub surrogate: Option<(SurrogateSpec, PlanSpec)>,
+    /// Seed of the time-domain record and of NSGA-II.
+    pub seed: u64,
+}
+
+impl ReportInputs {
+    /// The default car, road, box and objectives; the study picks the surrogate; seed 1.
+    pub fn new(car: Car, road: Road) -> ReportInputs {
+        ReportInputs {
+            car,
+            road,
+            design_box: DesignBox::default(),
+            objectives: DesignObjectives::default(),
+            surrogate: None,
+            seed: 1,
+        }
+    }
+}
+
+/// Sampling plans of section 3 (the seed's study: 2, 3, 4, 5 and 10 points).
+pub const PLAN_SIZES: [usize; 5] = [2, 3, 4, 5, 10];
+/// Grid points per axis of the design-criteria maps.
+pub const MAP_POINTS: usize = 41;
+/// Length of the time-domain record of the verification, s (the RMS of a record this
+/// long agrees with the exact one to about 3 %).
+pub const RECORD_S: f64 = 100.0;
+
+/// The whole report's data (also written as `report.json`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MethodReport {
+    /// The crate version that made it.
+    pub version: String,
+    /// Section 1: the scenario.
+    pub scenario: Scenario,
+    /// Section 1: model verification.
+    pub verification: Verification,
+    /// Section 2: the maps of both models.
+    pub maps: Maps,
+    /// Section 3: the sampling plans.
+    pub sampling: Vec<PlanSummary>,
+    /// Section 4: the fidelity study and the chosen surrogate.
+    pub fidelity: Fidelity,
+    /// Section 5: the fronts and the pick, or why there are none.
+    pub optimisation: Optimisation,
+    /// The seed thesis's own result, quoted.
+    pub thesis: ThesisResult,
+}
+
+/// The car, road, box and objectives.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Scenario {
+    /// The datum car.
+    pub car: Car,
+    /// Its front quarter car (the LoFi).
+    pub quarter: QuarterCar,
+    /// The road.
+    pub road: Road,
+    /// Road velocity PSD, one-sided, m^2/s^2/Hz.
+    pub velocity_psd: f64,
+    /// Front-rear delay `L / v`, s.
+    pub delay: f64,
+    /// Static front wheel load, N.
+    pub static_wheel_load: f64,
+    /// The design box.
+    pub design_box: DesignBox,
+    /// The design objectives.
+    pub objectives: DesignObjectives,
+}
+
+/// One route's criteria at the datum design and its largest relative difference from
+/// the section's reference (the first row).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RouteRow {
+    /// The route.
+    pub route: String,
+    /// Its criteria (m/s^2, N, m).
+    pub criteria: Criteria,
+    /// `max_k |c_k / ref_k - 1|` against the first row.
+    pub difference: f64,
+}
+
+/// The FRF magnitudes |H| from road displacement (right track) of both models.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Frf {
+    /// Frequencies, Hz (0.1..100, log spaced).
+    pub f: Vec<f64>,
+    /// LoFi `[BAcc 1/s^2, DTL N/m, SWS m/m]`.
+    pub lofi: [Vec<f64>; 3],
+    /// HiFi, same.
+    pub hifi: [Vec<f64>; 3],
+}
+
+/// Model verification at the datum design.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Verification {
+    /// The LoFi by the closed forms, Lyapunov, frequency integration and the record.
+    pub lofi: Vec<RouteRow>,
+    /// The HiFi by the Kronecker Lyapunov route with the delay (where it exists), the
+    /// modal route, frequency integration and the record.
+    pub hifi: Vec<RouteRow>,
+    /// A note on a route that does not apply (a road warp needs ISO's low cutoff).
+    pub notes: Vec<String>,
+    /// The record: its length, step and seed.
+    pub record: TimeOptions,
+    /// LoFi modes.
+    pub lofi_modes: Vec<Mode>,
+    /// HiFi modes.
+    pub hifi_modes: Vec<Mode>,
+    /// FRFs of both models.
+    pub frf: Frf,
+}
+
+/// The maps of both models over the design box.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Maps {
+    /// The LoFi's (the `ridelab map --model quarter` report).
+    pub lofi: MapReport,
+    /// The HiFi's.
+    pub hifi: MapReport,
+}
+
+/// An Audze-Eglais plan.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PlanSummary {
+    /// Points.
+    pub points: usize,
+    /// Potential energy, lattice units^-2.
+    pub energy: f64,
+    /// Proven optimal.
+    pub optimal: bool,
+    /// How it was made.
+    pub method: String,
+    /// Smallest gap, lattice units.
+    pub min_gap: f64,
+    /// Gap histogram `(lo, hi, count)`, lattice units.
+    pub gaps: Vec<(f64, f64, usize)>,
+    /// The points in the box `(ks N/m, cs N s/m)`.
+    pub design: Vec<(f64, f64)>,
+}
+
+/// The fidelity study and the surrogate the report goes on with.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Fidelity {
+    /// Every surrogate on every plan, validated on the 20 x 20 HiFi grid.
+    pub study: StudyReport,
+    /// Why this surrogate: chosen by the inputs, or the study's best at 10 samples.
+    pub chosen_because: String,
+    /// The chosen surrogate's report (samples, tuning, metrics, error map).
+    pub chosen: SurrogateReport,
+}
+
+/// Section 5.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Optimisation {
+    /// `None` when a front exists; otherwise why not (the binding objective).
+    pub infeasible: Option<String>,
+    /// STM on the surrogate.
+    pub stm: Option<OptimizeReport>,
+    /// NSGA-II on the surrogate.
+    pub nsga2: Option<OptimizeReport>,
+    /// STM on the HiFi itself: the brute-force reference front.
+    pub hifi: Option<OptimizeReport>,
+    /// Distance of the surrogate's STM front from the HiFi front (normalised plane).
+    pub stm_to_hifi: Option<FrontDistance>,
+    /// The before/after table (the datum, each pick predicted and re-checked).
+    pub table: Vec<PickRow>,
+}
+
+/// One row of the before/after table: a design and its change against the datum.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PickRow {
+    /// What the row is.
+    pub design: String,
+    /// Front spring rate, N/m.
+    pub ks: f64,
+    /// Front damper rate, N s/m.
+    pub cs: f64,
+    /// BAcc change against the datum, %.
+    pub bacc_percent: f64,
+    /// DTL change against the datum, %.
+    pub dtl_percent: f64,
+    /// RMS SWS, m.
+    pub sws: f64,
+}
+
+/// The seed thesis's result on its own (unpublished here) datum car (METHOD.md section 6).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ThesisResult {
+    /// Front spring rate of its pick, N/m.
+    pub ks: f64,
+    /// Front damper rate of its pick, N s/m.
+    pub cs: f64,
+    /// BAcc change, %.
+    pub bacc_percent: f64,
+    /// DTL change, %.
+    pub dtl_percent: f64,
+    /// Why the numbers here differ.
+    pub note: String,
+}
+
+impl ThesisResult {
+    fn quoted() -> ThesisResult {
+        ThesisResult {
+            ks: 12_535.6,
+            cs: 1_416.7,
+            bacc_percent: -12.6,
+            dtl_percent: 6.4,
+            note: "The seed thesis optimised its own datum car, whose data are not published; \
+                   RideLab's datum is the Ikenaga et al. (2000) car, so the numbers differ. \
+                   What should agree is the shape of the trade-off: a softer spring with \
+                   about the datum's damping buys comfort for some road holding, inside the \
+                   7 mm SWS limit."
+                .into(),
+        }
+    }
+}
+
+/// The report's sections in order, for progress messages.
+pub const SECTIONS: [&str; 5] = [
+    "1 scenario and model verification",
+    "2 design maps",
+    "3 sampling plans",
+    "4 fidelity study",
+    "5 fronts and the pick",
+];
+
+/// Builds the report; `progress(k)` is called as section `k` of [`SECTIONS`] starts and
+/// with `SECTIONS.len()` at the end (the CLI times the sections with it).
+pub fn build(inputs: &ReportInputs, mut progress: impl FnMut(usize)) -> Result<MethodReport> {
+    let ReportInputs {
+        car,
+        road,
+        design_box,
+        objectives,
+        ..
+    } = inputs;
+    car.validate()?;
+    road.validate()?;
+    design_box.validate()?;
+    objectives.validate()?;
+    progress(0);
+    let scenario = Scenario {
+        car: car.clone(),
+        quarter: car.quarter(),
+        road: *road,
+        velocity_psd: road.velocity_psd(),
+        delay: road.delay(car.wheelbase()),
+        static_wheel_load: car.front_wheel_load(),
+        design_box: *design_box,
+        objectives: objectives.clone(),
+    };
+    let verification = verify(car, road, inputs.seed)?;
+    progress(1);
+    let settings = MapSettings {
+        grid: Grid::over_box(design_box, MAP_POINTS, MAP_POINTS)?,
+        objectives: objectives.clone(),
+        ..MapSettings::default()
+    };
+    let maps = Maps {
+        lofi: map_report(ModelKind::Quarter, car, road, &settings)?,
+        hifi: map_report(ModelKind::Full, car, road, &settings)?,
+    };
+    progress(2);
+    let sampling = PLAN_SIZES
+        .iter()
+        .map(|&n| {
+            let plan = audze_eglais(n, 1)?;
+            let gaps = plan.gaps();
+            Ok(PlanSummary {
+                points: n,
+                energy: plan.energy,
+                optimal: plan.optimal,
+                method: plan.method.clone(),
+                min_gap: gaps.iter().copied().fold(f64::INFINITY, f64::min),
+                gaps: gap_histogram(&gaps, 6),
+                design: plan.points(design_box),
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    progress(3);
+    let study = study_in(car, road, design_box)?;
+    let (spec, plan, chosen_because) = match inputs.surrogate {
+        Some((spec, plan)) => (spec, plan, "chosen in the view".to_string()),
+        None => {
+            let best = study
+                .best_per_budget
+                .iter()
+                .find(|b| b.samples == 10)
+                .ok_or_else(|| {
+                    RideError::Numerical("the study fitted nothing at 10 samples".into())
+                })?;
+            (
+                SurrogateSpec::parse(&best.surrogate)?,
+                PlanSpec::parse(&best.plan)?,
+                format!(
+                    "the study's best at 10 HiFi samples (worst max RTE {:.3} %)",
+                    best.fitted.worst_rte_max
+                ),
+            )
+        }
+    };
+    let chosen = surrogate_report_in(spec, plan, car, road, design_box, None)?;
+    let fidelity = Fidelity {
+        study,
+        chosen_because,
+        chosen,
+    };
+    progress(4);
+    let optimisation = optimise(inputs, spec, plan)?;
+    progress(SECTIONS.len());
+    Ok(MethodReport {
+        version: env!("CARGO_PKG_VERSION").into(),
+        scenario,
+        verification,
+        maps,
+        sampling,
+        fidelity,
+        optimisation,
+        thesis: ThesisResult::quoted(),
+    })
+}
+
+/// The report's documents: the HTML file, its Markdown twin and the figures (the
+/// Markdown links to them as `figures/<key>.svg`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Documents {
+    /// The self-contained HTML file.
+    pub html: String,
+    /// The Markdown twin.
+    pub markdown: String,
+    /// The figures, in order.
+    pub figures: Vec<figures::Figure>,
+}
+
+impl MethodReport {
+    /// The report's title.
+    pub fn title(&self) -> String {
+        format!(
+            "RideLab study report: {}, class {:?} at {} m/s",
+            self.scenario.car.name, self.scenario.road.class, self.scenario.road.speed
+        )
+    }
+
+    /// Renders the HTML and Markdown documents and the figures.
+    pub fn documents(&self) -> Result<Documents> {
+        let figs = figures::figures(self)?;
+        let all: Vec<figures::Figure> = figs.iter().flat_map(|(_, f)| f.clone()).collect();
+        let blocks = document::blocks(self, figs);
+        Ok(Documents {
+            html: html::render(&self.title(), &blocks),
+            markdown: markdown::render(&blocks),
+            figures: all,
+        })
+    }
+}
+
+impl MethodReport {
+    /// The report's tables as CSV files `(file name, text)`: the verification routes,
+    /// the fidelity study, the before/after table and every front point.
+    pub fn csv_files(&self) -> Vec<(&'static str, String)> {
+        let mut verification = String::from("model,route,bacc_m_per_s2,dtl_n,sws_m,difference\n");
+        for (model, rows) in [
+            ("lofi", &self.verification.lofi),
+            ("hifi", &self.verification.hifi),
+        ] {
+            for r in rows {
+                verification += &format!(
+                    "{model},\"{}\",{},{},{},{}\n",
+                    r.route, r.criteria.bacc, r.criteria.dtl, r.criteria.sws, r.difference
+                );
+            }
+        }
+        let mut study =
+            String::from("surrogate,plan,samples,status,worst_rte_max_percent,min_r2\n");
+        for row in &self.fidelity.study.rows {
+            let (status, rte, r2) = match &row.outcome {
+                crate::surrogate::study::Outcome::Fitted(f) => {
+                    ("fitted", f.worst_rte_max.to_string(), f.min_r2.to_string())
+                }
+                crate::surrogate::study::Outcome::Skipped { .. } => {
+                    ("skipped", String::new(), String::new())
+                }
+            };
+            study += &format!(
+                "{},{},{},{status},{rte},{r2}\n",
+                row.surrogate, row.plan, row.samples
+            );
+        }
+        let mut picks =
+            String::from("design,ks_n_per_m,cs_ns_per_m,bacc_percent,dtl_percent,sws_m\n");
+        for p in &self.optimisation.table {
+            picks += &format!(
+                "\"{}\",{},{},{},{},{}\n",
+                p.design, p.ks, p.cs, p.bacc_percent, p.dtl_percent, p.sws
+            );
+        }
+        let mut fronts = String::from("front,ks_n_per_m,cs_ns_per_m,bacc_m_per_s2,dtl_n,sws_m\n");
+        let o = &self.optimisation;
+        for (name, rep) in [("stm", &o.stm), ("nsga2", &o.nsga2), ("hifi-stm", &o.hifi)] {
+            for p in rep.iter().flat_map(|r| &r.study.front) {
+                fronts += &format!("{name},{},{},{},{},{}\n", p.ks, p.cs, p.bacc, p.dtl, p.sws);
+            }
+        }
+        vec![
+            ("verification.csv", verification),
+            ("study.csv", study),
+            ("picks.csv", picks),
+            ("fronts.csv", fronts),
+        ]
+    }
+}
+
+/// `max_k |a_k / b_k - 1|`.
+fn max_rel(a: &Criteria, b: &Criteria) -> f64 {
+    a.to_array()
+        .iter()
+        .zip(b.to_array())
+        .map(|(x, y)| (x / y - 1.0).abs())
+        .fold(0.0, f64::max)
+}
+
+fn rows(routes: Vec<(String, Criteria)>) -> Vec<RouteRow> {
+    let reference = routes[0].1;
+    routes
+        .into_iter()
+        .map(|(route, criteria)| RouteRow {
+            difference: max_rel(&criteria, &reference),
+            route,
+            criteria,
+        })
+        .collect()
+}
+
+/// Section 1's checks at the datum design.
+fn verify(car: &Car, road: &Road, seed: u64) -> Result<Verification> {
+    let record = TimeOptions {
+        duration: RECORD_S,
+        dt: 1e-3,
+        seed,
+        f_min: 0.05,
+        f_max: 250.0,
+        decimate: 1000,
+        damper: None,
+    };
+    let quarter = ModelKind::Quarter.build(car);
+    let full = ModelKind::Full.build(car);
+    let q = car.quarter();
+    let mut lofi = Vec::new();
+    if q.ct == 0.0 {
+        lofi.push((
+            "closed form (Gobbi and Mastinu 2001)".to_string(),
+            quarter_car_rms(&q, road.intensity()),
+        ));
+    }
+    lofi.push(("Lyapunov".into(), criteria_exact(&quarter, road)?));
+    lofi.push((
+        "frequency integration".into(),
+        criteria_spectral(&quarter, road, 1e-8)?.criteria,
+    ));
+    lofi.push((
+        format!("time domain, {RECORD_S} s record"),
+        Criteria::from_array(simulate(ModelKind::Quarter, car, road, &record)?.rms),
+    ));
+    let mut hifi = Vec::new();
+    let mut notes = Vec::new();
+    match criteria_exact(&full, road) {
+        Ok(c) => hifi.push(("Lyapunov with the delay (Kronecker)".to_string(), c)),
+        Err(e) => notes.push(format!("Lyapunov with the delay does not apply: {e}")),
+    }
+    match criteria_modal(&full, road) {
+        Ok(c) => hifi.push(("modal expansion".into(), c)),
+        Err(e) => notes.push(format!("modal route does not apply: {e}")),
+    }
+    let spectral = criteria_spectral(&full, road, 1e-8)?;
+    if let Some(fc) = spectral.low_cutoff_hz {
+        notes.push(format!(
+            "independent tracks of unequal widths make the road warp a random walk: the frequency route starts at ISO 8608's 0.011 cycle/m = {fc:.3} Hz"
+        ));
+    }
+    hifi.push((
+        "frequency integration, exact delay".into(),
+        spectral.criteria,
+    ));
+    let hifi_record = TimeOptions {
+        f_min: spectral.low_cutoff_hz.unwrap_or(record.f_min),
+        ..record
+    };
+    hifi.push((
+        format!("time domain, {RECORD_S} s record"),
+        Criteria::from_array(simulate(ModelKind::Full, car, road, &hifi_record)?.rms),
+    ));
+    let f: Vec<f64> = (0..121)
+        .map(|i| 0.1 * 1000f64.powf(i as f64 / 120.0))
+        .collect();
+    let frf = |model: &crate::model::LinearModel| -> Result<[Vec<f64>; 3]> {
+        let sp = Spectrum::new(model, road)?;
+        let mut out: [Vec<f64>; 3] = Default::default();
+        for &fi in &f {
+            let h = sp.displacement_transfer(0, 2.0 * std::f64::consts::PI * fi);
+            for k in 0..3 {
+                out[k].push(h[k].norm());
+            }
+        }
+        Ok(out)
+    };
+    Ok(Verification {
+        lofi: rows(lofi),
+        hifi: rows(hifi),
+        notes,
+        record,
+        lofi_modes: quarter.modes()?,
+        hifi_modes: full.modes()?,
+        frf: Frf {
+            lofi: frf(&quarter)?,
+            hifi: frf(&full)?,
+            f,
+        },
+    })
+}
+
+/// Section 5: the fronts on the surrogate and on the HiFi, or why there are none.
+fn optimise(inputs: &ReportInputs, spec: SurrogateSpec, plan: PlanSpec) -> Result<Optimisation> {
+    let run = |evaluator: EvaluatorSpec, method: &Method| {
+        optimize_report(
+            &inputs.car,
+            &inputs.road,
+            &inputs.design_box,
+            evaluator,
+            plan,
+            method,
+            inputs.objectives.clone(),
+        )
+    };
+    let stm = Method::Stm(StmParams::default());
+    let nsga2 = Method::Nsga2(Nsga2Params {
+        seed: inputs.seed,
+        ..Nsga2Params::default()
+    });
+    let surrogate = EvaluatorSpec::Surrogate(spec);
+    let stm_front = match run(surrogate, &stm) {
+        Ok(r) => r,
+        Err(RideError::Infeasible { field, reason }) => {
+            return Ok(Optimisation {
+                infeasible: Some(format!("{field}: {reason}")),
+                stm: None,
+                nsga2: None,
+                hifi: None,
+                stm_to_hifi: None,
+                table: Vec::new(),
+            })
+        }
+        Err(e) => return Err(e),
+    };
+    let nsga2_front = run(surrogate, &nsga2)?;
+    let hifi_front = run(EvaluatorSpec::Model(ModelKind::Full), &stm)?;
+    let points = |r: &OptimizeReport| -> Vec<[f64; 2]> {
+        r.study.front.iter().map(|p| [p.bacc, p.dtl]).collect()
+    };
+    let stm_to_hifi = front_distance(&points(&stm_front), &points(&hifi_front));
+    let hifi = HiFi::new(&inputs.car, &inputs.road)?;
+    let datum = hifi.evaluate(inputs.car.front.spring, inputs.car.front.damper)?;
+    let mut table = vec![PickRow {
+        design: "datum".into(),
+        ks: inputs.car.front.spring,
+        cs: inputs.car.front.damper,
+        bacc_percent: 0.0,
+        dtl_percent: 0.0,
+        sws: datum.sws,
+    }];
+    for (name, r) in [
+        ("STM", &stm_front),
+        ("NSGA-II", &nsga2_front),
+        ("HiFi STM", &hifi_front),
+    ] {
+        let p = &r.study.pick;
+        table.push(PickRow {
+            design: format!("{name} min-max pick ({})", r.study.evaluator),
+            ks: p.ks,
+            cs: p.cs,
+            bacc_percent: p.change_percent[0],
+            dtl_percent: p.change_percent[1],
+            sws: p.criteria.sws,
+        });
+        if name != "HiFi STM" {
+            let c = &r.hifi_recheck;
+            table.push(PickRow {
+                design: format!("{name} pick re-checked on the HiFi"),
+                ks: p.ks,
+                cs: p.cs,
+                bacc_percent: c.rechecked_change_percent[0],
+                dtl_percent: c.rechecked_change_percent[1],
+                sws: c.rechecked.sws,
+            });
+        }
+    }
+    Ok(Optimisation {
+        infeasible: None,
+        stm: Some(stm_front),
+        nsga2: Some(nsga2_front),
+        hifi: Some(hifi_front),
+        stm_to_hifi: Some(stm_to_hifi),
+        table,
+    })
+}
