@@ -9,7 +9,7 @@
 
 use ridelab::design::DesignBox;
 use ridelab::gpu::{Compute, ComputePath, GpuMapper, HiFiGrid, MapInput};
-use ridelab::maps::{evaluate_grid, Grid};
+use ridelab::maps::{default_threads, evaluate_grid, Grid};
 use ridelab::road::{RoadClass, Tracks};
 use ridelab::{Car, Criteria, HiFi, Road};
 use std::time::Instant;
@@ -126,7 +126,8 @@ fn the_gpu_map_equals_the_cpu_hifi_on_every_cell() {
             };
             let grid = Grid::over_box(&dbox, 9, 9).unwrap();
             let t0 = Instant::now();
-            let cpu = evaluate_grid(&HiFi::new(&car, &road).unwrap(), &grid, 1).unwrap();
+            let hifi = HiFi::new(&car, &road).unwrap();
+            let cpu = evaluate_grid(&hifi, &grid, default_threads()).unwrap();
             let t1 = Instant::now();
             let input = MapInput::new(&car, &road, &grid).unwrap();
             let got = gpu.map(&input).unwrap();
@@ -144,9 +145,10 @@ fn the_gpu_map_equals_the_cpu_hifi_on_every_cell() {
         }
     }
     say(&format!(
-        "gpu map vs CPU HiFi: worst {worst:.2e}; {cells} cells: GPU {:.0} cells/s (set-up included), CPU HiFi {:.0} cells/s (1 thread)",
+        "gpu map vs CPU HiFi: worst {worst:.2e}; {cells} cells: GPU {:.0} cells/s (set-up included), CPU HiFi {:.0} cells/s ({} threads)",
         cells as f64 / t_gpu,
-        cells as f64 / t_cpu
+        cells as f64 / t_cpu,
+        default_threads()
     ));
 }
 

@@ -306,6 +306,14 @@ fn predict_grid(s: &str) -> Result<usize> {
 }
 
 fn main() {
+    // Mesa's device-select Vulkan layer (installed with lavapipe) connects to Wayland to
+    // find the "default" GPU and prints "error: XDG_RUNTIME_DIR is invalid" on every
+    // headless run; wgpu ranks the adapters itself, so the layer is off unless the user
+    // set it. Still single-threaded here, so setting the variable is sound.
+    #[cfg(feature = "gpu")]
+    if std::env::var_os("NODEVICE_SELECT").is_none() {
+        std::env::set_var("NODEVICE_SELECT", "1");
+    }
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => exit_on_parse_error(e),
