@@ -55,7 +55,7 @@ pub enum ComputePath {
 
 /// The mapper `compute` asks for: none for `Cpu`, a hardware adapter's for `Auto` (none
 /// without one), any adapter's for `Gpu` (an error naming `compute` without one).
-#[cfg(feature = "gpu")]
+#[cfg(all(feature = "gpu", not(target_arch = "wasm32")))]
 fn gpu_mapper(compute: Compute) -> Result<Option<super::GpuMapper>> {
     use super::GpuMapper;
     match compute {
@@ -95,7 +95,7 @@ impl HiFiGrid {
     ) -> Result<HiFiGrid> {
         let hifi = HiFi::new(car, road)?;
         grid.validate()?;
-        #[cfg(feature = "gpu")]
+        #[cfg(all(feature = "gpu", not(target_arch = "wasm32")))]
         if let Some(m) = gpu_mapper(compute)? {
             // `Auto` falls back to the CPU where the route cannot run (a mode damped too
             // weakly for its rule, a device failure); `Gpu` reports why.
@@ -113,7 +113,8 @@ impl HiFiGrid {
                 Err(_) => {}
             }
         }
-        #[cfg(not(feature = "gpu"))]
+        // The page awaits the GPU (`web::GpuMaps`); this blocking path is native only.
+        #[cfg(not(all(feature = "gpu", not(target_arch = "wasm32"))))]
         if compute == Compute::Gpu {
             return Err(RideError::field(
                 "compute",
