@@ -3,8 +3,10 @@
 # Versions are pinned here and nowhere else (see ../shared/TOOLCHAIN.md for why):
 #   Trunk 0.21.14 (later versions need a newer rustc), wasm-bindgen-cli equal to the
 #   wasm-bindgen crate pinned in crate/Cargo.toml, Debian's Chromium for the browser tests,
-#   playwright-core and binaryen (wasm-opt for the page's build; Debian's breaks the wasm)
-#   from npm (package-lock.json). No tool is downloaded from outside the package registries.
+#   Debian's mesa-vulkan-drivers (lavapipe, a Vulkan device on the CPU, for the GPU
+#   tests), playwright-core and binaryen (wasm-opt for the page's build; Debian's breaks
+#   the wasm) from npm (package-lock.json). No tool is downloaded from outside the package
+#   registries.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -34,6 +36,13 @@ if [ ! -x /usr/bin/chromium ]; then
   export DEBIAN_FRONTEND=noninteractive
   apt-get update -q
   apt-get install -y -q chromium chromium-driver
+fi
+
+if ! dpkg-query -W -f='${Status}' mesa-vulkan-drivers 2>/dev/null | grep -q "install ok installed"; then
+  say "installing Mesa's Vulkan drivers (lavapipe: the GPU tests run on the CPU)"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -q
+  apt-get install -y -q mesa-vulkan-drivers
 fi
 
 if [ ! -d node_modules/playwright-core ] || [ ! -x node_modules/.bin/wasm-opt ]; then

@@ -7,8 +7,9 @@ cd "$(dirname "$0")/.."
 # npm's wasm-opt (binaryen) for Trunk's release build.
 export PATH="$PWD/node_modules/.bin:$PATH"
 
-echo "== Rust unit, integration and doc tests"
-cargo test --workspace
+echo "== Rust unit, integration and doc tests, with the GPU route (on lavapipe without a GPU)"
+# Without an adapter the GPU tests print SKIPPED and pass; the CPU path is tested either way.
+cargo test --workspace --features ridelab/gpu
 
 # `cargo test` has built the native CLI too (target/debug/ridelab, for tests/cli.rs): the
 # end-to-end suite compares the page with it. A separate `cargo build` would rebuild the

@@ -60,6 +60,8 @@ fn the_page_and_the_cli_maps_are_the_same_numbers() {
             &range(&g.ks),
             "--cs-range",
             &range(&g.cs),
+            "--compute",
+            "cpu",
             "--json",
         ]);
         let values = &page.values;
@@ -236,6 +238,8 @@ fn map_json_and_csv_equal_the_library() {
                 "c",
                 "--speed",
                 "25",
+                "--compute",
+                "cpu",
             ];
             if relative {
                 args.push("--relative");
@@ -287,6 +291,72 @@ fn map_json_and_csv_equal_the_library() {
                     );
                 }
             }
+        }
+    }
+}
+
+/// `--compute`: `cpu` is the library's CPU map and says so; `gpu` is the GPU route
+/// (within 1e-4 of it on every cell) where there is an adapter, and one line naming the
+/// option, exit code 2, where there is none (no adapter: `WGPU_BACKEND` names a backend
+/// this platform lacks) or the build has no GPU path.
+#[test]
+fn map_compute_says_which_path_ran() {
+    let args = [
+        "map",
+        "--model",
+        "full",
+        "--ks-range",
+        "10000:40000:4",
+        "--cs-range",
+        "500:4000:3",
+        "--json",
+        "--compute",
+    ];
+    let with = |path: &'static str| [&args[..], &[path]].concat();
+    let cpu = json(&with("cpu"));
+    assert_eq!(cpu["compute"], "cpu");
+    assert!(cpu.get("adapter").is_none());
+    let no_adapter = Command::new(env!("CARGO_BIN_EXE_ridelab"))
+        .args(with("gpu"))
+        .env(
+            "WGPU_BACKEND",
+            if cfg!(target_os = "macos") {
+                "dx12"
+            } else {
+                "metal"
+            },
+        )
+        .output()
+        .expect("runs");
+    let err = String::from_utf8_lossy(&no_adapter.stderr);
+    assert_eq!(no_adapter.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    let why = if cfg!(feature = "gpu") {
+        "error: compute: gpu: no GPU adapter"
+    } else {
+        "error: compute: gpu: this build has no GPU path"
+    };
+    assert!(err.starts_with(why), "{err}");
+    let (code, out, err) = ridelab(&with("gpu"));
+    if code != 0 {
+        // Past the harness's capture, so the skip shows in a passing run.
+        use std::io::Write;
+        let _ = writeln!(
+            std::io::stderr(),
+            "map --compute gpu: SKIPPED ({})",
+            err.trim()
+        );
+        return;
+    }
+    let gpu: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(gpu["compute"], "gpu");
+    assert!(gpu["adapter"].as_str().is_some_and(|a| !a.is_empty()));
+    for name in ["bacc", "dtl", "sws"] {
+        let (g, c) = (gpu[name].as_array().unwrap(), cpu[name].as_array().unwrap());
+        assert_eq!(g.len(), 12);
+        for (g, c) in g.iter().zip(c) {
+            let (g, c) = (g.as_f64().unwrap(), c.as_f64().unwrap());
+            assert!((g / c - 1.0).abs() <= 1e-4, "{name}: {g} vs {c}");
         }
     }
 }
@@ -702,6 +772,11 @@ fn bad_input_is_one_line_naming_the_option_with_exit_code_2() {
             "cs-range",
         ),
         (&["map", "--ks-range", "10000:40000:5"], "model"),
+        (&["map", "--model", "full", "--compute", "tpu"], "compute"),
+        (
+            &["map", "--model", "quarter", "--compute", "gpu"],
+            "compute",
+        ),
         (&["simulate"], "model"),
         (
             &["simulate", "--model", "full", "--duration", "-1"],

@@ -39,6 +39,10 @@ pub enum RideError {
     /// frequency route with ISO 8608's low cutoff applies).
     #[error("road warp: {0}")]
     RoadWarp(String),
+    /// The GPU path cannot run: no adapter where one is required, a device or driver
+    /// error, or a map larger than the device takes.
+    #[error("GPU: {0}")]
+    Gpu(String),
 }
 
 impl RideError {

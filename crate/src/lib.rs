@@ -13,6 +13,7 @@ pub mod dos;
 pub mod error;
 pub mod evaluate;
 pub mod explorer;
+pub mod gpu;
 pub mod maps;
 pub mod model;
 pub mod optimize;

@@ -14,7 +14,8 @@ use ridelab::design::DesignBox;
 use ridelab::doe::doe_report;
 use ridelab::dos::DesignObjectives;
 use ridelab::error::{Result, RideError};
-use ridelab::maps::{map_csv, map_report, Axis, Grid, MapSettings, Scale};
+use ridelab::gpu::Compute;
+use ridelab::maps::{map_csv, map_report_on, Axis, Grid, MapSettings, Scale};
 use ridelab::optimize::{
     optimize_report, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, PickRule, StmParams,
 };
@@ -161,6 +162,10 @@ struct MapArgs {
     /// Criteria relative to the datum car's.
     #[arg(long)]
     relative: bool,
+    /// Where the HiFi map is computed: gpu, cpu, or auto (a hardware GPU when there is
+    /// one, else the CPU); the JSON's `compute` says which ran.
+    #[arg(long, default_value = "auto")]
+    compute: Compute,
     #[command(flatten)]
     car: CarRoad,
     #[arg(long)]
@@ -398,6 +403,14 @@ fn predict_grid(s: &str) -> Result<usize> {
 }
 
 fn main() {
+    // Mesa's device-select Vulkan layer (installed with lavapipe) connects to Wayland to
+    // find the "default" GPU and prints "error: XDG_RUNTIME_DIR is invalid" on every
+    // headless run; wgpu ranks the adapters itself, so the layer is off unless the user
+    // set it. Still single-threaded here, so setting the variable is sound.
+    #[cfg(feature = "gpu")]
+    if std::env::var_os("NODEVICE_SELECT").is_none() {
+        std::env::set_var("NODEVICE_SELECT", "1");
+    }
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => exit_on_parse_error(e),
@@ -891,7 +904,7 @@ fn map_cmd(a: MapArgs) -> Result<String> {
         objectives: a.objectives.objectives()?,
         ..MapSettings::default()
     };
-    let r = map_report(a.model, &car, &road, &settings)?;
+    let r = map_report_on(a.model, &car, &road, &settings, a.compute)?;
     if let Some(prefix) = svg {
         let prefix = prefix.to_string_lossy();
         let prefix = prefix.strip_suffix(".svg").unwrap_or(&prefix);

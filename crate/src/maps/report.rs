@@ -2,6 +2,7 @@
 //! and contour lines at automatic levels, as JSON (serde) or CSV.
 
 use super::contour::{auto_levels, contour, contours, Contour};
+use super::dcs::default_threads;
 use super::dcs::{DatumPoint, Dcs, Scale};
 use super::dos_mask::{
     objective_bit, objective_name, objectives_in, DosMap, DosSummary, FeasiblePoint,
@@ -12,6 +13,7 @@ use crate::car::Car;
 use crate::dos::{DesignObjectives, DosContext, Objective};
 use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
+use crate::gpu::{Compute, ComputePath, HiFiGrid};
 use crate::road::Road;
 use serde::{Deserialize, Serialize};
 
@@ -149,6 +151,11 @@ pub struct MapReport {
     pub feasibility: Feasibility,
     /// Contour lines.
     pub contours: CriteriaContours,
+    /// The path that computed the fields: `"gpu"` or `"cpu"`.
+    pub compute: ComputePath,
+    /// The GPU adapter's name when the GPU computed the fields.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub adapter: Option<String>,
 }
 
 /// The map of `car` on `road` by the LoFi (`quarter`) or HiFi (`full`) model; the datum
@@ -244,7 +251,37 @@ pub fn map_report_with<E: Evaluator + Sync + ?Sized>(
         bacc: map.bacc,
         dtl: map.dtl,
         sws: map.sws,
+        compute: ComputePath::Cpu,
+        adapter: None,
     })
+}
+
+/// As [`map_report`], the HiFi fields on the path `compute` asks for
+/// ([`HiFiGrid::compute`]: `Auto` takes a hardware GPU when there is one); the report's
+/// `compute` says which ran. The LoFi has no GPU path: `Compute::Gpu` with
+/// [`ModelKind::Quarter`] is an error naming `compute`, `Auto` maps on the CPU.
+pub fn map_report_on(
+    model: ModelKind,
+    car: &Car,
+    road: &Road,
+    settings: &MapSettings,
+    compute: Compute,
+) -> Result<MapReport> {
+    match (model, compute) {
+        (ModelKind::Quarter, Compute::Gpu) => Err(RideError::field(
+            "compute",
+            "gpu: the GPU path maps the full model only (use --compute cpu or auto with the quarter car)",
+        )),
+        (ModelKind::Quarter, _) => map_report(model, car, road, settings),
+        (ModelKind::Full, _) => {
+            settings.validate()?;
+            let hifi = HiFiGrid::compute(car, road, &settings.grid, compute, default_threads())?;
+            let mut r = map_report_with(&hifi, car, road, settings)?;
+            r.compute = hifi.path();
+            r.adapter = hifi.adapter().map(str::to_string);
+            Ok(r)
+        }
+    }
 }
 
 /// The report as CSV, one row per grid point in map order (Cs rows, Ks columns):

@@ -11,8 +11,12 @@
 //! is in [`crate::explorer`].
 
 mod charts;
+#[cfg(feature = "gpu")]
+mod gpu;
 mod screen;
 pub use charts::{line_chart_svg_js, map_chart_svg_js};
+#[cfg(feature = "gpu")]
+pub use gpu::GpuMaps;
 pub use screen::{draw_line_chart_js, draw_map_frame_js};
 
 use crate::analysis::ModelKind;
