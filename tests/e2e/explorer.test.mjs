@@ -301,6 +301,8 @@ test('URL round trip: every key at a non-default value reopens the same state, v
     bb: '0.9,1.6',
     db: '0.15,0.6',
     nw: '0,1,0',
+    dm: '14',
+    tr: '0.02,3',
     sur: 'vba-qts',
     plan: 'grid:4',
     model: 'surrogate',
@@ -327,7 +329,7 @@ test('URL round trip: every key at a non-default value reopens the same state, v
   assert.deepEqual(first.state, {
     car: 'custom', carJson: keys.carjson, ks: 31000, cs: 2100, class: 'A', speed: 25, tracks: 'independent',
     ksMin: 12000, ksMax: 38000, csMin: 600, csMax: 3800, swsLimit: 0.009, bounceBand: [0.9, 1.6], dampingBand: [0.15, 0.6],
-    noWorse: [false, true, false], surrogate: 'vba-qts', plan: 'grid:4',
+    noWorse: [false, true, false], dtlMargin: 14, travel: [0.02, 3], surrogate: 'vba-qts', plan: 'grid:4',
   });
   assert.deepEqual(first.view, { scale: 'rel', projector: true, model: 'surrogate', plan: false, ratio: true, palette: 'cividis' });
   assert.equal(first.controls['cs-min'], '0.6');

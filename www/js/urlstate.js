@@ -9,7 +9,7 @@
 // objective plane's axes and projector mode (`large=1`, from earlier links, means proj=1).
 // A custom car travels as its JSON text: car=custom&carjson=...
 
-const NUMBERS = { ks: 'ks', cs: 'cs', speed: 'speed' };
+const NUMBERS = { ks: 'ks', cs: 'cs', speed: 'speed', dm: 'dtlMargin' };
 
 /** The hash (with '#') for `state` (core state) and `view` (page-only settings). */
 export function encodeHash(state, view) {
@@ -26,6 +26,8 @@ export function encodeHash(state, view) {
   if (state.bounceBand) p.set('bb', state.bounceBand.join(','));
   if (state.dampingBand) p.set('db', state.dampingBand.join(','));
   if (state.noWorse) p.set('nw', state.noWorse.map((b) => (b ? 1 : 0)).join(','));
+  if (state.dtlMargin != null) p.set('dm', String(state.dtlMargin));
+  if (state.travel) p.set('tr', state.travel.join(','));
   if (state.surrogate) p.set('sur', state.surrogate);
   if (state.plan) p.set('plan', state.plan);
   if (view.model && view.model !== 'lofi') p.set('model', view.model);
@@ -71,12 +73,12 @@ export function decodeHash(hash) {
       out.state.class = v.toUpperCase();
     } else if (key === 'tracks') {
       out.state.tracks = v.toLowerCase();
-    } else if (key === 'box' || key === 'bb' || key === 'db') {
+    } else if (key === 'box' || key === 'bb' || key === 'db' || key === 'tr') {
       const n = key === 'box' ? 4 : 2;
       const xs = v.split(',').map((x) => (x.trim() === '' ? NaN : Number(x)));
       if (xs.length !== n || !xs.every(Number.isFinite)) out.problems.push(`${key}: '${raw}' is not ${n} numbers`);
       else if (key === 'box') [out.state.ksMin, out.state.ksMax, out.state.csMin, out.state.csMax] = xs;
-      else out.state[key === 'bb' ? 'bounceBand' : 'dampingBand'] = xs;
+      else out.state[{ bb: 'bounceBand', db: 'dampingBand', tr: 'travel' }[key]] = xs;
     } else if (key === 'nw') {
       const xs = v.split(',');
       if (xs.length !== 3 || !xs.every((x) => x === '0' || x === '1')) out.problems.push(`nw: '${raw}' is not three 0/1 flags`);
