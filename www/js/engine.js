@@ -7,7 +7,7 @@
 export const METHODS = [
   'version', 'defaultState', 'presets', 'roadClasses', 'parseCar', 'checkState',
   'describe', 'evaluate', 'analyse', 'criteria', 'lofiMap', 'lofiMaps', 'modelMaps', 'front', 'spectra', 'timeResponse',
-  'surrogateFit', 'surrogates', 'lineChartSvg', 'mapChartSvg', 'studyReport',
+  'surrogateFit', 'surrogates', 'lineChartSvg', 'mapChartSvg',
 ];
 
 /** Turns anything thrown into `{message, field}`. */
