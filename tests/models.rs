@@ -216,7 +216,7 @@ fn frequency_grid_converges_and_tails_matter() {
     assert!(max_rel(coarse, fine) < 1e-5, "{:e}", max_rel(coarse, fine));
     assert!(max_rel(fine, exact) < 1e-5, "{:e}", max_rel(fine, exact));
     // Stopping the band at 100 Hz reads DTL about 1.35 % low (METHOD.md section 2).
-    let (trunc, _) = sp.rms_band(0.0, 100.0, 1e-9);
+    let trunc = sp.rms_band(0.0, 100.0, 1e-9).criteria;
     let low = 1.0 - trunc.dtl / exact.dtl;
     assert!((low - 0.0135).abs() < 0.001, "DTL {:.4} % low", low * 100.0);
     assert!((trunc.bacc / exact.bacc - 1.0).abs() < 1e-3);
@@ -324,7 +324,7 @@ fn road_warp_time_domain_record_agrees_within_its_statistical_error() {
             var[o] += 0.5 * a2 * a2 * r2 * l2;
         }
     }
-    let band = sp.rms_band(fc, opt.f_max, 1e-10).0.to_array();
+    let band = sp.rms_band(fc, opt.f_max, 1e-10).criteria.to_array();
     // DTL above f_max is missing from the record: there the wheel stands still and the tyre
     // deflects by the road itself, DTL -> -kt zr, so the missing variance is
     // kt^2 int_fmax^inf G = kt^2 Gd(n0) n0^2 v / f_max with n0 = 0.1 cycle/m (1.3 % of it).
@@ -363,7 +363,7 @@ fn road_warp_time_domain_record_agrees_within_its_statistical_error() {
     }
     // The check can tell the cutoff: from half of it, SWS moves by more than twice its
     // tolerance (7.8 % against 3.1 %) and DTL by more than its own (1.1 % against 0.6 %).
-    let half = sp.rms(fc / 2.0, 1e-9).0;
+    let half = sp.rms(fc / 2.0, 1e-9).criteria;
     for (o, moved, factor) in [(1, half.dtl / hifi[1], 1.0), (2, half.sws / hifi[2], 2.0)] {
         assert!(
             moved - 1.0 > factor * tol[o],

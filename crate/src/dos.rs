@@ -101,6 +101,18 @@ pub enum Objective {
 }
 
 impl Objective {
+    /// What the objective bounds: `"limit"`, a limit on a response (SWS, tyre load,
+    /// travel); `"band"`, a band on a ride property of the design (bounce frequency,
+    /// damping ratio); `"datum"`, a criterion no worse than the datum car's. The page
+    /// hatches each family in its own pattern.
+    pub fn family(self) -> &'static str {
+        match self {
+            Objective::SwsLimit | Objective::DtlMargin | Objective::Travel => "limit",
+            Objective::BounceBand | Objective::DampingBand => "band",
+            Objective::BaccDatum | Objective::DtlDatum | Objective::SwsDatum => "datum",
+        }
+    }
+
     /// A short human-readable label.
     pub fn label(self) -> &'static str {
         match self {

@@ -148,7 +148,7 @@ test('benchmark: HiFi map in the worker, wasm calls and chart redraws', { timeou
       const s = { ...a.state, speed: 20 + 0.5 * (i + 1) };
       let done = false;
       const t0 = performance.now();
-      const job = a.heavyEngine.call('modelMaps', s, 'hifi', 41, 41).then(() => {
+      const job = a.heavyEngine.call('maps', s, 'hifi', 41, 41).then(() => {
         done = true;
         return performance.now() - t0;
       });
@@ -186,12 +186,12 @@ test('benchmark: HiFi map in the worker, wasm calls and chart redraws', { timeou
     // speed per call makes every map a fresh one.
     const fresh = (i) => ({ ...s, speed: 20 + 0.01 * (i + 2) });
     return {
-      lofiReport: time(() => a.api.analyse(s, 'quarter'), 20),
-      hifiReport: time(() => a.api.analyse(s, 'full'), 5),
-      lofiMap: time((i) => a.api.lofiMap(fresh(i), 160, 120), 5),
-      lofiMapKept: time(() => a.api.lofiMap(s, 160, 120), 5),
-      surrogateMap: time((i) => a.api.modelMaps(fresh(i), 'surrogate', 160, 120), 3),
-      frontLofi: time((i) => a.api.front({ ...s, swsLimit: 0.007 + 0.0002 * i }, 'stm'), 15),
+      lofiReport: time(() => a.session(s).analyse('lofi'), 20),
+      hifiReport: time(() => a.session(s).analyse('hifi'), 5),
+      lofiMap: time((i) => a.session(fresh(i)).maps('lofi', 160, 120), 5),
+      lofiMapKept: time(() => a.session(s).maps('lofi', 160, 120), 5),
+      surrogateMap: time((i) => a.session(fresh(i)).maps('surrogate', 160, 120), 3),
+      frontLofi: time((i) => a.session({ ...s, swsLimit: 0.007 + 0.0002 * i }).front('stm'), 15),
     };
   });
   figures.wasmCallMs = Object.fromEntries(Object.entries(engine).map(([k, v]) => [k, { median: +v.median.toFixed(2), p95: +v.p95.toFixed(2) }]));

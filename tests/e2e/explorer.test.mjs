@@ -607,26 +607,35 @@ test('the JS API refuses bad input with messages naming the field, and keeps wor
         return { message: e.message, field: e.field, isError: e instanceof Error };
       }
     };
-    const map = api.lofiMap(s, 4, 3);
+    // One session, as the page keeps one per thread: every refused setter leaves it at
+    // its last good state, and the constructor refuses a bad state outright.
+    const ex = new api.Explorer(s);
+    const map = ex.maps('lofi', 4, 3);
     return {
       presets: api.presets().map((p) => p.name),
-      mapLength: map.length,
-      mapIsF64: map instanceof Float64Array,
-      evaluate: Object.keys(api.evaluate(s)).sort(),
-      empty: fail(() => api.evaluate({})),
-      unknown: fail(() => api.evaluate({ ...s, colour: 'red' })),
-      speed: fail(() => api.evaluate({ ...s, speed: -5 })),
-      nan: fail(() => api.evaluate({ ...s, speed: NaN })),
-      ks: fail(() => api.evaluate({ ...s, ks: 0 })),
-      cs: fail(() => api.evaluate({ ...s, cs: -1 })),
-      model: fail(() => api.analyse(s, 'bicycle')),
-      grid: fail(() => api.lofiMap(s, 0, 10)),
-      hugeGrid: fail(() => api.lofiMap(s, 100000, 10)),
+      mapLength: map.values.length,
+      mapIsF64: map.values instanceof Float64Array,
+      evaluate: ['lofi', 'hifi'].filter((m) => ex.analyse(m).bacc > 0).sort(),
+      empty: fail(() => new api.Explorer({})),
+      unknown: fail(() => ex.setState({ ...s, colour: 'red' })),
+      speed: fail(() => ex.setState({ ...s, speed: -5 })),
+      nan: fail(() => ex.setState({ ...s, speed: NaN })),
+      ks: fail(() => ex.setDesign(0, s.cs)),
+      cs: fail(() => ex.setState({ ...s, cs: -1 })),
+      model: fail(() => ex.analyse('bicycle')),
+      grid: fail(() => ex.maps('lofi', 0, 10)),
+      hugeGrid: fail(() => ex.maps('lofi', 100000, 10)),
       car: fail(() => api.parseCar('{"name": "x"}')),
       json: fail(() => api.parseCar('{oops')),
-      box: fail(() => api.lofiMap({ ...s, ksMin: 50000 }, 4, 4)),
-      sws: fail(() => api.evaluate({ ...s, swsLimit: 0 })),
-      after: api.criteria(s, 'quarter').bacc,
+      box: fail(() => ex.setState({ ...s, ksMin: 50000 })),
+      sws: fail(() => new api.Explorer({ ...s, swsLimit: 0 })),
+      after: ex.criteria('lofi').bacc,
+      kept: ex.state().speed === s.speed && ex.state().ks === s.ks,
+      // The core's marching squares in grid coordinates: f = i on a 3 x 2 grid crosses
+      // 0.5 on the vertical x = 0.5 and 1 on the column of nodes x = 1.
+      contour: ['0.5', '1'].map((l) => Array.from(api.contourSegments(new Float64Array([0, 1, 2, 0, 1, 2]), 3, 2, new Float64Array([+l]))[0])),
+      level: fail(() => api.contourSegments(new Float64Array(6), 3, 2, new Float64Array([NaN]))),
+      objectives: api.objectives().map((o) => [o.bit, o.family]),
     };
   });
   assert.deepEqual(r.presets, ['sedan', 'compact', 'suv']);
@@ -655,6 +664,12 @@ test('the JS API refuses bad input with messages naming the field, and keeps wor
     assert.match(r[k].message, re, k);
   }
   assert.ok(r.after > 0, 'the module still works after every refusal');
+  assert.ok(r.kept, 'the session kept its last good state');
+  const seg = (a) => [Math.min(a[1], a[3]), Math.max(a[1], a[3]), a[0], a[2]];
+  assert.deepEqual(seg(r.contour[0]), [0, 1, 0.5, 0.5], 'the 0.5 contour of f = i');
+  assert.deepEqual(seg(r.contour[1]), [0, 1, 1, 1], 'the contour through a column of nodes');
+  assert.equal(r.level.field, 'level');
+  assert.deepEqual(r.objectives, [[1, 'limit'], [2, 'band'], [4, 'band'], [8, 'datum'], [16, 'datum'], [32, 'datum'], [64, 'limit'], [128, 'limit']]);
   assertClean(log);
   await context.close();
 });

@@ -618,7 +618,7 @@ test('NSGA-II: an answer for an earlier scenario is dropped and the new scenario
   // page has moved to class A; then the page asks again for class A.
   await page.evaluate(() => {
     const a = window.__ridelab;
-    a.heavyEngine.call('modelMaps', { ...a.state, speed: 21 }, 'hifi', 41, 41);
+    a.heavyEngine.call('maps', { ...a.state, speed: 21 }, 'hifi', 41, 41);
     document.getElementById('op-nsga').click();
     const cls = document.getElementById('class');
     cls.value = 'A';
@@ -628,7 +628,7 @@ test('NSGA-II: an answer for an earlier scenario is dropped and the new scenario
   await settle(page);
   const r = await page.evaluate(() => {
     const a = window.__ridelab;
-    const direct = a.api.front(a.state, 'nsga2', 'surrogate');
+    const direct = a.session(a.state).front('nsga2', 'surrogate');
     return { counters: a.counters, shown: a.nsga.study.front, direct: direct.study.front, key: a.nsga.key, now: JSON.stringify({ ...a.state, ks: 0, cs: 0 }) };
   });
   assert.ok(r.counters.nsgaDropped >= 1, `the class B answer was dropped (${r.counters.nsgaDropped})`);
@@ -677,12 +677,12 @@ test('front, spectra, timeResponse, damperCurve: bad arguments name the field', 
       }
     };
     return {
-      method: err(() => a.api.front(s, 'simplex')),
-      nfreq: err(() => a.api.spectra(s, 1)),
-      dt: err(() => a.api.timeResponse(s, { dt: 0.5 })),
-      asym: err(() => a.api.timeResponse(s, { damper: { bump: -1, rebound: 2 } })),
-      unknown: err(() => a.api.front({ ...s, bogus: 1 }, 'stm')),
-      classC: err(() => a.api.front({ ...s, class: 'C' }, 'stm')),
+      method: err(() => a.session(s).front('simplex')),
+      nfreq: err(() => a.session(s).spectra(1)),
+      dt: err(() => a.session(s).timeResponse({ dt: 0.5 })),
+      asym: err(() => a.session(s).timeResponse({ damper: { bump: -1, rebound: 2 } })),
+      unknown: err(() => a.session({ ...s, bogus: 1 }).front('stm')),
+      classC: err(() => a.session({ ...s, class: 'C' }).front('stm')),
       colour: err(() => a.api.colourTable('rainbow')),
       lawBump: err(() => a.api.damperCurve({ bump: 0, rebound: 2000, knee: null }, 1)),
       lawKnee: err(() => a.api.damperCurve({ bump: 1000, rebound: 2000, knee: { velocity: 0.1, bump: -1, rebound: 0 } }, 1)),

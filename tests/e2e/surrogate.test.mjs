@@ -101,7 +101,7 @@ test('map model toggle: HiFi and error maps from the worker equal point evaluati
     for (const [i, j] of [[0, 0], [159, 0], [53, 77], [159, 119], [80, 60]]) {
       const ks = box.ks_min + ((i + 0.5) * (box.ks_max - box.ks_min)) / m.nx;
       const cs = box.cs_min + ((j + 0.5) * (box.cs_max - box.cs_min)) / m.ny;
-      const c = a.api.criteria({ ...a.state, ks, cs }, 'full');
+      const c = a.session({ ...a.state, ks, cs }).criteria('hifi');
       const k = j * m.nx + i;
       for (const [p, v] of [[0, c.bacc], [1, c.dtl], [2, c.sws]]) worst = Math.max(worst, Math.abs(m.values[p * n + k] / v - 1));
     }

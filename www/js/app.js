@@ -546,6 +546,8 @@ async function main() {
     maps: CRITERIA.map((c) => new MapView(grid, c, {
       onPick: (ks, cs) => controller.changeDesign(Math.round(ks / 10) * 10, Math.round(cs / 5) * 5, 'ks'),
       onKey: onMapKey,
+      contours: (field, nx, ny, levels) => compute.contours(field, nx, ny, levels),
+      objectives: store.objectives,
     })),
     plane: new ObjectivePlane({ base: $('op-base'), overlay: $('op-overlay'), wrap: $('op-wrap'), msg: $('op-msg') }, (p) => controller.changeDesign(p.ks, p.cs, 'ks')),
     spectra: new SpectraPanel((which, key) => $(`sp-${which}-${key}`), $('panel-spectra'), $('sp-key-route')),

@@ -3,8 +3,9 @@
 // belongs on (js/engine.js): the LoFi work and the maps on the main thread (`main`, well
 // under a millisecond a design), the HiFi readout on the HiFi worker (`hifi`, never busy
 // with long jobs), long jobs on the heavy worker (`heavy`: HiFi maps, the fit's
-// validation, spectra, time responses, NSGA-II). Replacing the stateless wasm calls by a
-// session object (one `Explorer` per engine, updated by setters) changes this file only.
+// validation, spectra, time responses, NSGA-II). Each engine holds one `Explorer` session
+// of the core, which keeps fits and maps; a call passes the view's state and the engine
+// moves its session there by the smallest setter (js/engine.js `Host`).
 
 /** LoFi and surrogate map resolution (cells); the image is scaled smoothly onto the plot. */
 export const GRID = { nx: 160, ny: 120 };
@@ -32,7 +33,7 @@ export class Compute {
     this.heavy = heavy;
   }
 
-  /** What the page needs once: defaults, presets, road classes, surrogate names, version. */
+  /** What the page needs once: defaults, presets, road classes, surrogate names, the design objectives by mask bit, version. */
   async boot() {
     const call = (m) => this.main.call(m);
     return {
@@ -40,6 +41,7 @@ export class Compute {
       presets: await call('presets'),
       classes: await call('roadClasses'),
       surrogateNames: await call('surrogates'),
+      objectives: await call('objectives'),
       version: await call('version'),
     };
   }
@@ -47,6 +49,15 @@ export class Compute {
   /** The 256-entry RGB table of a colour map (`Uint8Array` of 768 bytes). */
   colourTable(name) {
     return this.api.colourTable(name);
+  }
+
+  /**
+   * Contour segments of one map plane (`field`, `nx x ny` cell centres) at each finite
+   * level: `Float64Array`s `[x0, y0, x1, y1, ...]` in grid coordinates, by the core's
+   * marching squares, so the screen's lines are the exported charts' (main thread).
+   */
+  contours(field, nx, ny, levels) {
+    return this.api.contourSegments(field, nx, ny, Float64Array.from(levels.filter(Number.isFinite)));
   }
 
   /** The damper law's force-velocity line to `vMax` m/s: `{points: [[v m/s, f N]], linearRate N s/m}` (main thread: a few points). */
@@ -77,11 +88,11 @@ export class Compute {
     const desc = await main.call('describe', s);
     const ds = { ...s, ks: desc.datumKs, cs: desc.datumCs };
     const [datum, design, sDatum, sDesign, cloud] = await Promise.all([
-      main.call('analyse', ds, 'quarter'),
-      main.call('analyse', s, 'quarter'),
+      main.call('analyse', ds, 'lofi'),
+      main.call('analyse', s, 'lofi'),
       main.call('criteria', ds, 'surrogate'),
       main.call('criteria', s, 'surrogate'),
-      main.call('modelMaps', s, 'surrogate', CLOUD_GRID.nx, CLOUD_GRID.ny),
+      main.call('maps', s, 'surrogate', CLOUD_GRID.nx, CLOUD_GRID.ny),
     ]);
     let front;
     try {
@@ -106,33 +117,33 @@ export class Compute {
    * follows the slider in one frame; null when it fails).
    */
   async design(s, desc, withHifi) {
-    const lofi = await this.main.call('analyse', s, 'quarter');
+    const lofi = await this.main.call('analyse', s, 'lofi');
     const sur = await this.main.call('criteria', s, 'surrogate');
     let hifi = null;
-    if (withHifi) hifi = await this.main.call('analyse', s, 'full').catch(() => null);
+    if (withHifi) hifi = await this.main.call('analyse', s, 'hifi').catch(() => null);
     return { lofi, surrogate: { ...sur, dtl_relative: sur.dtl / desc.staticWheelLoad }, hifi };
   }
 
   /** A HiFi report on the HiFi worker (`s`: a design or the datum state). */
   hifiReport(s) {
-    return this.hifi.call('analyse', s, 'full');
+    return this.hifi.call('analyse', s, 'hifi');
   }
 
   /** The LoFi maps of the scenario at the page's grid (main thread). */
   lofiMaps(s) {
-    return this.main.call('lofiMaps', s, GRID.nx, GRID.ny);
+    return this.main.call('maps', s, 'lofi', GRID.nx, GRID.ny);
   }
 
   /** The surrogate's maps of the scenario at the page's grid (main thread, fit kept). */
   surrogateMaps(s) {
-    return this.main.call('modelMaps', s, 'surrogate', GRID.nx, GRID.ny);
+    return this.main.call('maps', s, 'surrogate', GRID.nx, GRID.ny);
   }
 
   /** The HiFi or surrogate-error maps (`model`) at the HiFi grid, with the HiFi datum's criteria (heavy worker). */
   async modelMaps(s, model, datumState) {
     const [maps, datum] = await Promise.all([
-      this.heavy.call('modelMaps', s, model, HIFI_GRID.nx, HIFI_GRID.ny),
-      model === 'hifi' ? this.heavy.call('criteria', datumState, 'full') : null,
+      this.heavy.call('maps', s, model, HIFI_GRID.nx, HIFI_GRID.ny),
+      model === 'hifi' ? this.heavy.call('criteria', datumState, 'hifi') : null,
     ]);
     return { maps, datum };
   }

@@ -3,12 +3,55 @@
 // takes a few milliseconds) or in a Web Worker ("worker": same module, same numbers).
 // Errors are always `{message, field}` objects; `field` names the state field at fault.
 
-/** The wasm API functions the page calls (also the worker's whitelist). */
-export const METHODS = [
-  'version', 'defaultState', 'presets', 'roadClasses', 'parseCar', 'checkState',
-  'describe', 'evaluate', 'analyse', 'criteria', 'lofiMap', 'lofiMaps', 'modelMaps', 'front', 'spectra', 'timeResponse',
-  'surrogateFit', 'surrogates', 'lineChartSvg', 'mapChartSvg',
+/** The wasm functions that need no session (with SESSION_METHODS, the worker's whitelist). */
+export const FUNCTIONS = [
+  'version', 'defaultState', 'presets', 'roadClasses', 'parseCar', 'checkState', 'surrogates',
+  'objectives', 'lineChartSvg', 'mapChartSvg',
 ];
+
+/** The methods of the core's `Explorer` session: an engine call is `(method, state, ...args)`. */
+export const SESSION_METHODS = [
+  'describe', 'analyse', 'criteria', 'maps', 'front', 'spectra', 'timeResponse', 'surrogateFit',
+  'studyReport',
+];
+
+/**
+ * One thread's `Explorer` session (crate/src/web/explorer.rs), moved to each call's state
+ * by the smallest setter: `setDesign` when only Ks and Cs changed (a slider move), else
+ * `setState` (the core then re-parses only the fields that changed). A setter that throws
+ * leaves the session, and what this host remembers of it, at the last good state.
+ */
+export class Host {
+  constructor(api) {
+    this.api = api;
+    this.explorer = null;
+    this.scenarioKey = null;
+    this.ks = null;
+    this.cs = null;
+  }
+
+  /** The session moved to `state` (throws the core's error naming the field). */
+  at(state) {
+    const key = JSON.stringify({ ...state, ks: 0, cs: 0 });
+    if (!this.explorer) this.explorer = new this.api.Explorer(state);
+    else if (key !== this.scenarioKey) this.explorer.setState(state);
+    else if (state.ks !== this.ks || state.cs !== this.cs) this.explorer.setDesign(state.ks, state.cs);
+    this.scenarioKey = key;
+    this.ks = state.ks;
+    this.cs = state.cs;
+    return this.explorer;
+  }
+
+  /** Runs one engine call synchronously. */
+  run(method, args) {
+    if (FUNCTIONS.includes(method)) return this.api[method](...args);
+    if (SESSION_METHODS.includes(method)) {
+      const [state, ...rest] = args;
+      return this.at(state)[method](...rest);
+    }
+    throw { message: `no method ${method}`, field: '' };
+  }
+}
 
 /** Turns anything thrown into `{message, field}`. */
 export function toFailure(e) {
@@ -20,13 +63,12 @@ export function toFailure(e) {
 
 class MainEngine {
   constructor(api) {
-    this.api = api;
+    this.host = new Host(api);
     this.kind = 'main';
   }
   call(method, ...args) {
-    if (!METHODS.includes(method)) return Promise.reject({ message: `no method ${method}`, field: '' });
     try {
-      return Promise.resolve(this.api[method](...args));
+      return Promise.resolve(this.host.run(method, args));
     } catch (e) {
       return Promise.reject(toFailure(e));
     }

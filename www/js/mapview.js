@@ -8,7 +8,6 @@
 // (`setData`, `setMarkers`); it never reads the page's state.
 
 import { paint } from './colormap.js';
-import { contourSegments } from './contour.js';
 import { fmt, fmtPct } from './format.js';
 import { drawMapFrame } from '../ridelab.js';
 
@@ -31,12 +30,16 @@ export const CRITERIA = [
 /** The caption of an error map. */
 const ERROR_TEACH = 'Surrogate minus HiFi in % of the HiFi: blue where the surrogate is lower, red where higher.';
 
-/** Hatch per group of objectives (bits of a map's `broken` mask): lines, dots, lines. */
-export const HATCHES = [
-  { bits: 1, kind: '/', name: 'SWS limit' },
-  { bits: 2 | 4, kind: 'dots', name: 'bounce or damping band' },
-  { bits: 8 | 16 | 32, kind: '-', name: 'worse than the datum' },
-];
+/** The hatch of each family of objectives (the core's `objectives()`): lines, dots, lines. */
+const HATCH_OF_FAMILY = { limit: '/', band: 'dots', datum: '-' };
+
+/** `[{bits, kind}]`: one hatch per family, `bits` the family's bits of a map's `broken` mask. */
+function hatchGroups(objectives) {
+  return Object.entries(HATCH_OF_FAMILY).map(([family, kind]) => ({
+    kind,
+    bits: objectives.filter((o) => o.family === family).reduce((b, o) => b | o.bit, 0),
+  }));
+}
 
 /** The core's smallest map chart, logical px. */
 const MIN_W = 360;
@@ -55,9 +58,15 @@ export class MapView {
    * @param {object} crit one of CRITERIA
    * @param {{onPick: (ks: number, cs: number) => void, onKey: (ev: KeyboardEvent) => boolean}} hooks
    *   `onPick` gets N/m and N s/m; `onKey` a key on the focused map (true when it moved the design)
+   * @param {(field: Float64Array, nx: number, ny: number, levels: number[]) => Float64Array[]} contours
+   *   the core's marching squares (js/compute.js `contours`): segments per level in grid coordinates
+   * @param {{bit: number, label: string, family: string}[]} objectives the core's design objectives by mask bit
    */
-  constructor(parent, crit, { onPick, onKey }) {
+  constructor(parent, crit, { onPick, onKey, contours, objectives }) {
     this.crit = crit;
+    this.contours = contours;
+    this.objectives = objectives;
+    this.hatches = hatchGroups(objectives);
     this.onPick = onPick;
     this.onKey = onKey;
     this.data = null;
@@ -205,7 +214,7 @@ export class MapView {
     // The infeasible masks, one per hatch: opaque where a design breaks an objective of
     // that group (bits of `maps.broken`).
     const masks = [];
-    for (const group of HATCHES) {
+    for (const group of this.hatches) {
       const mask = new ImageData(nx, ny);
       let any = false;
       for (let j = 0; j < ny; j++) {
@@ -223,7 +232,7 @@ export class MapView {
       masks.push({ ...group, canvas });
     }
 
-    const limitLine = swsLimit && !error ? contourSegments(values, 2 * n, nx, ny, swsLimit) : [];
+    const limitLine = swsLimit && !error ? this.contours(values.subarray(2 * n, 3 * n), nx, ny, [swsLimit])[0] : [];
 
     this.data = {
       nx, ny, box, lo, hi, colourMap, colour, masks, limitLine, scale,
@@ -340,7 +349,7 @@ export class MapView {
     if (d.levelsKey !== key) {
       d.levelsKey = key;
       d.levels = levels;
-      d.contours = levels.map((lv) => contourSegments(d.shown, 0, d.nx, d.ny, lv));
+      d.contours = this.contours(d.shown, d.nx, d.ny, levels);
     }
     const strokeSegs = (segs) => {
       g.beginPath();
@@ -600,7 +609,7 @@ export class MapView {
     const j = Math.min(d.ny - 1, Math.floor(at.v * d.ny));
     const v = d.shown[j * d.nx + i];
     const value = d.unit.startsWith('%') ? `${fmt(v, 3)} ${d.unit}` : `${fmt(v, 4)} ${d.unit}`;
-    const broken = HATCHES.filter((hh) => d.broken[j * d.nx + i] & hh.bits).map((hh) => hh.name);
+    const broken = this.objectives.filter((o) => d.broken[j * d.nx + i] & o.bit).map((o) => o.label);
     this.tip.textContent = `Ks ${fmt(at.ks / KS_UNIT, 4)} kN/m, Cs ${fmt(at.cs / CS_UNIT, 3)} kNs/m: ${this.crit.title} ${value}${broken.length ? ` (breaks the ${broken.join(', ')})` : ''}`;
     this.tip.hidden = false;
     const l = this.layout();

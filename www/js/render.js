@@ -13,17 +13,14 @@ import { fmt, fmtInput, fmtPct } from './format.js';
 
 const $ = (id) => document.getElementById(id);
 
-/** The objectives of a map mask, by bit (see the wasm `modelMaps`). */
-const OBJECTIVE_BITS = [
-  [1, 'SWS limit'], [2, 'bounce band'], [4, 'damping band'],
-  [8, 'BAcc ≤ datum'], [16, 'DTL ≤ datum'], [32, 'SWS ≤ datum'],
-];
-
-/** "x % of the box breaks the SWS limit, y % the bounce band" from a map mask. */
-function brokenText(maps) {
+/**
+ * "x % break the SWS limit, y % break the body-bounce frequency band" from a map mask;
+ * `objectives`: the core's design objectives by mask bit (`objectives()`).
+ */
+function brokenText(maps, objectives) {
   const n = maps.nx * maps.ny;
   const parts = [];
-  for (const [bit, name] of OBJECTIVE_BITS) {
+  for (const { bit, label: name } of objectives) {
     let c = 0;
     for (let k = 0; k < n; k++) if (maps.broken[k] & bit) c++;
     if (c) parts.push(`${fmt((100 * c) / n, 3)} % break the ${name}`);
@@ -181,12 +178,12 @@ export class Render {
       this.mapStatus(`Every design in the box meets the design objectives on ${road} ${who}.${timing}${errorNote}`, 'good');
     } else if (maps.feasibleCount === 0) {
       this.mapStatus(
-        `No design in the box meets the design objectives on ${road} ${who}: the whole map is hatched (${brokenText(maps)}). ` +
+        `No design in the box meets the design objectives on ${road} ${who}: the whole map is hatched (${brokenText(maps, this.store.objectives)}). ` +
           'Try a smoother road, a lower speed or a looser objective.',
         'bad',
       );
     } else {
-      this.mapStatus(`${fmt((100 * maps.feasibleCount) / n, 3)} % of the design box meets the design objectives on ${road} ${who}; ${brokenText(maps)}.${timing}${errorNote}`, 'good');
+      this.mapStatus(`${fmt((100 * maps.feasibleCount) / n, 3)} % of the design box meets the design objectives on ${road} ${who}; ${brokenText(maps, this.store.objectives)}.${timing}${errorNote}`, 'good');
     }
   }
 

@@ -89,6 +89,8 @@ export function installTestHooks({ store, controller, compute, ui, boot, exportD
     },
     // The engines and the raw wasm module.
     api: compute.api,
+    /** The main thread's `Explorer` session moved to `state` (the engine's own: see js/engine.js `Host`). */
+    session: (state) => compute.main.host.at(state),
     engine: compute.main,
     heavyEngine: compute.heavy,
     /** The data the chart exports are made of (js/svgexport.js `exportCharts`). */

@@ -33,7 +33,7 @@ use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
 use crate::model::{LinearModel, N_OUT};
 use crate::road::Road;
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64 as C64;
 
 const ZERO: C64 = C64::new(0.0, 0.0);
@@ -91,28 +91,28 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
             "model is not asymptotically stable".into(),
         ));
     }
-    let q_at = |s: C64| -> Vec<C64> {
-        let mut q = vec![ZERO; n * n];
-        for i in 0..n {
-            for j in 0..n {
-                q[i * n + j] = s * s * model.m[(i, j)] + s * model.c[(i, j)] + model.k[(i, j)];
-            }
-        }
-        q
+    // Q(s) = s^2 M + s C + K, factorised by nalgebra's LU with partial pivoting.
+    let q_lu = |s: C64| {
+        DMatrix::<C64>::from_fn(n, n, |i, j| {
+            s * s * model.m[(i, j)] + s * model.c[(i, j)] + model.k[(i, j)]
+        })
+        .lu()
     };
     // Eigenvectors and modal norms.
     let mut phi: Vec<Vec<C64>> = Vec::with_capacity(ns);
     let mut norm: Vec<C64> = Vec::with_capacity(ns);
     for &l in &lam {
         let shift = l + C64::new(1e-12, 1e-12) * l.norm();
-        let mut x: Vec<C64> = (0..n)
-            .map(|i| C64::new(1.0 + 0.1 * i as f64, 0.3 - 0.05 * i as f64))
-            .collect();
-        let mut q = q_at(shift);
-        let piv = lu(&mut q, n)
-            .ok_or_else(|| RideError::ModalInapplicable("inverse iteration failed".into()))?;
+        let mut x = DVector::<C64>::from_fn(n, |i, _| {
+            C64::new(1.0 + 0.1 * i as f64, 0.3 - 0.05 * i as f64)
+        });
+        let q = q_lu(shift);
         for _ in 0..2 {
-            lu_solve(&q, &piv, &mut x, n);
+            if !q.solve_mut(&mut x) {
+                return Err(RideError::ModalInapplicable(
+                    "inverse iteration failed".into(),
+                ));
+            }
             let s = x.iter().map(|v| v.norm_sqr()).sum::<f64>().sqrt();
             if !(s.is_finite() && s > 0.0) {
                 return Err(RideError::ModalInapplicable(
@@ -127,7 +127,7 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
                 nk += x[i] * (2.0 * l * model.m[(i, j)] + model.c[(i, j)]) * x[j];
             }
         }
-        phi.push(x);
+        phi.push(x.iter().copied().collect());
         norm.push(nk);
     }
 
@@ -172,11 +172,10 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
         // Check the expansion against a direct solve at 3 Hz.
         let s0 = C64::new(0.0, 2.0 * std::f64::consts::PI * 3.0);
         for (gi, g) in groups.iter().enumerate() {
-            let mut q = q_at(s0);
-            let piv = lu(&mut q, n)
-                .ok_or_else(|| RideError::ModalInapplicable("check solve failed".into()))?;
-            let mut x: Vec<C64> = (0..n).map(|i| g.kr[i] + s0 * g.cr[i]).collect();
-            lu_solve(&q, &piv, &mut x, n);
+            let mut x = DVector::<C64>::from_fn(n, |i, _| g.kr[i] + s0 * g.cr[i]);
+            if !q_lu(s0).solve_mut(&mut x) {
+                return Err(RideError::ModalInapplicable("check solve failed".into()));
+            }
             for o in 0..N_OUT {
                 let r0 = row(o, s0);
                 let direct = ((0..n).map(|i| r0[i] * x[i]).sum::<C64>() + g.yr[o]) / s0;
@@ -275,51 +274,6 @@ fn groups(
     }
     check_stationary(groups.iter().map(|g| g.g), scale)?;
     Ok(groups)
-}
-
-/// In-place LU with partial pivoting of a row-major `n x n` complex matrix.
-fn lu(a: &mut [C64], n: usize) -> Option<Vec<usize>> {
-    let mut piv: Vec<usize> = (0..n).collect();
-    for k in 0..n {
-        let p = (k..n).max_by(|&i, &j| a[i * n + k].norm().total_cmp(&a[j * n + k].norm()))?;
-        if a[p * n + k] == ZERO {
-            return None;
-        }
-        if p != k {
-            for j in 0..n {
-                a.swap(k * n + j, p * n + j);
-            }
-            piv.swap(k, p);
-        }
-        let inv = a[k * n + k].inv();
-        for i in k + 1..n {
-            let l = a[i * n + k] * inv;
-            a[i * n + k] = l;
-            for j in k + 1..n {
-                let akj = a[k * n + j];
-                a[i * n + j] -= l * akj;
-            }
-        }
-    }
-    Some(piv)
-}
-
-fn lu_solve(a: &[C64], piv: &[usize], b: &mut [C64], n: usize) {
-    let mut x: Vec<C64> = piv.iter().map(|&p| b[p]).collect();
-    for i in 0..n {
-        for j in 0..i {
-            let t = a[i * n + j] * x[j];
-            x[i] -= t;
-        }
-    }
-    for i in (0..n).rev() {
-        for j in i + 1..n {
-            let t = a[i * n + j] * x[j];
-            x[i] -= t;
-        }
-        x[i] /= a[i * n + i];
-    }
-    b.copy_from_slice(&x);
 }
 
 /// Exact criteria: the modal route when it is accurate, the Kronecker route otherwise.

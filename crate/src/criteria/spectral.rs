@@ -21,6 +21,9 @@ use crate::road::Road;
 use num_complex::Complex64 as C64;
 use std::f64::consts::PI;
 
+/// The adaptive quadrature's budget of panel splits (1004 panels, 15 060 frequencies).
+const MAX_SPLITS: usize = 500;
+
 /// Pivot of the `tan` substitution, Hz (between body and wheel-hop modes).
 const FC: f64 = 4.0;
 
@@ -33,6 +36,17 @@ pub struct SpectralCriteria {
     pub low_cutoff_hz: Option<f64>,
     /// Number of frequencies evaluated.
     pub evaluations: usize,
+    /// The quadrature's own error estimate relative to the variance, the largest of the
+    /// three outputs: at most the requested `rtol` unless the splits ran out (see
+    /// [`SpectralCriteria::converged`]).
+    pub relative_error: f64,
+}
+
+impl SpectralCriteria {
+    /// Whether the quadrature met `rtol` (it stops after `MAX_SPLITS` panel splits).
+    pub fn converged(&self, rtol: f64) -> bool {
+        self.relative_error <= rtol
+    }
 }
 
 /// Precomputed pieces for evaluating transfer functions of one model quickly.
@@ -156,15 +170,21 @@ impl<'a> Spectrum<'a> {
     }
 
     /// RMS criteria over `[f_lo, infinity)` to relative tolerance `rtol`.
-    pub fn rms(&self, f_lo: f64, rtol: f64) -> (Criteria, usize) {
+    pub fn rms(&self, f_lo: f64, rtol: f64) -> SpectralCriteria {
         self.rms_band(f_lo, f64::INFINITY, rtol)
     }
 
     /// RMS criteria over the band `[f_lo, f_hi]` (`f_hi` may be infinite) to relative
-    /// tolerance `rtol`, and the number of frequencies evaluated.
-    pub fn rms_band(&self, f_lo: f64, f_hi: f64, rtol: f64) -> (Criteria, usize) {
-        let (var, evals) = adaptive_gk15(|th| self.mapped_psd(th), theta(f_lo), theta(f_hi), rtol);
-        (to_rms(var), evals)
+    /// tolerance `rtol` on the variance, with the number of frequencies evaluated and the
+    /// error estimate reached (`low_cutoff_hz`: `f_lo` when it is above 0).
+    pub fn rms_band(&self, f_lo: f64, f_hi: f64, rtol: f64) -> SpectralCriteria {
+        let q = adaptive_gk15(|th| self.mapped_psd(th), theta(f_lo), theta(f_hi), rtol);
+        SpectralCriteria {
+            criteria: to_rms(q.value),
+            low_cutoff_hz: (f_lo > 0.0).then_some(f_lo),
+            evaluations: q.evaluations,
+            relative_error: q.relative_error,
+        }
     }
 
     /// RMS criteria over the whole band by a fixed rule: `panels` equal panels in
@@ -188,9 +208,15 @@ impl<'a> Spectrum<'a> {
 
     /// `int_0^inf weight(f)^2 P_output(f) df` by adaptive Gauss-Kronrod to relative
     /// tolerance `rtol`: the variance of output `output` (0 BAcc, 1 DTL, 2 SWS) through
-    /// a frequency weighting of gain `weight(f)`.
-    pub fn weighted_variance(&self, output: usize, weight: impl Fn(f64) -> f64, rtol: f64) -> f64 {
-        let (var, _) = adaptive_gk15(
+    /// a frequency weighting of gain `weight(f)`, and the error estimate reached relative
+    /// to it (above `rtol` only when the splits ran out).
+    pub fn weighted_variance(
+        &self,
+        output: usize,
+        weight: impl Fn(f64) -> f64,
+        rtol: f64,
+    ) -> (f64, f64) {
+        let q = adaptive_gk15(
             |th| {
                 let t = th.tan();
                 let w = weight(FC * t);
@@ -201,7 +227,7 @@ impl<'a> Spectrum<'a> {
             PI / 2.0,
             rtol,
         );
-        var[0]
+        (q.value[0], q.relative_error)
     }
 
     /// The PSDs times the Jacobian of `f = FC tan(theta)`.
@@ -226,7 +252,8 @@ fn to_rms(var: [f64; N_OUT]) -> Criteria {
 
 /// RMS criteria by the frequency route to relative tolerance `rtol` (on the variance).
 /// If the response is unbounded at low frequency (road warp), the band starts at
-/// ISO 8608's lowest spatial frequency 0.011 cycle/m and `low_cutoff_hz` says so.
+/// ISO 8608's lowest spatial frequency 0.011 cycle/m and `low_cutoff_hz` says so. A
+/// quadrature that runs out of splits before `rtol` is an error that says how far it got.
 pub fn criteria_spectral(model: &LinearModel, road: &Road, rtol: f64) -> Result<SpectralCriteria> {
     let sp = Spectrum::new(model, road)?;
     let cutoff = if warp_unbounded(&sp) {
@@ -234,18 +261,24 @@ pub fn criteria_spectral(model: &LinearModel, road: &Road, rtol: f64) -> Result<
     } else {
         None
     };
-    let (criteria, evaluations) = sp.rms(cutoff.unwrap_or(0.0), rtol);
-    let ok = criteria.to_array().iter().all(|v| v.is_finite());
-    if !ok {
+    let out = sp.rms(cutoff.unwrap_or(0.0), rtol);
+    if !out.criteria.to_array().iter().all(|v| v.is_finite()) {
         return Err(RideError::Numerical(
             "frequency integral did not converge".into(),
         ));
     }
-    Ok(SpectralCriteria {
-        criteria,
-        low_cutoff_hz: cutoff,
-        evaluations,
-    })
+    if !out.converged(rtol) {
+        return Err(not_converged(out.relative_error, rtol));
+    }
+    Ok(out)
+}
+
+/// The error of a quadrature that ran out of splits.
+pub(crate) fn not_converged(relative_error: f64, rtol: f64) -> RideError {
+    RideError::Numerical(format!(
+        "frequency integral stopped at a relative error estimate of {relative_error:.1e} \
+         (asked {rtol:.1e}): its {MAX_SPLITS} panel splits ran out"
+    ))
 }
 
 /// True when the velocity transfer has a pole at zero frequency (static deflection
@@ -367,15 +400,9 @@ fn gk15<F: Fn(f64) -> [f64; N_OUT]>(f: &F, lo: f64, hi: f64) -> ([f64; N_OUT], [
 /// Adaptive Gauss-Kronrod on `[lo, hi]` for three non-negative integrands at once:
 /// splits the panel with the largest error relative to the totals until, for every
 /// component, the summed error estimate is below `rtol` times the total (at most
-/// `MAX_SPLITS` splits). Returns the integrals and the number of integrand evaluations.
-fn adaptive_gk15<F: Fn(f64) -> [f64; N_OUT]>(
-    f: F,
-    lo: f64,
-    hi: f64,
-    rtol: f64,
-) -> ([f64; N_OUT], usize) {
+/// `MAX_SPLITS` splits).
+fn adaptive_gk15<F: Fn(f64) -> [f64; N_OUT]>(f: F, lo: f64, hi: f64, rtol: f64) -> Quadrature {
     const INITIAL: usize = 4;
-    const MAX_SPLITS: usize = 500;
     let width = (hi - lo) / INITIAL as f64;
     let mut panels: Vec<Panel> = (0..INITIAL)
         .map(|i| Panel::new(&f, lo + i as f64 * width, lo + (i + 1) as f64 * width))
@@ -398,6 +425,74 @@ fn adaptive_gk15<F: Fn(f64) -> [f64; N_OUT]>(
         panels.push(Panel::new(&f, p.lo, mid));
         panels.push(Panel::new(&f, mid, p.hi));
     }
-    // Every split evaluates two new panels: 15 (INITIAL + 2 splits) points in all.
-    (total(&panels), 15 * (2 * panels.len() - INITIAL))
+    let value = total(&panels);
+    let relative_error = (0..N_OUT)
+        .map(|o| {
+            let err: f64 = panels.iter().map(|p| p.err[o]).sum();
+            if err == 0.0 {
+                0.0
+            } else {
+                err / value[o].abs()
+            }
+        })
+        .fold(0.0, f64::max);
+    Quadrature {
+        value,
+        // Every split evaluates two new panels: 15 (INITIAL + 2 splits) points in all.
+        evaluations: 15 * (2 * panels.len() - INITIAL),
+        relative_error,
+    }
+}
+
+/// What [`adaptive_gk15`] returns.
+struct Quadrature {
+    /// The three integrals.
+    value: [f64; N_OUT],
+    /// Integrand evaluations.
+    evaluations: usize,
+    /// The summed error estimate relative to the integral, the largest of the three.
+    relative_error: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::car::{Car, QuarterCar};
+    use crate::criteria::quarter_car_rms;
+    use crate::model::quarter_car;
+
+    /// The quadrature says how far it got: at 1e-8 it meets the tolerance and agrees with
+    /// the closed form; asked for a tolerance of 0 (which no error estimate meets) the
+    /// splits run out, `converged` says so and `criteria_spectral` refuses with the estimate.
+    #[test]
+    fn a_quadrature_that_runs_out_of_splits_says_so() {
+        let q = QuarterCar {
+            ct: 0.0,
+            ..Car::datum().quarter()
+        };
+        let road = Road::default();
+        let model = quarter_car(&q);
+        let ok = criteria_spectral(&model, &road, 1e-8).unwrap();
+        assert!(ok.converged(1e-8) && ok.relative_error <= 1e-8);
+        let exact = quarter_car_rms(&q, road.intensity()).to_array();
+        for (a, b) in ok.criteria.to_array().iter().zip(exact) {
+            assert!((a / b - 1.0).abs() < 1e-7, "{a} vs closed form {b}");
+        }
+        let sp = Spectrum::new(&model, &road).unwrap();
+        let tight = sp.rms(0.0, 0.0);
+        assert!(
+            !tight.converged(0.0),
+            "error estimate {}",
+            tight.relative_error
+        );
+        assert!(
+            tight.relative_error < 1e-12,
+            "and the estimate is still small"
+        );
+        assert_eq!(tight.evaluations, 15 * (2 * (4 + MAX_SPLITS) - 4));
+        let err = criteria_spectral(&model, &road, 0.0)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("splits ran out"), "{err}");
+    }
 }

@@ -7,29 +7,28 @@
 //!
 //! State objects (see [`State`]) are plain JS objects in SI units:
 //! `{car, carJson?, ks, cs, class, speed, tracks, ksMin?, ksMax?, csMin?, csMax?, swsLimit?,
-//! bounceBand?, dampingBand?, noWorse?, surrogate?, plan?}`. The logic behind every entry
-//! is in [`crate::explorer`].
+//! bounceBand?, dampingBand?, noWorse?, dtlMargin?, travel?, surrogate?, plan?}`. The page
+//! keeps one [`Explorer`] session per thread and moves it with small setters; the free
+//! functions here need no state. The logic behind every entry is in [`crate::explorer`].
 
 mod charts;
+mod explorer;
 #[cfg(feature = "gpu")]
 mod gpu;
 mod screen;
 pub use charts::{line_chart_svg_js, map_chart_svg_js};
+pub use explorer::Explorer;
 #[cfg(feature = "gpu")]
 pub use gpu::GpuMaps;
 pub use screen::{draw_line_chart_js, draw_map_frame_js};
 
-use crate::analysis::ModelKind;
 use crate::car::{Car, PRESETS};
 use crate::chart::ColourMap;
 use crate::error::RideError;
-use crate::explorer::{
-    ui_field, EvaluatorKind, FrontModel, MapModel, ModelMap, Session, State, STATE_FIELDS,
-};
+use crate::explorer::{ui_field, State, STATE_FIELDS};
 use crate::road::RoadClass;
 use js_sys::{Float64Array, Object, Reflect, Uint8Array};
 use serde::Serialize;
-use std::cell::RefCell;
 use wasm_bindgen::prelude::*;
 
 /// Converts a core error to a JS `Error` with a `field` property.
@@ -88,30 +87,11 @@ fn parse_state(state: JsValue) -> Result<State, JsValue> {
     serde_wasm_bindgen::from_value(state).map_err(|e| state_error(e.to_string()))
 }
 
-thread_local! {
-    /// The session behind the state-taking functions below: each call moves it to the
-    /// call's state (re-parsing only what changed) and asks it. The page's own
-    /// [`Explorer`] objects are sessions of their own.
-    static SESSION: RefCell<Option<Session>> = const { RefCell::new(None) };
-}
-
-/// Runs `f` on the thread's session moved to `state`.
-fn with_session<T>(
-    state: JsValue,
-    f: impl FnOnce(&mut Session) -> crate::error::Result<T>,
-) -> Result<T, JsValue> {
-    let state = parse_state(state)?;
-    SESSION.with_borrow_mut(|slot| {
-        match slot {
-            Some(s) => s.set_state(state).map_err(js_error)?,
-            None => *slot = Some(Session::new(state).map_err(js_error)?),
-        }
-        // Just set.
-        let s = slot
-            .as_mut()
-            .ok_or_else(|| state_error("no session".into()))?;
-        f(s).map_err(js_error)
-    })
+/// Runs once when the module is instantiated (page and workers): a panic, should one
+/// ever happen, then names itself and its place in the console instead of "unreachable".
+#[wasm_bindgen(start)]
+pub fn start() {
+    console_error_panic_hook::set_once();
 }
 
 /// The crate version.
@@ -173,6 +153,62 @@ pub fn colour_table(name: &str) -> Result<Uint8Array, JsValue> {
     Ok(Uint8Array::from(rgb.as_slice()))
 }
 
+/// Contour lines of a map plane for the page's canvas, by the core's marching squares
+/// (`maps::contour`, the one the exported charts draw: a node is above a level when
+/// `f >= level`, cells with a non-finite corner are skipped). `field` is one plane of
+/// `nx x ny` cell-centre values (row-major, Cs rows); returns one `Float64Array` per
+/// level of segments `[x0, y0, x1, y1, ...]` in grid coordinates (cell `i` at `x = i`,
+/// row `j` at `y = j`). Errors name `field`, `nx` or `level`.
+#[wasm_bindgen(js_name = contourSegments)]
+pub fn contour_segments_js(
+    field: &[f64],
+    nx: usize,
+    ny: usize,
+    levels: &[f64],
+) -> Result<js_sys::Array, JsValue> {
+    use crate::maps::{contour, Axis, Grid};
+    // Axes 1..=n (an axis must be positive): a vertex at 1 + x is grid coordinate x.
+    let axis = |name: &str, n: usize| Axis::new(name, 1.0, n as f64, n).map_err(js_error);
+    let grid = Grid::new(axis("nx", nx)?, axis("ny", ny)?).map_err(js_error)?;
+    let out = js_sys::Array::new();
+    for &level in levels {
+        let c = contour(&grid, field, level).map_err(js_error)?;
+        let mut seg = Vec::new();
+        for line in &c.polylines {
+            for w in line.points.windows(2) {
+                seg.extend([w[0][0] - 1.0, w[0][1] - 1.0, w[1][0] - 1.0, w[1][1] - 1.0]);
+            }
+        }
+        out.push(&Float64Array::from(seg.as_slice()));
+    }
+    Ok(out)
+}
+
+/// The design objectives in mask-bit order, as a map's `broken` mask numbers them:
+/// `[{bit, name, label, family}]` (`bit` the mask value `1 << b`, `name` as serialised,
+/// `label` for messages, `family` "limit", "band" or "datum": see `Objective::family`).
+#[wasm_bindgen]
+pub fn objectives() -> Result<JsValue, JsValue> {
+    use crate::maps::{objective_bit, objective_name, OBJECTIVE_BITS};
+    #[derive(Serialize)]
+    struct O {
+        bit: u8,
+        name: &'static str,
+        label: &'static str,
+        family: &'static str,
+    }
+    let v: Vec<O> = OBJECTIVE_BITS
+        .iter()
+        .map(|&o| O {
+            bit: objective_bit(o),
+            name: objective_name(o),
+            label: o.label(),
+            family: o.family(),
+        })
+        .collect();
+    to_js(&v)
+}
+
 /// The ISO 8608 classes with `Gd(n0)` in m^3: `[{name, gd}]`.
 #[wasm_bindgen(js_name = roadClasses)]
 pub fn road_classes() -> Result<JsValue, JsValue> {
@@ -213,139 +249,6 @@ pub fn check_state(state: JsValue) -> Result<JsValue, JsValue> {
     to_js(&s)
 }
 
-#[derive(Serialize)]
-#[serde(rename_all = "camelCase")]
-struct Description {
-    car: Car,
-    quarter: crate::car::QuarterCar,
-    datum_ks: f64,
-    datum_cs: f64,
-    static_wheel_load: f64,
-    road: crate::road::Road,
-    velocity_psd: f64,
-    delay: f64,
-    design_box: crate::design::DesignBox,
-    sws_limit: Option<f64>,
-}
-
-fn description(s: &Session) -> Description {
-    let s = s.scenario();
-    Description {
-        quarter: s.datum.quarter(),
-        datum_ks: s.datum.front.spring,
-        datum_cs: s.datum.front.damper,
-        static_wheel_load: s.datum.front_wheel_load(),
-        road: s.road,
-        velocity_psd: s.road.velocity_psd(),
-        delay: s.road.delay(s.datum.wheelbase()),
-        design_box: s.dbox,
-        sws_limit: s.objectives.sws_limit,
-        car: s.datum.clone(),
-    }
-}
-
-/// What the page shows about the scenario besides the criteria: the datum car, its
-/// quarter car, the datum design `{ks, cs}`, the static front wheel load (N), the road
-/// velocity PSD (m^2/s^2/Hz) and the design box.
-#[wasm_bindgen]
-pub fn describe(state: JsValue) -> Result<JsValue, JsValue> {
-    to_js(&with_session(state, |s| Ok(description(s)))?)
-}
-
-/// The full analysis report of the state's design by one model: `model` is
-/// "quarter" (LoFi) or "full" (HiFi). The same report as `ridelab eval`.
-#[wasm_bindgen]
-pub fn analyse(state: JsValue, model: &str) -> Result<JsValue, JsValue> {
-    let kind = ModelKind::parse(model).map_err(js_error)?;
-    to_js(&with_session(state, |s| s.report(kind))?)
-}
-
-/// Both reports of the state's design: `{lofi, hifi}` (see [`analyse`]).
-#[wasm_bindgen]
-pub fn evaluate(state: JsValue) -> Result<JsValue, JsValue> {
-    let (lofi, hifi) = with_session(state, |s| {
-        Ok((s.report(ModelKind::Quarter)?, s.report(ModelKind::Full)?))
-    })?;
-    let out = Object::new();
-    Reflect::set(&out, &"lofi".into(), &to_js(&lofi)?)?;
-    Reflect::set(&out, &"hifi".into(), &to_js(&hifi)?)?;
-    Ok(out.into())
-}
-
-/// The criteria `{bacc, dtl, sws}` of the state's design by the fast evaluators the
-/// maps and optimisers use (`model`: "quarter", "full" or "surrogate", the state's
-/// surrogate).
-#[wasm_bindgen]
-pub fn criteria(state: JsValue, model: &str) -> Result<JsValue, JsValue> {
-    let kind = EvaluatorKind::parse(model).map_err(js_error)?;
-    to_js(&with_session(state, |s| s.criteria(kind))?)
-}
-
-/// The three LoFi criteria over an `nx` x `ny` grid of cell centres of the design box,
-/// as one `Float64Array` of `3 nx ny` values: BAcc (m/s^2), DTL (N), SWS (m) planes in
-/// that order, each row-major with Cs slow (row 0 at the lowest Cs) and Ks fast:
-/// index `c nx ny + j nx + i`, `ks_i = ks_min + (i + 1/2) (ks_max - ks_min) / nx`.
-#[wasm_bindgen(js_name = lofiMap)]
-pub fn lofi_map_js(state: JsValue, nx: usize, ny: usize) -> Result<Float64Array, JsValue> {
-    let m = with_session(state, |s| s.map(MapModel::LoFi, nx, ny))?;
-    Ok(Float64Array::from(m.planes().as_slice()))
-}
-
-/// A map as `{nx, ny, values: Float64Array, feasible: Uint8Array, broken: Uint8Array,
-/// feasibleCount}` (`broken`: the objectives each cell breaks as a bitmask, bit 0 SWS
-/// limit, 1 bounce band, 2 damping band, 3..5 BAcc/DTL/SWS no worse than datum).
-fn map_js(m: &ModelMap) -> Result<JsValue, JsValue> {
-    let out = Object::new();
-    Reflect::set(&out, &"nx".into(), &(m.grid().ks.n as f64).into())?;
-    Reflect::set(&out, &"ny".into(), &(m.grid().cs.n as f64).into())?;
-    Reflect::set(
-        &out,
-        &"values".into(),
-        &Float64Array::from(m.planes().as_slice()).into(),
-    )?;
-    Reflect::set(
-        &out,
-        &"feasible".into(),
-        &Uint8Array::from(m.feasible().as_slice()).into(),
-    )?;
-    Reflect::set(&out, &"broken".into(), &Uint8Array::from(m.broken()).into())?;
-    Reflect::set(
-        &out,
-        &"feasibleCount".into(),
-        &(m.dos.summary.feasible as f64).into(),
-    )?;
-    Ok(out.into())
-}
-
-/// [`lofi_map_js`] plus the design objectives (see [`map_js`]).
-#[wasm_bindgen(js_name = lofiMaps)]
-pub fn lofi_maps_js(state: JsValue, nx: usize, ny: usize) -> Result<JsValue, JsValue> {
-    map_js(&with_session(state, |s| s.map(MapModel::LoFi, nx, ny))?)
-}
-
-/// The map of one model (same layout as [`lofi_maps_js`]): `model` is "lofi", "hifi",
-/// "surrogate" (the state's surrogate) or "error" (the surrogate's signed relative error
-/// against the HiFi, `100 (S / HiFi - 1)` %, with the HiFi's objectives). The HiFi and
-/// error maps cost about 30 us a cell: the page asks the worker for them.
-#[wasm_bindgen(js_name = modelMaps)]
-pub fn model_maps_js(
-    state: JsValue,
-    model: &str,
-    nx: usize,
-    ny: usize,
-) -> Result<JsValue, JsValue> {
-    let m = MapModel::parse(model).map_err(js_error)?;
-    map_js(&with_session(state, |s| s.map(m, nx, ny))?)
-}
-
-/// The state's surrogate fitted to HiFi samples over its design box and validated on
-/// a `levels x levels` HiFi grid: the `ridelab surrogate` report (samples, tuning,
-/// diagnostics, metrics, error map, predictions).
-#[wasm_bindgen(js_name = surrogateFit)]
-pub fn surrogate_fit_js(state: JsValue, levels: usize) -> Result<JsValue, JsValue> {
-    to_js(&with_session(state, |s| s.fit_report(levels))?)
-}
-
 /// The surrogate names the state's `surrogate` field takes (`ridelab surrogate` names).
 #[wasm_bindgen]
 pub fn surrogates() -> Result<JsValue, JsValue> {
@@ -354,39 +257,6 @@ pub fn surrogates() -> Result<JsValue, JsValue> {
         .map(|s| s.name())
         .collect();
     to_js(&names)
-}
-
-/// The Pareto front of BAcc and DTL on `model` ("lofi", the default, or "surrogate")
-/// by `method` ("stm", a 61 x 61 grid refined twice, or "nsga2", seeded, 60 x 60), its
-/// hypervolume, the min-max pick and the pick re-checked on the HiFi model:
-/// `{study: {front, hypervolume, referencePoint, pick, evaluations, ..}, datum,
-/// datumHifi, recheck}`. With no feasible design the error names the binding objective.
-#[wasm_bindgen]
-pub fn front(state: JsValue, method: &str, model: Option<String>) -> Result<JsValue, JsValue> {
-    let on = FrontModel::parse(model.as_deref().unwrap_or("lofi")).map_err(js_error)?;
-    to_js(&with_session(state, |s| s.front(method, on))?)
-}
-
-/// |H| from road displacement and the output PSDs of the design by both models at
-/// `nfreq` log-spaced frequencies from 0.1 to 100 Hz: `{f, lofi: {frf, psd}, hifi}`,
-/// each `[bacc, dtl, sws]` (1/s^2, N/m, m/m; (m/s^2)^2/Hz, N^2/Hz, m^2/Hz).
-#[wasm_bindgen(js_name = spectra)]
-pub fn spectra_js(state: JsValue, nfreq: usize) -> Result<JsValue, JsValue> {
-    to_js(&with_session(state, |s| s.spectra(nfreq))?)
-}
-
-/// Seeded time responses of the design by both models: `options` is
-/// `{duration, dt, seed, f_min, f_max, damper: {bump, rebound, knee: {velocity, bump,
-/// rebound} | null} | null, decimate}` (s, s, -, Hz, Hz, N s/m and m/s, -; missing fields
-/// take the core defaults). With a damper law the run's Cs is its equivalent linear rate
-/// `(bump + rebound) / 2`, as in `ridelab simulate --bump --rebound`. Returns
-/// `{damper, damperRate, lofi, hifi, a, b}` with `{t, road, outputs, positions,
-/// accelerations, rms, damper_rate, equivalent_rate}` per model.
-#[wasm_bindgen(js_name = timeResponse)]
-pub fn time_response_js(state: JsValue, options: JsValue) -> Result<JsValue, JsValue> {
-    let opt: crate::time_domain::TimeOptions = serde_wasm_bindgen::from_value(options)
-        .map_err(|e| state_error(format!("time options: {e}")))?;
-    to_js(&with_session(state, |s| s.time_response(&opt))?)
 }
 
 /// The front damper law's force-velocity line, for the page's chart: `damper` is
@@ -483,18 +353,4 @@ impl AdaptiveRun {
         let m = self.0.uncertainty_map(nx, ny).map_err(js_error)?;
         Ok(Float64Array::from(m.as_slice()))
     }
-}
-
-/// The study report of the view's scenario (as `ridelab report`, seed 1, the view's
-/// surrogate and plan): `{title, html, markdown}`, the HTML one self-contained file.
-/// Takes seconds: the page calls it in its worker.
-#[wasm_bindgen(js_name = studyReport)]
-pub fn study_report_js(state: JsValue) -> Result<JsValue, JsValue> {
-    let report = with_session(state, |s| s.study_report())?;
-    let docs = report.documents().map_err(js_error)?;
-    to_js(&serde_json::json!({
-        "title": report.title(),
-        "html": docs.html,
-        "markdown": docs.markdown,
-    }))
 }

@@ -1,0 +1,176 @@
+//! The page's session: `new Explorer(state)`, a JS class over [`Session`] that owns the
+//! view's scenario, its fitted surrogate and the kept maps. The page moves it with the
+//! small setters (`setDesign(ks, cs)` on a slider move, `setState(state)` when anything
+//! else changes) and asks it; a setter that fails leaves it at its last good state.
+//! Every method's numbers are [`Session`]'s, which the native tests check.
+
+use super::{js_error, parse_state, state_error, to_js};
+use crate::analysis::ModelKind;
+use crate::car::Car;
+use crate::explorer::{EvaluatorKind, FrontModel, MapModel, ModelMap, Session};
+use js_sys::{Float64Array, Object, Reflect, Uint8Array};
+use serde::Serialize;
+use wasm_bindgen::prelude::*;
+
+/// The explorer session (see the module documentation).
+#[wasm_bindgen]
+pub struct Explorer(Session);
+
+#[derive(Serialize)]
+#[serde(rename_all = "camelCase")]
+struct Description {
+    car: Car,
+    quarter: crate::car::QuarterCar,
+    datum_ks: f64,
+    datum_cs: f64,
+    static_wheel_load: f64,
+    road: crate::road::Road,
+    velocity_psd: f64,
+    delay: f64,
+    design_box: crate::design::DesignBox,
+    sws_limit: Option<f64>,
+}
+
+/// A map as `{nx, ny, values: Float64Array, feasible: Uint8Array, broken: Uint8Array,
+/// feasibleCount}`: `values` the BAcc (m/s^2), DTL (N) and SWS (m) planes in that order,
+/// each row-major with Cs slow (row 0 at the lowest Cs) and Ks fast, index
+/// `c nx ny + j nx + i` at the cell centre `ks_i = ks_min + (i + 1/2) (ks_max - ks_min) / nx`;
+/// `broken` the objectives each cell breaks as a bitmask (bit 0 SWS limit, 1 bounce band,
+/// 2 damping band, 3..5 BAcc/DTL/SWS no worse than datum, 6 DTL margin, 7 travel).
+fn map_js(m: &ModelMap) -> Result<JsValue, JsValue> {
+    let out = Object::new();
+    let set = |k: &str, v: JsValue| Reflect::set(&out, &k.into(), &v);
+    set("nx", (m.grid().ks.n as f64).into())?;
+    set("ny", (m.grid().cs.n as f64).into())?;
+    set("values", Float64Array::from(m.planes().as_slice()).into())?;
+    set("feasible", Uint8Array::from(m.feasible().as_slice()).into())?;
+    set("broken", Uint8Array::from(m.broken()).into())?;
+    set("feasibleCount", (m.dos.summary.feasible as f64).into())?;
+    Ok(out.into())
+}
+
+#[wasm_bindgen]
+impl Explorer {
+    /// A session on `state`; errors name the field at fault.
+    #[wasm_bindgen(constructor)]
+    pub fn new(state: JsValue) -> Result<Explorer, JsValue> {
+        Session::new(parse_state(state)?)
+            .map(Explorer)
+            .map_err(js_error)
+    }
+
+    /// Moves to `state`, re-parsing only what changed (a custom car's file is read again
+    /// only when it changes); the fit and the kept maps go when what they depend on does.
+    #[wasm_bindgen(js_name = setState)]
+    pub fn set_state(&mut self, state: JsValue) -> Result<(), JsValue> {
+        self.0.set_state(parse_state(state)?).map_err(js_error)
+    }
+
+    /// Moves the design to front spring `ks` (N/m) and damper `cs` (N s/m); errors name
+    /// `ks` or `cs`.
+    #[wasm_bindgen(js_name = setDesign)]
+    pub fn set_design(&mut self, ks: f64, cs: f64) -> Result<(), JsValue> {
+        self.0.set_design(ks, cs).map_err(js_error)
+    }
+
+    /// The current state, normalised.
+    pub fn state(&self) -> Result<JsValue, JsValue> {
+        to_js(self.0.state())
+    }
+
+    /// What the page shows about the scenario besides the criteria: `{car, quarter,
+    /// datumKs, datumCs, staticWheelLoad, road, velocityPsd, delay, designBox, swsLimit}`
+    /// (N/m, N s/m, N, m^2/s^2/Hz, s, m).
+    pub fn describe(&self) -> Result<JsValue, JsValue> {
+        let s = self.0.scenario();
+        to_js(&Description {
+            quarter: s.datum.quarter(),
+            datum_ks: s.datum.front.spring,
+            datum_cs: s.datum.front.damper,
+            static_wheel_load: s.datum.front_wheel_load(),
+            road: s.road,
+            velocity_psd: s.road.velocity_psd(),
+            delay: s.road.delay(s.datum.wheelbase()),
+            design_box: s.dbox,
+            sws_limit: s.objectives.sws_limit,
+            car: s.datum.clone(),
+        })
+    }
+
+    /// The full analysis report of the design by one model, `model` "lofi" or "hifi"
+    /// ("quarter", "full" also read): the same report as `ridelab eval`.
+    pub fn analyse(&self, model: &str) -> Result<JsValue, JsValue> {
+        let kind = ModelKind::parse(model).map_err(js_error)?;
+        to_js(&self.0.report(kind).map_err(js_error)?)
+    }
+
+    /// The criteria `{bacc, dtl, sws}` (m/s^2, N, m) of the design by the fast
+    /// evaluators the maps and optimisers use: `model` "lofi", "hifi" or "surrogate".
+    pub fn criteria(&mut self, model: &str) -> Result<JsValue, JsValue> {
+        let kind = EvaluatorKind::parse(model).map_err(js_error)?;
+        to_js(&self.0.criteria(kind).map_err(js_error)?)
+    }
+
+    /// The map of one model on the `nx` x `ny` cell-centre grid of the design box (see
+    /// `map_js` for the layout): `model` "lofi", "hifi", "surrogate" or "error" (the
+    /// surrogate's signed relative error against the HiFi, `100 (S / HiFi - 1)` %, with the
+    /// HiFi's objectives). A HiFi map costs about 3 us a cell: the page asks its worker.
+    pub fn maps(&mut self, model: &str, nx: usize, ny: usize) -> Result<JsValue, JsValue> {
+        let m = MapModel::parse(model).map_err(js_error)?;
+        map_js(&self.0.map(m, nx, ny).map_err(js_error)?)
+    }
+
+    /// The Pareto front of BAcc and DTL on `model` ("lofi", the default, or "surrogate")
+    /// by `method` ("stm", a 61 x 61 grid refined twice, or "nsga2", seeded, 60 x 60), its
+    /// hypervolume, the min-max pick and the pick re-checked on the HiFi model:
+    /// `{study: {front, hypervolume, referencePoint, pick, evaluations, ..}, datum,
+    /// datumHifi, recheck}`. With no feasible design the error names the binding objective.
+    pub fn front(&mut self, method: &str, model: Option<String>) -> Result<JsValue, JsValue> {
+        let on = FrontModel::parse(model.as_deref().unwrap_or("lofi")).map_err(js_error)?;
+        to_js(&self.0.front(method, on).map_err(js_error)?)
+    }
+
+    /// |H| from road displacement and the output PSDs of the design by the LoFi, the HiFi
+    /// and the surrogate at `nfreq` log-spaced frequencies from 0.1 to 100 Hz:
+    /// `{f, lofi: {frf, psd}, hifi, surrogate}`, each `[bacc, dtl, sws]` (1/s^2, N/m, m/m;
+    /// (m/s^2)^2/Hz, N^2/Hz, m^2/Hz).
+    pub fn spectra(&mut self, nfreq: usize) -> Result<JsValue, JsValue> {
+        to_js(&self.0.spectra(nfreq).map_err(js_error)?)
+    }
+
+    /// Seeded time responses of the design by both models: `options` is `{duration, dt,
+    /// seed, f_min, f_max, damper: {bump, rebound, knee: {velocity, bump, rebound} | null}
+    /// | null, decimate}` (s, s, -, Hz, Hz, N s/m and m/s, -; missing fields take the core
+    /// defaults). With a damper law the run's Cs is its equivalent linear rate
+    /// `(bump + rebound) / 2`, as in `ridelab simulate --bump --rebound`. Returns
+    /// `{damper, damperRate, lofi, hifi, a, b}` with `{t, road, outputs, positions,
+    /// accelerations, rms, damper_rate, equivalent_rate}` per model.
+    #[wasm_bindgen(js_name = timeResponse)]
+    pub fn time_response(&self, options: JsValue) -> Result<JsValue, JsValue> {
+        let opt: crate::time_domain::TimeOptions = serde_wasm_bindgen::from_value(options)
+            .map_err(|e| state_error(format!("time options: {e}")))?;
+        to_js(&self.0.time_response(&opt).map_err(js_error)?)
+    }
+
+    /// The surrogate fitted to HiFi samples over the design box and validated on a
+    /// `levels x levels` HiFi grid: the `ridelab surrogate` report (samples, tuning,
+    /// diagnostics, metrics, error map, predictions). It refits: the page asks its worker.
+    #[wasm_bindgen(js_name = surrogateFit)]
+    pub fn surrogate_fit(&self, levels: usize) -> Result<JsValue, JsValue> {
+        to_js(&self.0.fit_report(levels).map_err(js_error)?)
+    }
+
+    /// The study report of the scenario (as `ridelab report`, seed 1, the view's surrogate
+    /// and plan): `{title, html, markdown}`, the HTML one self-contained file. It takes
+    /// seconds: the page asks its worker.
+    #[wasm_bindgen(js_name = studyReport)]
+    pub fn study_report(&self) -> Result<JsValue, JsValue> {
+        let report = self.0.study_report().map_err(js_error)?;
+        let docs = report.documents().map_err(js_error)?;
+        to_js(&serde_json::json!({
+            "title": report.title(),
+            "html": docs.html,
+            "markdown": docs.markdown,
+        }))
+    }
+}
