@@ -22,7 +22,7 @@ export const CRITERIA = [
     teach: 'Road holding: has a best damper rate; too soft or too hard lets the wheel hop.',
   },
   {
-    key: 'sws', plane: 2, title: 'SWS', long: 'RMS suspension working space', unit: 'mm', factor: 1000,
+    key: 'sws', plane: 2, title: 'SWS', long: 'RMS suspension working space', short: 'working space', unit: 'mm', factor: 1000,
     teach: 'Working space: a softer damper lets the suspension travel further.',
   },
 ];
@@ -79,7 +79,17 @@ export class MapView {
     const cap = document.createElement('figcaption');
     const title = document.createElement('span');
     title.className = 'map-title';
-    title.textContent = `${crit.title}: ${crit.long}`;
+    // "RMS " and "design: " give way first when the panel is narrow (style.css, container
+    // queries on .map-panel), so the criterion's name is never cut.
+    const span = (cls, text) => {
+      const el = document.createElement('span');
+      el.className = cls;
+      el.textContent = text;
+      return el;
+    };
+    const rms = crit.long.startsWith('RMS ');
+    const name = rms ? crit.long.slice(4) : crit.long;
+    title.append(`${crit.title}: `, span('rms', rms ? 'RMS ' : ''), span('name-long', name), span('name-short', crit.short || name));
     this.atEl = document.createElement('span');
     this.atEl.className = 'at';
     cap.append(title, this.atEl);
@@ -260,7 +270,11 @@ export class MapView {
    */
   setMarkers({ design, datum, samples = null, pick = null }, caption) {
     this.markers = { design, datum, samples, pick };
-    this.atEl.textContent = caption;
+    const label = caption.startsWith('design: ') ? 'design: ' : '';
+    const labelEl = document.createElement('span');
+    labelEl.className = 'at-label';
+    labelEl.textContent = label;
+    this.atEl.replaceChildren(labelEl, caption.slice(label.length));
     this.drawOverlay();
   }
 
