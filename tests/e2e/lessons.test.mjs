@@ -117,7 +117,7 @@ test('every shipped lesson: its steps load, every placeholder resolves, one numb
   assert.equal(o3.state.class, 'C');
   assert.ok(close(Number(o3.values['lofi.sws']), evalCli('quarter', ['--class', 'C']).sws), `objectives: {lofi.sws} ${o3.values['lofi.sws']}`);
   assert.equal(Number(o3.values.feasible), 0, 'no design in the box meets SWS ≤ 7 mm on class C');
-  assert.match(o3.answer, /no front/);
+  assert.match(o3.answer, /no design meets the objectives: SWS limit 7(\.0)? mm is exceeded everywhere/);
 
   // 4. Why a surrogate: its largest BAcc error on the HiFi grid, as `ridelab surrogate` says.
   const s2 = seen.surrogate[1];
@@ -259,13 +259,27 @@ test('keyboard: with the panel focused Space reveals and goes on, the arrows ste
   await page.keyboard.press('PageDown');
   await lessonReady(page);
   assert.equal((await at()).k, 2);
-  // A focused map: the arrows move the design, not the lesson.
+  await page.keyboard.press('1');
+  await page.keyboard.press('Space');
+  await lessonReady(page);
+  /** The reveal's {lofi.bacc.pct} and the readout's LoFi % cell of BAcc (both SI fractions). */
+  const pct = () => page.evaluate(() => [
+    document.querySelector('#lesson-answer .live[data-ph="lofi.bacc.pct"]').dataset.value,
+    document.querySelector('#criteria tr[data-crit="bacc"] td[data-model="lofi-d"]').dataset.value,
+  ]);
+  const [before, readout] = await pct();
+  assert.equal(before, readout, 'the reveal shows the readout\'s number');
+  // A focused map: the arrows move the design, not the lesson; the reveal follows.
   const ks = (await page.evaluate(() => window.__ridelab.state)).ks;
   await page.focus('#map-bacc-pick');
   await page.keyboard.press('ArrowRight');
   await settled(page, 100);
+  await lessonReady(page);
   assert.equal((await page.evaluate(() => window.__ridelab.state)).ks, ks + 100, 'Ks one step up');
   assert.equal((await at()).k, 2, 'the lesson stayed');
+  const [after, readoutAfter] = await pct();
+  assert.notEqual(after, before, 'the reveal follows the design');
+  assert.equal(after, readoutAfter, 'and still shows the readout\'s number');
   assertClean(log);
   await context.close();
 });

@@ -181,7 +181,7 @@ export const SHIPPED = [
           view: 'ks=19960&cs=1290&axes=ratio&sws=6',
           question: 'Tighten the SWS limit to {sws_limit}. Where does the pick go?',
           options: ['Towards more damping', 'Towards less damping', 'Nowhere'],
-          reveal: 'Now the pick is Ks {pick.ks}, Cs {pick.cs}: BAcc {pick.bacc.pct}, DTL {pick.dtl.pct} against the datum (HiFi re-check {recheck.bacc.pct}, {recheck.dtl.pct}). A tighter limit needs cs ≥ {cs_sws} on the quarter car, so the front loses its soft, lightly damped end.',
+          reveal: 'Now the pick is Ks {pick.ks}, Cs {pick.cs}: BAcc {pick.bacc.pct}, DTL {pick.dtl.pct} against the datum (HiFi re-check {recheck.bacc.pct}, {recheck.dtl.pct}). A tighter limit needs cs ≥ {cs_sws} on the quarter car, so the front loses its lightly damped, most comfortable end.',
           highlight: ['op-wrap', 'sws-range'],
         },
       ],

@@ -100,7 +100,7 @@ def('grid.cells', 'the designs each map evaluates', (d) => d.maps.nx * d.maps.ny
 def('front.points', 'the designs on the Pareto front (objective plane)', (d) => (study(d) ? study(d).front.length : undefined), (v) => String(v), ['front']);
 def('front.evals', 'the surrogate evaluations the front took', (d) => (study(d) ? study(d).evaluations : undefined), (v) => String(v), ['front']);
 def('front.status', 'the front in words: its size, or why there is none', (d) =>
-  (study(d) ? `${study(d).front.length} designs on the front` : `no front: ${d.front.error}`), (v) => v, ['front']);
+  (study(d) ? `${study(d).front.length} designs on the front` : `no design meets the objectives: ${d.front.error.replace(/^[\w.]+: (no feasible design: )?/, '')}`), (v) => v, ['front']);
 def('pick.ks', "the min-max pick's Ks", (d) => (study(d) ? study(d).pick.ks : undefined), kn, ['front']);
 def('pick.cs', "the min-max pick's Cs", (d) => (study(d) ? study(d).pick.cs : undefined), kns, ['front']);
 ['bacc', 'dtl', 'sws'].forEach((c, i) => {
