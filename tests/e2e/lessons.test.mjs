@@ -225,6 +225,14 @@ test('a malformed lesson is refused with the step and field named; the page keep
   await page.waitForFunction(() => document.getElementById('lesson-msg').textContent !== '');
   assert.equal(await page.textContent('#lesson-msg'), 'notes.txt: not a RideLab lesson file (not JSON)');
   assert.equal(await page.evaluate(() => JSON.stringify(window.__ridelab.state)), before, 'the state stays');
+  // A broken lesson link pasted into the address bar: refused the same way.
+  const bad = JSON.parse(JSON.stringify(good));
+  bad.steps[1].question = 42;
+  const hash = await page.evaluate((l) => import('./js/lessons.js').then((m) => m.lessonHash({ ...l, steps: l.steps.map((s) => ({ options: [], highlight: [], hide: [], ...s })) })), bad);
+  await page.evaluate((h) => (location.hash = h), hash);
+  await page.waitForFunction(() => document.getElementById('lesson-msg').textContent.startsWith('The lesson link: '));
+  assert.equal(await page.textContent('#lesson-msg'), 'The lesson link: steps[1].question: must be a non-empty string');
+  assert.equal(await page.evaluate(() => JSON.stringify(window.__ridelab.state)), before, 'the state stays');
   await page.screenshot({ path: path.join(OUT, 'lesson-refused.png') });
   assertClean(log);
   await context.close();
@@ -280,6 +288,12 @@ test('keyboard: with the panel focused Space reveals and goes on, the arrows ste
   const [after, readoutAfter] = await pct();
   assert.notEqual(after, before, 'the reveal follows the design');
   assert.equal(after, readoutAfter, 'and still shows the readout\'s number');
+  // L gives the keyboard back to the panel.
+  await page.keyboard.press('l');
+  assert.equal(await page.evaluate(() => document.activeElement.id), 'lesson');
+  await page.keyboard.press('ArrowLeft');
+  await lessonReady(page);
+  assert.equal((await at()).k, 1);
   assertClean(log);
   await context.close();
 });

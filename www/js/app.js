@@ -318,6 +318,7 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
     keep,
     map: () => ui.maps[0].surface.focus(),
     projector: () => ctl.setView({ projector: !st.view.projector }),
+    lesson: () => lessons.open(),
     escape: () => (guide.isOpen ? guide.close() : bench.close()),
   });
   window.addEventListener('hashchange', () => {

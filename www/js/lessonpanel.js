@@ -71,12 +71,14 @@ export class LessonPanel {
     return fn();
   }
 
+  /** Opens the panel (the list, or the lesson running) and gives it the keyboard. */
   open() {
     this.root.hidden = false;
     this.bench.classList.add('lesson-open');
     $('lessons-open').setAttribute('aria-expanded', 'true');
     this.onResize();
     if (!this.lesson) this.showList();
+    else this.show();
     this.root.focus({ preventScroll: true });
   }
 
@@ -404,7 +406,7 @@ export class LessonPanel {
     set('le-reveal', s.reveal);
     set('le-highlight', s.highlight.join(', '));
     set('le-hide', s.hide.join(', '));
-    $('le-view').textContent = s.view || '(the default view)';
+    $('le-view').textContent = [...new URLSearchParams(s.view)].map(([k, v]) => `${k}=${v}`).join('&') || '(the default view)';
     $('le-up').disabled = this.k === 0;
     $('le-down').disabled = this.k === this.lesson.steps.length - 1;
     $('le-delete').disabled = this.lesson.steps.length === 1;

@@ -11,7 +11,7 @@
 import { decodeHash } from './urlstate.js';
 import { fmt, fmtPct } from './format.js';
 
-export const LESSON_VERSION = 1;
+const LESSON_VERSION = 1;
 /** Limits of a lesson file. */
 const MAX_STEPS = 40;
 const MAX_TEXT = 2000;
@@ -122,7 +122,7 @@ for (const c of ['bacc', 'dtl', 'sws']) {
 const PLACEHOLDER = /\{([a-z_][a-z0-9_.]*)\}/gi;
 
 /** The placeholder names in `text`, in order. */
-export function placeholdersIn(text) {
+function placeholdersIn(text) {
   return [...text.matchAll(PLACEHOLDER)].map((m) => m[1]);
 }
 
