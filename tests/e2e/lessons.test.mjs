@@ -153,7 +153,11 @@ test('authoring: a lesson built in the page survives export and import, as a fil
   await page.fill('#le-question', 'Softer, on class {class}: and now?');
   await page.fill('#le-reveal', 'BAcc {hifi.bacc.pct} against the datum; SWS {lofi.sws}.');
   await page.fill('#le-highlight', 'map-grid, op-wrap');
+  // A typo is named at once, with the step and field.
+  await page.fill('#le-hide', 'critera');
+  assert.equal(await page.textContent('#lesson-msg'), "steps[1].hide[0]: no element 'critera' on the page");
   await page.fill('#le-hide', 'criteria');
+  assert.equal(await page.textContent('#lesson-msg'), '');
   // Reordered: the second step first.
   await page.click('#le-up');
   const built = await page.evaluate(() => window.__ridelab.lessons.lesson);

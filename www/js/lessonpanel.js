@@ -16,6 +16,17 @@ import { download } from './exports.js';
 
 const $ = (id) => document.getElementById(id);
 
+/** Throws `{message}` naming the step and field when a highlighted or hidden id is no element of the page. */
+function checkIds(lesson) {
+  for (const [i, s] of lesson.steps.entries()) {
+    for (const key of ['highlight', 'hide']) {
+      s[key].forEach((id, j) => {
+        if (!$(id)) throw { message: `steps[${i}].${key}[${j}]: no element '${id}' on the page` };
+      });
+    }
+  }
+}
+
 /** A deep copy of a checked lesson (the panel edits its own). */
 const copy = (lesson) => JSON.parse(JSON.stringify(lesson));
 
@@ -144,12 +155,8 @@ export class LessonPanel {
    * view a state the core accepts. Throws `{message}` naming the step and field.
    */
   async checkPage(lesson) {
+    checkIds(lesson);
     for (const [i, s] of lesson.steps.entries()) {
-      for (const key of ['highlight', 'hide']) {
-        s[key].forEach((id, j) => {
-          if (!document.getElementById(id)) throw { message: `steps[${i}].${key}[${j}]: no element '${id}' on the page` };
-        });
-      }
       const st = { ...this.store.defaults, ...decodeHash(s.view).state };
       try {
         await this.compute.checkState(st);
@@ -186,10 +193,11 @@ export class LessonPanel {
     this.picked = null;
     this.unmark();
     const step = this.step;
-    for (const id of step.hide) {
-      const el = $(id);
+    // An id typed in the editor may be no element yet (the editor says so).
+    for (const el of step.hide.map($).filter(Boolean)) {
       el.classList.add('lesson-veil');
-      el.dataset.veil = 'Hidden until the class has answered';
+      // Out of reach of the pointer, the keyboard and screen readers too.
+      el.inert = true;
       this.veiled.push(el);
     }
     this.loading = true;
@@ -226,10 +234,8 @@ export class LessonPanel {
     }
     this.revealed = true;
     this.scrollToAnswer = true;
-    for (const el of this.veiled) el.classList.remove('lesson-veil');
-    this.veiled = [];
-    for (const id of step.highlight) {
-      const el = $(id);
+    this.unveil();
+    for (const el of step.highlight.map($).filter(Boolean)) {
       el.classList.add('spotlight');
       this.lit.push(el);
     }
@@ -243,11 +249,20 @@ export class LessonPanel {
     else this.reveal();
   }
 
+  /** Shows what the step hid. */
+  unveil() {
+    for (const el of this.veiled) {
+      el.classList.remove('lesson-veil');
+      el.inert = false;
+    }
+    this.veiled = [];
+  }
+
+  /** No outline, nothing hidden. */
   unmark() {
     for (const el of this.lit) el.classList.remove('spotlight');
-    for (const el of this.veiled) el.classList.remove('lesson-veil');
     this.lit = [];
-    this.veiled = [];
+    this.unveil();
   }
 
   onKey(ev) {
@@ -457,6 +472,7 @@ export class LessonPanel {
   checkDraft() {
     try {
       const l = checkLesson(this.lesson);
+      checkIds(l);
       this.say('');
       return l;
     } catch (e) {
