@@ -23,7 +23,6 @@ const STEP_KEYS = ['view', 'question', 'options', 'reveal', 'highlight', 'hide']
 
 const kn = (v) => `${fmt(v / 1000, 4)} kN/m`;
 const kns = (v) => `${fmt(v / 1000, 4)} kNs/m`;
-const pct = (frac) => fmtPct(frac);
 
 /** The criteria as the readout shows them (js/readout.js): value and its text with unit. */
 const CRIT = {
@@ -37,7 +36,7 @@ const MODELS = { lofi: 'LoFi quarter car', hifi: 'HiFi full car', sur: 'surrogat
 /** The quarter car's variance intensity W (one-sided road velocity PSD / 2), m²/s³. */
 const intensity = (d) => d.desc.velocityPsd / 2;
 
-/** The objective plane's front and pick, or null (front pending) / false (none is feasible). */
+/** The objective plane's front study, or false when there is none (no design meets the objectives). */
 const study = (d) => (d.front && !d.front.error ? d.front.study : false);
 
 /**
@@ -55,13 +54,13 @@ for (const [m, model] of Object.entries(MODELS)) {
   const needs = m === 'hifi' ? ['hifi'] : [];
   for (const [c, crit] of Object.entries(CRIT)) {
     def(`${m}.${c}`, `${crit.name} of the design, ${model}`, (d) => crit.get(d[m].design), crit.show, needs);
-    def(`${m}.${c}.pct`, `${crit.name} of the design against the datum, ${model}, %`, (d) => crit.get(d[m].design) / crit.get(d[m].datum) - 1, pct, needs);
+    def(`${m}.${c}.pct`, `${crit.name} of the design against the datum, ${model}, %`, (d) => crit.get(d[m].design) / crit.get(d[m].datum) - 1, fmtPct, needs);
     def(`${m}.datum.${c}`, `${crit.name} of the datum design, ${model}`, (d) => crit.get(d[m].datum), crit.show, needs);
   }
 }
 for (const [c, crit] of Object.entries(CRIT)) {
   def(`datum.${c}`, `${crit.name} of the datum design, HiFi full car (as hifi.datum.${c})`, (d) => crit.get(d.hifi.datum), crit.show, ['hifi']);
-  if (c !== 'dtlrel') def(`gap.${c}`, `fidelity gap of ${crit.name}: HiFi against LoFi at the design, %`, (d) => crit.get(d.hifi.design) / crit.get(d.lofi.design) - 1, pct, ['hifi']);
+  if (c !== 'dtlrel') def(`gap.${c}`, `fidelity gap of ${crit.name}: HiFi against LoFi at the design, %`, (d) => crit.get(d.hifi.design) / crit.get(d.lofi.design) - 1, fmtPct, ['hifi']);
 }
 def('ks', 'the design spring rate Ks', (d) => d.state.ks, kn);
 def('cs', 'the design damper rate Cs', (d) => d.state.cs, kns);
@@ -105,10 +104,10 @@ def('pick.ks', "the min-max pick's Ks", (d) => (study(d) ? study(d).pick.ks : un
 def('pick.cs', "the min-max pick's Cs", (d) => (study(d) ? study(d).pick.cs : undefined), kns, ['front']);
 ['bacc', 'dtl', 'sws'].forEach((c, i) => {
   def(`pick.${c}.pct`, `the pick's ${CRIT[c].name} against the datum, as the surrogate predicts, %`,
-    (d) => (study(d) ? study(d).pick.change_percent[i] / 100 : undefined), pct, ['front']);
+    (d) => (study(d) ? study(d).pick.change_percent[i] / 100 : undefined), fmtPct, ['front']);
   def(`recheck.${c}`, `the pick's ${CRIT[c].name} re-checked on the HiFi`, (d) => (study(d) ? d.front.recheck.rechecked[c] : undefined), CRIT[c].show, ['front']);
   def(`recheck.${c}.pct`, `the pick's ${CRIT[c].name} against the HiFi datum, re-checked on the HiFi, %`,
-    (d) => (study(d) ? d.front.recheck.rechecked_change_percent[i] / 100 : undefined), pct, ['front']);
+    (d) => (study(d) ? d.front.recheck.rechecked_change_percent[i] / 100 : undefined), fmtPct, ['front']);
 });
 def('recheck.err', "the largest error of the surrogate's prediction at the pick against its HiFi re-check, %",
   (d) => (study(d) ? Math.max(...d.front.recheck.error_percent.map(Math.abs)) / 100 : undefined), (v) => `${fmt(v * 100, 2)} %`, ['front']);
