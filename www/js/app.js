@@ -29,6 +29,8 @@ import { download, mapsCsv, frontCsv, slidePng, zip } from './exports.js';
 import { allSvgs, exportCharts, objectiveChart } from './svgexport.js';
 import { installTestHooks } from './testhooks.js';
 import { keepDesign, renderCompare, MAX_SAVED } from './compare.js';
+import { LessonPanel } from './lessonpanel.js';
+import { isLessonHash } from './lessons.js';
 
 /** ISO 8608 wording of the classes. */
 const CLASS_WORDS = {
@@ -113,7 +115,7 @@ function buildSelects(store) {
 }
 
 /** Wires every control to the controller. */
-function wire({ store, controller: ctl, controls, render, ui, guide, bench, compute }) {
+function wire({ store, controller: ctl, controls, render, ui, guide, bench, compute, lessons }) {
   const st = store;
   // Design sliders: pointer and keyboard; keys move on the grid through the datum.
   for (const [axis, id] of [['ks', 'ks-range'], ['cs', 'cs-range']]) {
@@ -316,11 +318,13 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
     keep,
     map: () => ui.maps[0].surface.focus(),
     projector: () => ctl.setView({ projector: !st.view.projector }),
+    lesson: () => lessons.open(),
     escape: () => (guide.isOpen ? guide.close() : bench.close()),
   });
   window.addEventListener('hashchange', () => {
     if (location.hash === st.lastHash) return;
-    ctl.loadHash(location.hash);
+    if (isLessonHash(location.hash)) lessons.openLink(location.hash);
+    else ctl.loadHash(location.hash);
   });
   matchMedia(`(resolution: ${window.devicePixelRatio}dppx)`).addEventListener('change', () => render.redrawAll());
   // The plane and the panels follow the size of their boxes (window, drawer, type).
@@ -569,18 +573,25 @@ async function main() {
     onResize: () => requestAnimationFrame(() => render.redrawAll()),
   });
   const guide = new Guide($('tour-card'));
-  installTestHooks({ store, controller, compute, ui, boot, exportData: () => exportDataOf(store, ui) });
-  wire({ store, controller, controls, render, ui, guide, bench, compute });
+  const lessons = new LessonPanel({
+    root: $('lesson'), bench: $('app'), store, controller, compute, onResize: () => requestAnimationFrame(() => render.redrawAll()),
+  });
+  controller.onViewsChanged = () => lessons.viewsChanged();
+  installTestHooks({ store, controller, compute, ui, boot, lessons, exportData: () => exportDataOf(store, ui) });
+  wire({ store, controller, controls, render, ui, guide, bench, compute, lessons });
   $('loading').hidden = true;
   $('app').removeAttribute('aria-busy');
-  await controller.enqueue(async () => controller.load(await controller.fromHash(location.hash)));
+  // A lesson link opens on the default view; the lesson's first step sets its own.
+  const lessonLink = isLessonHash(location.hash) ? location.hash : null;
+  await controller.enqueue(async () => controller.load(await controller.fromHash(lessonLink ? '' : location.hash)));
   for (const v of ui.maps) v.resize();
   boot.interactiveAt = performance.now();
   // Ready when the HiFi column has arrived too.
   while (!controller.isSettled()) await new Promise((r) => setTimeout(r, 5));
   boot.ready = true;
   boot.readyAt = performance.now();
-  guide.showIfNew();
+  if (lessonLink) lessons.openLink(lessonLink);
+  else guide.showIfNew();
   document.documentElement.dataset.ready = '1';
   registerServiceWorker(controls);
 }

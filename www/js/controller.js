@@ -55,6 +55,8 @@ export class Controller {
      * and `nsgaLog` (per accepted NSGA-II answer: the scenario it was for and the one shown).
      */
     this.counters = { frontDraws: 0, frontDrawnAt: 0, nsgaRuns: 0, nsgaDropped: 0, nsgaLog: [], firstMapAt: null };
+    /** Called after the views show something new (a design, the HiFi column, the fit, the maps): the lesson panel re-reads its numbers. */
+    this.onViewsChanged = () => {};
 
     this.hifiRun = latestOnly(async (req) => {
       const dkey = keyOf(req.datumState);
@@ -172,6 +174,7 @@ export class Controller {
     this.render.hifi();
     this.requestSpectra();
     this.store.scheduleUrl();
+    this.onViewsChanged();
   }
 
   /**
@@ -248,6 +251,7 @@ export class Controller {
           st.hifi.design = r.design;
           st.hifi.key = r.key;
           this.render.hifi();
+          this.onViewsChanged();
           this.metrics.full.push(performance.now() - r.t0);
         })
         .catch((e) => this.controls.banner(`The HiFi model failed: ${e.message || e}`, 'error')),
@@ -277,6 +281,7 @@ export class Controller {
     const shown = st.shownMaps();
     if (shown) {
       this.render.maps(shown);
+      this.onViewsChanged();
       return;
     }
     const model = st.view.model;
@@ -332,6 +337,7 @@ export class Controller {
           }
           if (!current || st.state !== s) continue;
           this.render.mapsDone(shown);
+          this.onViewsChanged();
           if (this.counters.firstMapAt === null) this.counters.firstMapAt = performance.now();
           this.metrics.maps.push(performance.now() - t0);
           return;
@@ -377,6 +383,7 @@ export class Controller {
           st.fit = out.r;
           st.fitKey = fitKeyOf(out.s);
           this.render.fit(performance.now() - t0);
+          this.onViewsChanged();
         })
         .catch((e) => this.render.fitStatus(`The surrogate fit failed: ${e.message || e}`)),
     );

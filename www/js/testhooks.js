@@ -2,7 +2,7 @@
 // the controller's counters and the engines. Nothing in the page reads it.
 
 /** Installs `window.__ridelab` over the page's parts (`parts`: see js/app.js). */
-export function installTestHooks({ store, controller, compute, ui, boot, exportData }) {
+export function installTestHooks({ store, controller, compute, ui, boot, lessons, exportData }) {
   const hooks = {
     /** Milestones, ms since navigation: script start, wasm ready; interactive (maps drawn) and ready (HiFi too). */
     marks: boot.marks,
@@ -81,6 +81,8 @@ export function installTestHooks({ store, controller, compute, ui, boot, exportD
     spectraPanel: ui.spectra,
     timePanel: ui.time,
     damperChart: ui.damper,
+    /** The lesson panel (js/lessonpanel.js). */
+    lessons,
     // The controller's measurements.
     metrics: controller.metrics,
     counters: controller.counters,

@@ -63,7 +63,7 @@ export class Workbench {
 /**
  * The page's keyboard shortcuts (`actions`: name -> function), outside text fields:
  * `?` the list, `1`..`9` the tabs, `d` the datum design, `k` the pick, `s` keeps the design, `m` the first
- * map, `p` projector mode, `Escape` closes the drawer.
+ * map, `p` projector mode, `l` the lesson panel, `Escape` closes the drawer.
  */
 export function bindShortcuts(actions) {
   document.addEventListener('keydown', (ev) => {
@@ -79,6 +79,7 @@ export function bindShortcuts(actions) {
     else if (k === 's' || k === 'S') actions.keep();
     else if (k === 'm' || k === 'M') actions.map();
     else if (k === 'p' || k === 'P') actions.projector();
+    else if (k === 'l' || k === 'L') actions.lesson();
     else if (k === 'Escape') actions.escape();
     else done = false;
     if (done) ev.preventDefault();
