@@ -704,3 +704,27 @@ test('front, spectra, timeResponse, damperCurve: bad arguments name the field', 
   assertClean(log);
   await context.close();
 });
+
+test('Download report: the page builds the study report of the view, byte for byte the one ridelab report writes', { timeout: TIMEOUT }, async () => {
+  // The SUV on a class C road: no design meets the 7 mm limit, so the report says why
+  // instead of computing fronts (a few seconds in the worker).
+  const { page, context, log } = await open('#car=suv&class=C');
+  await page.click('#tab-export');
+  const [dl] = await Promise.all([page.waitForEvent('download', { timeout: 60_000 }), page.click('#report-html')]);
+  assert.match(dl.suggestedFilename(), /^ridelab-report-.*\.html$/);
+  const file = path.join(OUT, dl.suggestedFilename());
+  await dl.saveAs(file);
+  const html = fs.readFileSync(file, 'utf8');
+  assert.match(await page.locator('#export-status').textContent(), /Study report: RideLab study report: Mid-size SUV, class C at 20 m\/s/);
+  const dir = path.join(OUT, 'report-cli');
+  execFileSync(cli(), ['report', '--car', 'suv', '--class', 'C', '--approach', 'rba-mul-rbf-mq', '--plan', 'ae:10', '--out', dir], { encoding: 'utf8', maxBuffer: 64 << 20 });
+  const want = fs.readFileSync(path.join(dir, 'report.html'), 'utf8');
+  const a = html.split('\n');
+  const b = want.split('\n');
+  const first = a.findIndex((line, k) => line !== b[k]);
+  assert.equal(first, -1, `page and CLI reports differ from line ${first + 1}: ${a[first]?.slice(0, 200)} | ${b[first]?.slice(0, 200)}`);
+  assert.equal(a.length, b.length);
+  assert.match(html, /No design in the box meets the design objectives/);
+  assertClean(log);
+  await context.close();
+});

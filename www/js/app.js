@@ -480,6 +480,22 @@ function wireExports({ store: st, controller: ctl, controls, ui, compute }) {
       failed('SVG export')(e);
     }
   });
+  // The study report: built by the core in the heavy worker (seconds), saved as one HTML file.
+  $('report-html').addEventListener('click', async () => {
+    const button = $('report-html');
+    button.disabled = true;
+    status('Building the study report in the worker (maps, fidelity study, fronts)…');
+    try {
+      const t0 = performance.now();
+      const r = await compute.report(st.state);
+      download(`ridelab-report-${stamp(st.state)}.html`, new Blob([r.html], { type: 'text/html' }));
+      status(`Study report: ${r.title} (${((performance.now() - t0) / 1000).toFixed(1)} s).`);
+    } catch (e) {
+      failed('The report')(e);
+    } finally {
+      button.disabled = false;
+    }
+  });
   $('session-save').addEventListener('click', () => {
     download(`ridelab-session-${stamp(st.state)}.json`, new Blob([JSON.stringify(st.session(), null, 2)], { type: 'application/json' }));
   });

@@ -158,6 +158,11 @@ export class Compute {
     return this.heavy.call('front', s, 'nsga2', 'surrogate').catch((e) => ({ error: e.message || String(e) }));
   }
 
+  /** The study report of the view, `{title, html, markdown}`, as `ridelab report` writes it (heavy worker; seconds). */
+  report(s) {
+    return this.heavy.call('studyReport', s);
+  }
+
   /** FRFs and PSDs of the design (heavy worker). */
   spectra(s) {
     return this.heavy.call('spectra', s, NFREQ);

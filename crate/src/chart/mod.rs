@@ -36,6 +36,7 @@
 pub mod axis;
 pub mod colour;
 pub(crate) mod draw;
+mod legend;
 pub mod line;
 pub mod map;
 pub mod marker;

@@ -9,6 +9,7 @@ use super::colour::Rgb;
 use super::draw::{
     self, clip_polyline, drawing_error, font, round_all, simplify, Area, SIMPLIFY_PX,
 };
+use super::legend::legend_box;
 use super::marker::{draw_marker, Legend, MarkerShape};
 use super::{check_size, Frame};
 use crate::error::{Result, RideError};
@@ -17,8 +18,7 @@ use plotters::chart::ChartBuilder;
 use plotters::coord::Shift;
 use plotters::drawing::DrawingArea;
 use plotters::element::{Circle, PathElement, Rectangle};
-use plotters::style::text_anchor::{HPos, Pos, VPos};
-use plotters::style::{Color, RGBAColor, RGBColor, ShapeStyle, WHITE};
+use plotters::style::{Color, RGBAColor, RGBColor, ShapeStyle};
 use serde::{Deserialize, Serialize};
 use std::collections::HashSet;
 
@@ -407,12 +407,8 @@ fn draw_layers<DB: DrawingBackend>(
     draw_legend(root, chart, &frame)
 }
 
-/// Legend geometry, px: gap to the frame, padding, row height, sample width, gap to text.
-const LEGEND: (i32, i32, i32, i32, i32) = (8, 6, 18, 22, 6);
-
 /// The legend of the named series in the chart's corner: a sample of each series' style
-/// and its name, on a translucent white box. Text is measured by the backend (the page's
-/// canvas measures it itself; plotters' own legend would measure it in the document).
+/// and its name (see [`super::legend`]).
 fn draw_legend<DB: DrawingBackend>(
     root: &Area<DB>,
     chart: &LineChart,
@@ -421,44 +417,15 @@ fn draw_legend<DB: DrawingBackend>(
     let named: Vec<usize> = (0..chart.series.len())
         .filter(|&k| !chart.series[k].name.is_empty())
         .collect();
-    if named.is_empty() || chart.legend == Legend::None {
-        return Ok(());
-    }
-    let (gap, pad, row, sample, text_gap) = LEGEND;
-    let style = font(draw::LABEL_PX, false);
-    let mut text_w = 0;
-    for &k in &named {
-        let (w, _) = root
-            .estimate_text_size(&chart.series[k].name, &style)
-            .map_err(drawing_error)?;
-        text_w = text_w.max(w as i32);
-    }
-    let w = pad + sample + text_gap + text_w + pad;
-    let h = pad + row * named.len() as i32 + pad / 2;
-    let x0 = match chart.legend {
-        Legend::UpperLeft | Legend::LowerLeft => frame.left + gap,
-        _ => frame.right - gap - w,
-    };
-    let y0 = match chart.legend {
-        Legend::LowerLeft | Legend::LowerRight => frame.bottom - gap - h,
-        _ => frame.top + gap,
-    };
-    root.draw(&Rectangle::new(
-        [(x0, y0), (x0 + w, y0 + h)],
-        WHITE.mix(0.88).filled(),
-    ))
-    .map_err(drawing_error)?;
-    root.draw(&Rectangle::new(
-        [(x0, y0), (x0 + w, y0 + h)],
-        ShapeStyle::from(RGBColor(187, 187, 187)).stroke_width(1),
-    ))
-    .map_err(drawing_error)?;
-    let text = style.pos(Pos::new(HPos::Left, VPos::Center));
-    for (i, &k) in named.iter().enumerate() {
+    let names: Vec<&str> = named
+        .iter()
+        .map(|&k| chart.series[k].name.as_str())
+        .collect();
+    let rows = legend_box(root, chart.legend, frame, &names)?;
+    for (r, &k) in rows.iter().zip(&named) {
         let s = &chart.series[k];
         let d = chart.drawn(k)?;
-        let y = y0 + pad + row * i as i32 + row / 2;
-        let (xs, xc) = (x0 + pad, x0 + pad + sample / 2);
+        let (xs, xc, y) = (r.left, r.centre, r.y);
         let colour = rgba(d.colour, d.opacity.max(0.6));
         match s.style {
             SeriesStyle::Line => {
@@ -467,7 +434,7 @@ fn draw_legend<DB: DrawingBackend>(
                     filled: false,
                     stroke_width: stroke_px(d.size).min(4),
                 };
-                root.draw(&PathElement::new(vec![(xs, y), (xs + sample, y)], line))
+                root.draw(&PathElement::new(vec![(xs, y), (xs + r.width, y)], line))
                     .map_err(drawing_error)?;
             }
             SeriesStyle::Dots => {
@@ -480,8 +447,6 @@ fn draw_legend<DB: DrawingBackend>(
                 draw_marker(root, at, shape, d.size.min(7.0), d.colour, d.stroke)?;
             }
         }
-        root.draw_text(&s.name, &text, (xs + sample + text_gap, y))
-            .map_err(drawing_error)?;
     }
     Ok(())
 }

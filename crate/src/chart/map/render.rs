@@ -8,17 +8,17 @@ use super::{
 use crate::chart::axis::Scale;
 use crate::chart::colour::Rgb;
 use crate::chart::draw::{self, clip_polyline, drawing_error, font, round_all, Area};
-use crate::chart::marker::{draw_marker, Legend};
+use crate::chart::legend::legend_box;
+use crate::chart::marker::draw_marker;
 use crate::chart::Frame;
 use crate::error::Result;
 use crate::maps::{contour, nice_levels};
 use plotters::backend::DrawingBackend;
-use plotters::chart::{ChartBuilder, ChartContext, SeriesLabelPosition};
-use plotters::coord::cartesian::Cartesian2d;
+use plotters::chart::ChartBuilder;
 use plotters::coord::Shift;
 use plotters::drawing::DrawingArea;
-use plotters::element::{EmptyElement, PathElement, Polygon, Rectangle};
-use plotters::style::{Color, RGBAColor, RGBColor, ShapeStyle, WHITE};
+use plotters::element::{PathElement, Rectangle};
+use plotters::style::{Color, RGBAColor, RGBColor, ShapeStyle};
 
 /// The map as an SVG document.
 pub fn map_chart_svg(chart: &MapChart) -> Result<String> {
@@ -122,9 +122,10 @@ fn draw_map<DB: DrawingBackend>(root: &Area<DB>, chart: &MapChart, l: &MapLayout
         }
     }
 
-    let mut cc = map_axes(root, chart, l)?;
+    map_axes(root, chart, l)?;
 
-    // Markers inside the box, with legend entries.
+    // Markers inside the box, and the legend of the labelled ones (see chart::legend).
+    let mut labelled = Vec::new();
     for (k, m) in chart.markers.iter().enumerate() {
         let p = f.pixel(&l.ks, &l.cs, (m.ks * KILO, m.cs * KILO));
         if !f.contains(p) {
@@ -137,23 +138,7 @@ fn draw_map<DB: DrawingBackend>(root: &Area<DB>, chart: &MapChart, l: &MapLayout
         let size = m.size.unwrap_or(6.0);
         draw_marker(root, p, m.shape, size, fill, Some(Rgb(0, 0, 0)))?;
         if !m.label.is_empty() {
-            let pts: Vec<(i32, i32)> = m
-                .shape
-                .outline(size.min(7.0))
-                .into_iter()
-                .map(|(dx, dy)| (dx.round() as i32, dy.round() as i32))
-                .collect();
-            let mut closed = pts.clone();
-            closed.push(pts[0]);
-            let (fill, line) = (fill.plotters().filled(), style(Rgb(0, 0, 0), 1.0, 2));
-            cc.draw_series(Vec::<PathElement<(f64, f64)>>::new())
-                .map_err(drawing_error)?
-                .label(m.label.as_str())
-                .legend(move |(x, y)| {
-                    EmptyElement::at((x + 10, y))
-                        + Polygon::new(pts.clone(), fill)
-                        + PathElement::new(closed.clone(), line)
-                });
+            labelled.push((m, fill, size));
         }
     }
     root.draw(&Rectangle::new(
@@ -161,36 +146,18 @@ fn draw_map<DB: DrawingBackend>(root: &Area<DB>, chart: &MapChart, l: &MapLayout
         style(Rgb(51, 51, 51), 1.0, 1),
     ))
     .map_err(drawing_error)?;
-    let position = match chart.legend {
-        Legend::UpperRight => Some(SeriesLabelPosition::UpperRight),
-        Legend::UpperLeft => Some(SeriesLabelPosition::UpperLeft),
-        Legend::LowerRight => Some(SeriesLabelPosition::LowerRight),
-        Legend::LowerLeft => Some(SeriesLabelPosition::LowerLeft),
-        Legend::None => None,
-    };
-    if let Some(position) = position {
-        if chart.markers.iter().any(|m| !m.label.is_empty()) {
-            cc.configure_series_labels()
-                .position(position)
-                .margin(6)
-                .legend_area_size(24)
-                .label_font(font(draw::LABEL_PX, false))
-                .background_style(WHITE.mix(0.85))
-                .border_style(RGBColor(120, 120, 120))
-                .draw()
-                .map_err(drawing_error)?;
-        }
+    let names: Vec<&str> = labelled.iter().map(|(m, _, _)| m.label.as_str()).collect();
+    let rows = legend_box(root, chart.legend, &f, &names)?;
+    for (r, (m, fill, size)) in rows.iter().zip(&labelled) {
+        let at = (f64::from(r.centre), f64::from(r.y));
+        draw_marker(root, at, m.shape, size.min(7.0), *fill, Some(Rgb(0, 0, 0)))?;
     }
     colour_bar(root, chart, l)
 }
 
 /// The Ks and Cs axes of the map: ticks, tick labels and axis descriptions (in kN/m and
-/// kNs/m), no grid. Returns the chart context for the legend.
-fn map_axes<'a, DB: DrawingBackend + 'a>(
-    root: &'a Area<DB>,
-    chart: &MapChart,
-    l: &MapLayout,
-) -> Result<ChartContext<'a, DB, Cartesian2d<Scale, Scale>>> {
+/// kNs/m), no grid.
+fn map_axes<DB: DrawingBackend>(root: &Area<DB>, chart: &MapChart, l: &MapLayout) -> Result<()> {
     let f = l.frame;
     let mut cc = ChartBuilder::on(root)
         .margin_top(f.top as u32)
@@ -223,7 +190,7 @@ fn map_axes<'a, DB: DrawingBackend + 'a>(
         .axis_style(RGBColor(51, 51, 51))
         .draw()
         .map_err(drawing_error)?;
-    Ok(cc)
+    Ok(())
 }
 
 /// Draws the map's frame on `root` (an area of `chart.width` x `chart.height` px, its
