@@ -69,9 +69,13 @@ impl ValidationSet {
     }
 }
 
-/// Surrogate and HiFi values on the validation grid (the error map's points).
+/// Surrogate and HiFi values on the validation grid, with its points (the error map's).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct GridPredictions {
+    /// Front spring rate of each point, N/m.
+    pub ks: Vec<f64>,
+    /// Front damper rate of each point, N s/m.
+    pub cs: Vec<f64>,
     /// Surrogate predictions.
     pub surrogate: Vec<Criteria>,
     /// HiFi values.
@@ -228,6 +232,8 @@ impl Fitted {
             error_map: ErrorMap::new(&validation.points, &validation.hifi, &predicted),
             adaptive: self.adaptive,
             predictions: predict_grid.map(|_| GridPredictions {
+                ks: validation.points.iter().map(|p| p.0).collect(),
+                cs: validation.points.iter().map(|p| p.1).collect(),
                 surrogate: predicted,
                 hifi: validation.hifi.clone(),
             }),

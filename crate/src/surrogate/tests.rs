@@ -397,7 +397,17 @@ fn surrogate_report_is_serialisable_and_attachable() {
     let q = r.tuned_quarters.unwrap();
     assert!(q[0] == q[1] && q[0].ks > 0.0 && q[0].ms == car.quarter().ms);
     assert_eq!(r.error_map.ks.len(), 16);
-    assert_eq!(r.predictions.as_ref().unwrap().surrogate.len(), 16);
+    let p = r.predictions.as_ref().unwrap();
+    assert_eq!(p.surrogate.len(), 16);
+    // Each prediction names its point: the error map's points, and the HiFi value there
+    // is the HiFi's at that point.
+    assert_eq!((&p.ks, &p.cs), (&r.error_map.ks, &r.error_map.cs));
+    let direct = crate::analysis::HiFi::new(&car, &road)
+        .unwrap()
+        .evaluate(p.ks[5], p.cs[5])
+        .unwrap();
+    assert!((p.hifi[5].bacc / direct.bacc - 1.0).abs() < 1e-12);
+    assert!((p.hifi[5].dtl / direct.dtl - 1.0).abs() < 1e-12);
     let json = serde_json::to_string(&r).unwrap();
     assert!(json.contains("\"surrogate\":\"vba-qts\"") && !json.contains("NaN"));
 
