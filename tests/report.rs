@@ -199,6 +199,13 @@ fn an_infeasible_scenario_says_why_and_reports_are_deterministic() {
         corner.sws
     );
     assert!(r.optimisation.table.is_empty());
+    let skipped = r
+        .adaptive
+        .skipped
+        .as_deref()
+        .expect("no adaptive loop without a front");
+    assert!(skipped.contains("no feasible design"), "{skipped}");
+    assert!(r.adaptive.run.is_none() && r.adaptive.comparison.is_empty());
     let docs = r.documents().unwrap();
     assert!(docs.figures.iter().all(|f| !f.key.starts_with("front")));
     assert!(docs.markdown.contains(why));
@@ -258,4 +265,75 @@ fn the_compact_car_report_builds_with_fronts() {
         .unwrap();
     let c = hifi.evaluate(own.ks, own.cs).unwrap();
     assert!(relative(own.sws, c.sws) < 1e-10);
+}
+
+/// Section 6 is the library's adaptive loop: the surrogate the report chose on ae:5 plus
+/// 5 EHVI runs (`ridelab optimize --evaluator S --plan ae:5 --adaptive 5` gives the same
+/// report), compared row by row with section 5's STM pick on the 10-point plan; the
+/// adaptive pick's re-check error is that run's own. Its tables are in the documents.
+#[test]
+fn the_adaptive_section_is_the_cli_loop_beside_the_plan() {
+    use ridelab::optimize::{EvaluatorSpec, Method, StmParams};
+    use ridelab::surrogate::adaptive::{optimize_report, AdaptiveOptions};
+    use ridelab::surrogate::{PlanSpec, SurrogateSpec};
+    let r = sedan();
+    let a = &r.adaptive;
+    assert!(a.skipped.is_none(), "{:?}", a.skipped);
+    let run = a.run.as_ref().unwrap();
+    let spec = SurrogateSpec::parse(&r.fidelity.chosen.surrogate).unwrap();
+    let car = Car::datum();
+    let road = Road::default();
+    let cli = optimize_report(
+        &car,
+        &road,
+        &ReportInputs::new(car.clone(), road).design_box,
+        EvaluatorSpec::Surrogate(spec),
+        PlanSpec::AudzeEglais(5),
+        &Method::Stm(StmParams::default()),
+        ReportInputs::new(car.clone(), road).objectives,
+        AdaptiveOptions {
+            runs: 5,
+            ..AdaptiveOptions::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(run, &cli, "the report's loop is the CLI's");
+    assert_eq!(run.adaptive.added.len(), 5);
+    assert_eq!(
+        run.adaptive
+            .history
+            .iter()
+            .map(|h| h.hifi_runs)
+            .collect::<Vec<_>>(),
+        (5..=10).collect::<Vec<_>>()
+    );
+    assert!(run.adaptive.added.iter().all(|x| !x.reason.is_empty()));
+    let stm = r.optimisation.stm.as_ref().unwrap();
+    let [plan, adaptive] = &a.comparison[..] else {
+        panic!("two rows: {:?}", a.comparison)
+    };
+    assert_eq!((plan.ks, plan.cs), (stm.study.pick.ks, stm.study.pick.cs));
+    assert_eq!(plan.error_percent, stm.hifi_recheck.error_percent);
+    assert_eq!(
+        (adaptive.ks, adaptive.cs),
+        (cli.optimize.study.pick.ks, cli.optimize.study.pick.cs)
+    );
+    assert_eq!(
+        adaptive.error_percent,
+        cli.optimize.hifi_recheck.error_percent
+    );
+    assert_eq!((plan.hifi_runs, adaptive.hifi_runs), (10, 10));
+    // The re-checked change is the HiFi's at the pick against the HiFi datum.
+    let hifi = HiFi::new(&car, &road).unwrap();
+    let datum = hifi.evaluate(car.front.spring, car.front.damper).unwrap();
+    let at = hifi.evaluate(adaptive.ks, adaptive.cs).unwrap();
+    assert!(
+        (adaptive.rechecked_change_percent[0] - 100.0 * (at.bacc / datum.bacc - 1.0)).abs() < 1e-9
+    );
+    let md = &r.documents().unwrap().markdown;
+    assert!(md.contains("## 6 Adaptive sampling"), "section heading");
+    assert!(
+        md.contains(&run.adaptive.added[0].reason),
+        "the first reason is in the text"
+    );
 }

@@ -424,6 +424,7 @@ pub fn blocks(r: &MethodReport, figures: Vec<(usize, Vec<Figure>)>) -> Vec<Block
         }
     }
     out.extend(figs[5].drain(..).map(Block::Figure));
+    adaptive_blocks(&r.adaptive, &mut out);
     let t = &r.thesis;
     out.push(Block::Heading(3, "The seed thesis's result".into()));
     out.push(Block::Table(
@@ -448,4 +449,99 @@ pub fn blocks(r: &MethodReport, figures: Vec<(usize, Vec<Figure>)>) -> Vec<Block
     ));
     out.push(Block::Paragraph(t.note.clone()));
     out
+}
+
+/// Section 6: the adaptive loop's samples in order with their reasons, the front's
+/// hypervolume per HiFi run, and the two picks re-checked on the HiFi.
+fn adaptive_blocks(a: &super::AdaptiveSection, out: &mut Vec<Block>) {
+    out.push(Block::Heading(2, "6 Adaptive sampling".into()));
+    let Some(run) = &a.run else {
+        let why = a.skipped.as_deref().unwrap_or("not run");
+        out.push(Block::Paragraph(format!("Not run: {why}.")));
+        return;
+    };
+    let ad = &run.adaptive;
+    out.push(Block::Paragraph(format!(
+        "The same surrogate ({}) fitted to an Audze-Eglais plan ({}) and then to one HiFi run at a time, \
+         each where the {} uncertainty gives the largest expected improvement of the feasible front's \
+         hypervolume (reference point [{}, {}]); the table lists the runs in the order they were added.",
+        ad.surrogate,
+        ad.plan,
+        ad.uncertainty.name(),
+        num(ad.reference_point[0], 4),
+        num(ad.reference_point[1], 2),
+    )));
+    out.push(Block::Table(
+        ["HiFi run", "Ks [N/m]", "Cs [Ns/m]", "why"]
+            .map(String::from)
+            .to_vec(),
+        ad.added
+            .iter()
+            .map(|x| {
+                vec![
+                    x.run.to_string(),
+                    num(x.sample.ks, 1),
+                    num(x.sample.cs, 1),
+                    x.reason.clone(),
+                ]
+            })
+            .collect(),
+    ));
+    out.push(Block::Table(
+        [
+            "HiFi runs",
+            "front points",
+            "hypervolume [(m/s^2) N]",
+            "pick Ks [N/m]",
+            "pick Cs [Ns/m]",
+        ]
+        .map(String::from)
+        .to_vec(),
+        ad.history
+            .iter()
+            .map(|h| {
+                vec![
+                    h.hifi_runs.to_string(),
+                    h.front_points.to_string(),
+                    num(h.hypervolume, 5),
+                    num(h.pick.ks, 1),
+                    num(h.pick.cs, 1),
+                ]
+            })
+            .collect(),
+    ));
+    out.push(Block::Paragraph(
+        "The plan's pick against the adaptive pick, each predicted by its surrogate and re-checked on the HiFi:".into(),
+    ));
+    out.push(Block::Table(
+        [
+            "samples",
+            "HiFi runs",
+            "Ks [N/m]",
+            "Cs [Ns/m]",
+            "BAcc error [%]",
+            "DTL error [%]",
+            "SWS error [%]",
+            "BAcc vs datum, HiFi [%]",
+            "DTL vs datum, HiFi [%]",
+        ]
+        .map(String::from)
+        .to_vec(),
+        a.comparison
+            .iter()
+            .map(|c| {
+                vec![
+                    c.samples.clone(),
+                    c.hifi_runs.to_string(),
+                    num(c.ks, 1),
+                    num(c.cs, 1),
+                    signed(c.error_percent[0], 3),
+                    signed(c.error_percent[1], 3),
+                    signed(c.error_percent[2], 3),
+                    signed(c.rechecked_change_percent[0], 2),
+                    signed(c.rechecked_change_percent[1], 2),
+                ]
+            })
+            .collect(),
+    ));
 }

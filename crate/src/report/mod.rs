@@ -12,7 +12,10 @@
 //! 4. the fidelity study and the chosen surrogate's error maps;
 //! 5. STM and NSGA-II fronts on the surrogate, a brute-force HiFi front, hypervolumes,
 //!    the min-max pick against the datum re-checked on the HiFi, beside the seed thesis's
-//!    own result. An infeasible scenario says why instead.
+//!    own result. An infeasible scenario says why instead;
+//! 6. adaptive sampling: the same surrogate on half the plan's HiFi runs as an
+//!    Audze-Eglais plan and the other half chosen one by one where the expected
+//!    hypervolume improvement of the feasible front is largest, against the plan itself.
 //!
 //! Deterministic for given inputs (seeded); nothing in it depends on the clock.
 
@@ -39,6 +42,9 @@ use crate::optimize::{
     OptimizeReport, StmParams,
 };
 use crate::road::Road;
+use crate::surrogate::adaptive::{
+    optimize_report as adaptive_optimize_report, AdaptiveOptimizeReport, AdaptiveOptions,
+};
 use crate::surrogate::{
     study_in, surrogate_report_in, PlanSpec, StudyReport, SurrogateReport, SurrogateSpec,
 };
@@ -102,6 +108,8 @@ pub struct MethodReport {
     pub fidelity: Fidelity,
     /// Section 5: the fronts and the pick, or why there are none.
     pub optimisation: Optimisation,
+    /// Section 6: adaptive sampling against the plan, or why it was not run.
+    pub adaptive: AdaptiveSection,
     /// The seed thesis's own result, quoted.
     pub thesis: ThesisResult,
 }
@@ -243,6 +251,36 @@ pub struct Optimisation {
     pub table: Vec<PickRow>,
 }
 
+/// Section 6: the adaptive loop on the section's surrogate (STM front, min-max pick), with
+/// as many HiFi runs in all as section 5's plan.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AdaptiveSection {
+    /// `None` when the loop ran; otherwise why not.
+    pub skipped: Option<String>,
+    /// The loop (samples in order with their reasons, front and pick per HiFi run) and
+    /// the optimisation on its final surrogate.
+    pub run: Option<AdaptiveOptimizeReport>,
+    /// The plan's pick and the adaptive pick, each re-checked on the HiFi.
+    pub comparison: Vec<AdaptiveRow>,
+}
+
+/// One row of section 6's comparison.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AdaptiveRow {
+    /// How the surrogate's samples were chosen.
+    pub samples: String,
+    /// HiFi runs the surrogate was fitted to.
+    pub hifi_runs: usize,
+    /// The min-max pick's front spring, N/m.
+    pub ks: f64,
+    /// Its front damper, N s/m.
+    pub cs: f64,
+    /// The prediction error at the pick against the HiFi `[bacc, dtl, sws]`, %.
+    pub error_percent: [f64; 3],
+    /// BAcc and DTL change against the datum, re-checked on the HiFi, %.
+    pub rechecked_change_percent: [f64; 2],
+}
+
 /// One row of the before/after table: a design and its change against the datum.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PickRow {
@@ -293,12 +331,13 @@ impl ThesisResult {
 }
 
 /// The report's sections in order, for progress messages.
-pub const SECTIONS: [&str; 5] = [
+pub const SECTIONS: [&str; 6] = [
     "1 scenario and model verification",
     "2 design maps",
     "3 sampling plans",
     "4 fidelity study",
     "5 fronts and the pick",
+    "6 adaptive sampling",
 ];
 
 /// Builds the report; `progress(k)` is called as section `k` of [`SECTIONS`] starts and
@@ -384,6 +423,8 @@ pub fn build(inputs: &ReportInputs, mut progress: impl FnMut(usize)) -> Result<M
     };
     progress(4);
     let optimisation = optimise(inputs, spec, plan)?;
+    progress(5);
+    let adaptive = adaptive_section(inputs, spec, plan, &optimisation)?;
     progress(SECTIONS.len());
     Ok(MethodReport {
         version: env!("CARGO_PKG_VERSION").into(),
@@ -393,6 +434,7 @@ pub fn build(inputs: &ReportInputs, mut progress: impl FnMut(usize)) -> Result<M
         sampling,
         fidelity,
         optimisation,
+        adaptive,
         thesis: ThesisResult::quoted(),
     })
 }
@@ -608,6 +650,82 @@ fn verify(car: &Car, road: &Road, seed: u64) -> Result<Verification> {
             f,
         },
         comfort,
+    })
+}
+
+/// Section 6: the surrogate on an Audze-Eglais plan of `ceil(n / 2)` points plus
+/// `floor(n / 2)` adaptive HiFi runs (EHVI over the feasible front, the loop's defaults),
+/// `n` the points of section 5's plan, compared with section 5's STM pick. Skipped, with
+/// the reason, when section 5 has no front or the loop cannot run on so few points.
+fn adaptive_section(
+    inputs: &ReportInputs,
+    spec: SurrogateSpec,
+    plan: PlanSpec,
+    o: &Optimisation,
+) -> Result<AdaptiveSection> {
+    let skipped = |why: String| AdaptiveSection {
+        skipped: Some(why),
+        run: None,
+        comparison: Vec::new(),
+    };
+    let (Some(stm), None) = (&o.stm, &o.infeasible) else {
+        return Ok(skipped(
+            "section 5 found no feasible design, so there is no front to improve".into(),
+        ));
+    };
+    let n = plan.plan()?.points(&inputs.design_box).len();
+    let initial = n.div_ceil(2);
+    let options = AdaptiveOptions {
+        runs: n - initial,
+        seed: inputs.seed,
+        ..AdaptiveOptions::default()
+    };
+    let run = match adaptive_optimize_report(
+        &inputs.car,
+        &inputs.road,
+        &inputs.design_box,
+        EvaluatorSpec::Surrogate(spec),
+        PlanSpec::AudzeEglais(initial),
+        &Method::Stm(StmParams::default()),
+        inputs.objectives.clone(),
+        options,
+    ) {
+        Ok(r) => r,
+        Err(RideError::Field { field, reason }) => {
+            return Ok(skipped(format!(
+                "{} on ae:{initial} + {} adaptive runs: {field}: {reason}",
+                spec.name(),
+                options.runs
+            )))
+        }
+        Err(e) => return Err(e),
+    };
+    let row = |samples: String, hifi_runs: usize, r: &OptimizeReport| {
+        let c = &r.hifi_recheck;
+        AdaptiveRow {
+            samples,
+            hifi_runs,
+            ks: r.study.pick.ks,
+            cs: r.study.pick.cs,
+            error_percent: c.error_percent,
+            rechecked_change_percent: [
+                c.rechecked_change_percent[0],
+                c.rechecked_change_percent[1],
+            ],
+        }
+    };
+    let comparison = vec![
+        row(format!("{} (section 5)", plan.name()), n, stm),
+        row(
+            format!("ae:{initial} + {} adaptive", options.runs),
+            n,
+            &run.optimize,
+        ),
+    ];
+    Ok(AdaptiveSection {
+        skipped: None,
+        run: Some(run),
+        comparison,
     })
 }
 
