@@ -2,6 +2,8 @@
 // the staging directory, so each build has its own offline cache and a new build
 // replaces the old one. The id is a SHA-256 over every file of the build (paths and
 // contents, sw.js left out), so it changes exactly when something the page loads does.
+// First it lists the page's modules and the wasm as preloads in index.html, so the
+// browser fetches them at once instead of discovering each import after its parent.
 //   node www/sw-stamp.mjs [DIR]      (DIR defaults to $TRUNK_STAGING_DIR)
 import crypto from 'node:crypto';
 import fs from 'node:fs';
@@ -34,9 +36,31 @@ export function buildId(dir) {
   return h.digest('hex').slice(0, 16);
 }
 
+/** The preload tags of a build: every module of the page (js/*.js but the worker's entry, and ridelab.js) and the wasm. */
+export function preloadTags(files) {
+  const modules = files.filter((f) => (f.startsWith('js/') && f.endsWith('.js') && f !== 'js/worker.js') || f === 'ridelab.js');
+  return [
+    '<link rel="preload" href="ridelab_bg.wasm" as="fetch" type="application/wasm" crossorigin>',
+    ...modules.map((f) => `<link rel="modulepreload" href="${f}">`),
+  ];
+}
+
+/** Writes the preload tags into `dir`/index.html before its first `<link>` (once). */
+export function addPreloads(dir) {
+  const page = path.join(dir, 'index.html');
+  const html = fs.readFileSync(page, 'utf8');
+  if (html.includes('rel="modulepreload"')) return 0;
+  const tags = preloadTags(buildFiles(dir));
+  const at = html.indexOf('<link');
+  if (at < 0) throw new Error(`sw-stamp: ${page} has no <link> to put the preloads before`);
+  fs.writeFileSync(page, `${html.slice(0, at)}${tags.join('\n  ')}\n  ${html.slice(at)}`);
+  return tags.length;
+}
+
 if (process.argv[1] === fileURLToPath(import.meta.url)) {
   const dir = process.argv[2] || process.env.TRUNK_STAGING_DIR;
   if (!dir) throw new Error('sw-stamp: give the build directory (or run as a Trunk hook)');
+  const preloads = addPreloads(dir);
   const sw = path.join(dir, 'sw.js');
   const text = fs.readFileSync(sw, 'utf8');
   if (!text.includes("'__RIDELAB_BUILD__'") || !text.includes("['__RIDELAB_FILES__']")) {
@@ -46,5 +70,5 @@ if (process.argv[1] === fileURLToPath(import.meta.url)) {
   const files = ['./', ...buildFiles(dir)];
   const id = buildId(dir);
   fs.writeFileSync(sw, text.replace("'__RIDELAB_BUILD__'", `'${id}'`).replace("['__RIDELAB_FILES__']", JSON.stringify(files)));
-  console.log(`sw-stamp: build ${id}, ${files.length} files cached for offline use`);
+  console.log(`sw-stamp: ${preloads} preloads; build ${id}, ${files.length} files cached for offline use`);
 }
