@@ -79,8 +79,8 @@ export class MapView {
     const cap = document.createElement('figcaption');
     const title = document.createElement('span');
     title.className = 'map-title';
-    // "RMS " and "design: " give way first when the panel is narrow (style.css, container
-    // queries on .map-panel), so the criterion's name is never cut.
+    // "RMS ", "design: " and then the long name give way when the panel is narrow
+    // (style.css, container queries on .map-panel), so the caption is never cut.
     const span = (cls, text) => {
       const el = document.createElement('span');
       el.className = cls;
@@ -89,7 +89,9 @@ export class MapView {
     };
     const rms = crit.long.startsWith('RMS ');
     const name = rms ? crit.long.slice(4) : crit.long;
-    title.append(`${crit.title}: `, span('rms', rms ? 'RMS ' : ''), span('name-long', name), span('name-short', crit.short || name));
+    const named = span('named', ': ');
+    named.append(span('rms', rms ? 'RMS ' : ''), span('name-long', name), span('name-short', crit.short || name));
+    title.append(crit.title, named);
     this.atEl = document.createElement('span');
     this.atEl.className = 'at';
     cap.append(title, this.atEl);
