@@ -96,15 +96,15 @@ export class Host {
   /**
    * One HiFi run at the proposal, the refit and the new front: `{added, step, recheck,
    * proposal, front, ms}` (`recheck` as the core's, with `error` added; `ms`: the step's
-   * time in this thread).
+   * time in this thread, the next proposal and the front included).
    */
   adaptiveStep(state) {
     const run = this.adaptiveFor(state);
     const t0 = performance.now();
     const r = run.step();
-    const ms = performance.now() - t0;
     r.recheck.error = recheckError(r.recheck.predicted, r.recheck.rechecked);
-    return { ...r, proposal: this.proposal(), front: run.front(), ms };
+    const out = { ...r, proposal: this.proposal(), front: run.front() };
+    return { ...out, ms: performance.now() - t0 };
   }
 
   /** The loop so far (`ridelab surrogate ... --adaptive K`'s `adaptive`). */
