@@ -95,9 +95,10 @@ test('adaptive loop: 2 clicks and "Run 5 more" equal `ridelab surrogate --plan a
   t.diagnostic(`HiFi step in the worker (run, refit, front, re-check, next proposal): median ${median(a.ms).toFixed(0)} ms over ${a.ms.length} (${a.ms.map((x) => x.toFixed(0)).join(', ')})`);
 
   // The table: the plan's row, then one per run with its reason and numbers.
-  const rows = await page.$$eval('#ad-samples tbody tr', (trs) => trs.map((tr) => ({
+  const rows = await page.$$eval('#ad-samples tbody tr[data-kind]', (trs) => trs.map((tr) => ({
     kind: tr.dataset.kind,
     cells: [...tr.cells].map((c) => ({ text: c.textContent, value: c.dataset.value })),
+    why: tr.nextElementSibling.textContent,
   })));
   assert.equal(rows.length, 8);
   assert.equal(rows[0].kind, 'plan');
@@ -105,9 +106,10 @@ test('adaptive loop: 2 clicks and "Run 5 more" equal `ridelab surrogate --plan a
     assert.equal(row.kind, 'added');
     assert.equal(Number(row.cells[0].value), r.added[i].run);
     assert.equal(Number(row.cells[1].value), r.added[i].sample.ks);
-    assert.equal(row.cells[3].text, r.added[i].reason);
-    assert.equal(Number(row.cells[4].value), r.history[i + 1].hypervolume);
-    assert.equal(Number(row.cells[5].value), a.errors[i + 1]);
+    assert.equal(Number(row.cells[2].value), r.added[i].sample.cs);
+    assert.equal(row.why, r.added[i].reason);
+    assert.equal(Number(row.cells[3].value), r.history[i + 1].hypervolume);
+    assert.equal(Number(row.cells[4].value), a.errors[i + 1]);
   });
   // The status line: where the next run goes and why.
   const status = await page.textContent('#ad-status');

@@ -139,8 +139,9 @@ export function proposalText(proposal) {
 
 /**
  * The table of the samples the adaptive loop added (`a`: js/store.js `adaptive`, or null),
- * in order: run number, Ks, Cs, the reason, and the front's hypervolume and the pick's
- * HiFi re-check error after it; the plan's row first.
+ * in order: run number, Ks, Cs, and the front's hypervolume and the pick's HiFi re-check
+ * error after it, with the reason on a row of its own below (it is long; a phone keeps
+ * the numbers in view); the plan's row first.
  */
 export function renderAdaptive(table, a) {
   table.replaceChildren();
@@ -150,35 +151,36 @@ export function renderAdaptive(table, a) {
   const cap = table.createCaption();
   cap.textContent = `${a.report.surrogate} on ${a.report.plan} + ${a.report.added.length} adaptive runs (${a.report.uncertainty} uncertainty); hypervolume against the fixed reference point (${fmt(a.report.reference_point[0], 4)} m/s², ${fmt(a.report.reference_point[1], 4)} N).`;
   const head = table.createTHead().insertRow();
-  for (const [t, num] of [['HiFi run', true], ['Ks kN/m', true], ['Cs kNs/m', true], ['Why', false], ['Hypervolume (m/s²)·N', true], ['Pick error %', true]]) {
+  for (const t of ['HiFi run', 'Ks kN/m', 'Cs kNs/m', 'Hypervolume (m/s²)·N', 'Pick error %']) {
     const th = document.createElement('th');
     th.scope = 'col';
     th.textContent = t;
-    if (num) th.className = 'num';
+    th.className = 'num';
     head.append(th);
   }
   const body = table.createTBody();
-  const row = (run, ks, cs, why, k) => {
+  const row = (kind, run, ks, cs, why, k) => {
     const tr = body.insertRow();
+    tr.dataset.kind = kind;
     const cells = [
       [String(run), run],
       [ks === null ? '–' : fmt(ks / 1000, 4), ks],
       [cs === null ? '–' : fmt(cs / 1000, 4), cs],
-      [why, null],
       [fmt(h[k].hypervolume, 5), h[k].hypervolume],
       [fmt(a.errors[k], 3), a.errors[k]],
     ];
-    cells.forEach(([text, v], i) => {
+    for (const [text, v] of cells) {
       const td = tr.insertCell();
       td.textContent = text;
-      if (i !== 3) td.className = 'num';
-      else td.className = 'why';
+      td.className = 'num';
       if (v !== null) td.dataset.value = String(v);
-    });
-    return tr;
+    }
+    const note = body.insertRow();
+    note.className = 'why';
+    const td = note.insertCell();
+    td.colSpan = cells.length;
+    td.textContent = why;
   };
-  row(`1–${h[0].hifi_runs}`, null, null, `the ${a.report.plan} plan`, 0).dataset.kind = 'plan';
-  a.report.added.forEach((x, i) => {
-    row(x.run, x.sample.ks, x.sample.cs, x.reason, i + 1).dataset.kind = 'added';
-  });
+  row('plan', `1–${h[0].hifi_runs}`, null, null, `The ${a.report.plan} plan.`, 0);
+  a.report.added.forEach((x, i) => row('added', x.run, x.sample.ks, x.sample.cs, x.reason, i + 1));
 }
