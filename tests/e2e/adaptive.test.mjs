@@ -130,6 +130,7 @@ test('adaptive loop: 2 clicks and "Run 5 more" equal `ridelab surrogate --plan a
   }
   const plane = await page.evaluate(() => window.__ridelab.objPlane.data.adaptive);
   assert.deepEqual(plane.pick, last);
+  assert.deepEqual(plane.was.pick, r.history.at(-2).pick, 'the pick before the latest run, drawn light');
   assert.equal(plane.front.length, r.history.at(-1).front_points);
   assert.ok(await countColour(page, 'op-base', [124, 58, 237], 60) > 20, 'the adaptive front is drawn on the plane');
   assert.equal(await page.locator('#op-key-adaptive').isVisible(), true);

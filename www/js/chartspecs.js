@@ -16,6 +16,7 @@ export const COL = {
   pick: '#facc15',
   linear: '#6b7280',
   adaptive: '#7c3aed',
+  adaptiveWas: '#c4b5fd',
 };
 
 /** Opacity of the cloud of feasible designs. */
@@ -104,11 +105,12 @@ export const PLANE_KEY = [
 /**
  * The objective plane (BAcc against DTL, on the surrogate) of `{front, nsga, cloud,
  * design, adaptive}` (`design`: the surrogate's criteria of the current design, or null;
- * `adaptive`: the adaptive loop's `{front, pick}` when one runs): the feasible designs, the
- * STM Pareto front, the NSGA-II front when computed, the adaptive loop's front and pick,
+ * `adaptive`: the adaptive loop's `{front, pick, was}` when one runs, `was` the front and
+ * pick before its latest run or null): the feasible designs, the STM Pareto front, the
+ * NSGA-II front when computed, the adaptive loop's front and pick (the earlier ones light),
  * the min-max pick and its HiFi re-check, the datum and the current design; on the
- * datum-ratio axes when `ratio`. On screen (`live`) there is no legend (the page's key above the chart
- * says it, and nothing in the plot hides under it), the cloud is drawn by the page
+ * datum-ratio axes when `ratio`. On screen (`live`) there is no legend (the page's key
+ * above the chart says it, and nothing in the plot hides under it), the cloud is drawn by the page
  * (thousands of dots) and the design on a layer of its own (it moves with the sliders).
  * An export has every other cloud cell each way, the legend and a `title`.
  */
@@ -132,11 +134,11 @@ export function objectiveSpec({ front: fr, nsga, cloud, design, adaptive = null 
     const nf = nsga.study.front.map((p) => xy(p.bacc, p.dtl));
     series.push({ name: `NSGA-II front (${nf.length} pts)`, colour: COL.nsga, points: nf, style: 'dots', size: 2.6 });
   }
+  const was = adaptive && adaptive.was;
+  if (was) series.push(line('adaptive loop\'s front before its latest run', COL.adaptiveWas, was.front.map((p) => xy(p.bacc, p.dtl)), 2));
   if (adaptive) {
     const af = adaptive.front.map((p) => xy(p.bacc, p.dtl));
     series.push(line(`adaptive loop's front (${af.length} pts)`, COL.adaptive, af, 2));
-    const ap = xy(adaptive.pick.criteria.bacc, adaptive.pick.criteria.dtl);
-    series.push(marker('adaptive loop\'s pick', COL.adaptive, '#ffffff', 'triangle', [ap], 7));
   }
   const pk = xy(fr.study.pick.criteria.bacc, fr.study.pick.criteria.dtl);
   const rc = fr.recheck.rechecked;
@@ -146,6 +148,9 @@ export function objectiveSpec({ front: fr, nsga, cloud, design, adaptive = null 
   series.push(marker('pick re-checked (HiFi)', '#ffffff', COL.hifi, 'diamond', [hp], 9));
   series.push(marker(`min-max pick (${fr.study.evaluator})`, COL.pick, '#000000', 'diamond', [pk]));
   series.push(marker('datum', '#ffffff', '#000000', 'square', [datum], 6));
+  // The adaptive loop's picks over the min-max pick, so they show where they move.
+  if (was) series.push(marker('adaptive loop\'s pick before its latest run', COL.adaptiveWas, '#ffffff', 'triangle', [xy(was.pick.criteria.bacc, was.pick.criteria.dtl)], 6));
+  if (adaptive) series.push(marker('adaptive loop\'s pick', COL.adaptive, '#ffffff', 'triangle', [xy(adaptive.pick.criteria.bacc, adaptive.pick.criteria.dtl)], 7));
   if (!live && design) series.push(marker('current design', '#000000', '#ffffff', 'circle', [xy(design.bacc, design.dtl)], 4.5));
   return {
     title,

@@ -74,7 +74,7 @@ export class Render {
   plane() {
     const st = this.store;
     const a = st.adaptive;
-    const adaptive = a && a.report.history.length ? { front: a.front, pick: a.report.history[a.report.history.length - 1].pick } : null;
+    const adaptive = a && a.report.history.length ? { front: a.front, pick: a.report.history[a.report.history.length - 1].pick, was: a.was } : null;
     this.ui.plane.draw({ front: st.front, nsga: st.nsga, cloud: st.cloud, ratio: st.view.ratio, adaptive });
     $('op-key-adaptive').hidden = !adaptive;
     this.ui.plane.drawDesign(st.surrogate.design);
