@@ -440,7 +440,7 @@ export class Controller {
         this.render.adaptiveStatus(`Running the ${s.plan} plan on the HiFi and fitting ${s.surrogate}…`);
         const r = await this.compute.adaptiveStart(s);
         if (scenarioKey(st.state) !== key) return;
-        st.adaptive = { key, state: s, report: r.report, proposal: r.proposal, front: r.front, errors: [r.recheck.error], last: null, was: null, ms: [] };
+        st.adaptive = { key, state: s, report: r.report, proposal: r.proposal, front: r.front, errors: [r.recheck.error], was: null, ms: [] };
         this.adaptiveShown();
       }
       for (let k = 0; k < n; k++) {
@@ -451,7 +451,7 @@ export class Controller {
         const report = st.adaptive === a ? await this.compute.adaptiveReport(a.state) : null;
         if (st.adaptive !== a) return;
         const was = { front: a.front, pick: a.report.history[a.report.history.length - 1].pick };
-        st.adaptive = { ...a, report, proposal: r.proposal, front: r.front, errors: [...a.errors, r.recheck.error], last: r, was, ms: [...a.ms, r.ms] };
+        st.adaptive = { ...a, report, proposal: r.proposal, front: r.front, errors: [...a.errors, r.recheck.error], was, ms: [...a.ms, r.ms] };
         this.adaptiveShown();
       }
     } catch (e) {

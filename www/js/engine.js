@@ -23,7 +23,7 @@ export const SESSION_METHODS = [
 export const ADAPTIVE_METHODS = ['adaptiveStart', 'adaptiveStep', 'adaptiveReport'];
 
 /** The largest |`100 (predicted / hifi - 1)`| of BAcc, DTL and SWS, %: a pick's HiFi re-check error. */
-export function recheckError(predicted, hifi) {
+function recheckError(predicted, hifi) {
   return Math.max(...['bacc', 'dtl', 'sws'].map((k) => Math.abs(100 * (predicted[k] / hifi[k] - 1))));
 }
 
