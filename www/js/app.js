@@ -16,6 +16,7 @@ import { Render } from './render.js';
 import { Controls, plainWords } from './controls.js';
 import { MapView, CRITERIA } from './mapview.js';
 import { ObjectivePlane } from './plane.js';
+import { Plot } from './plot.js';
 import { SpectraPanel } from './spectra.js';
 import { TimePanel, DamperChart, DAMPER_V_MAX } from './timepanel.js';
 import { CarEditor, carFieldMessage } from './careditor.js';
@@ -250,6 +251,8 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
   $('op-scale').addEventListener('change', (ev) => ctl.setView({ ratio: ev.target.value === 'ratio' }));
   $('projector').addEventListener('change', (ev) => ctl.setView({ projector: ev.target.checked }));
   $('op-nsga').addEventListener('click', () => ctl.requestNsga());
+  $('ad-next').addEventListener('click', () => ctl.runAdaptive(1));
+  $('ad-more').addEventListener('click', () => ctl.runAdaptive(5));
   $('sur-approach').addEventListener('change', (ev) => ctl.changeScenario({ surrogate: ev.target.value }, 'surrogate'));
   $('sur-plan').addEventListener('change', (ev) => ctl.changeScenario({ plan: ev.target.value }, 'plan'));
   const boxEdit = () => {
@@ -577,6 +580,7 @@ async function main() {
       charts: Object.fromEntries(['bacc', 'dtl', 'sws'].map((k) => [k, { base: $(`tp-${k}`), overlay: $(`tp-${k}-cursor`) }])),
     }),
     damper: new DamperChart($('tp-fv')),
+    adaptiveChart: new Plot($('ad-chart'), { aspect: 0.5 }),
     carEditor: new CarEditor($('car-fields')),
   };
   const render = new Render(store, ui);

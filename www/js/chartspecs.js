@@ -15,6 +15,8 @@ export const COL = {
   hifi: '#b91c1c',
   pick: '#facc15',
   linear: '#6b7280',
+  adaptive: '#7c3aed',
+  adaptiveWas: '#c4b5fd',
 };
 
 /** Opacity of the cloud of feasible designs. */
@@ -102,15 +104,17 @@ export const PLANE_KEY = [
 
 /**
  * The objective plane (BAcc against DTL, on the surrogate) of `{front, nsga, cloud,
- * design}` (`design`: the surrogate's criteria of the current design, or null): the
- * feasible designs, the STM Pareto front, the NSGA-II front when computed, the min-max
- * pick and its HiFi re-check, the datum and the current design; on the datum-ratio axes
- * when `ratio`. On screen (`live`) there is no legend (the page's key above the chart
- * says it, and nothing in the plot hides under it), the cloud is drawn by the page
+ * design, adaptive}` (`design`: the surrogate's criteria of the current design, or null;
+ * `adaptive`: the adaptive loop's `{front, pick, was}` when one runs, `was` the front and
+ * pick before its latest run or null): the feasible designs, the STM Pareto front, the
+ * NSGA-II front when computed, the adaptive loop's front and pick (the earlier ones light),
+ * the min-max pick and its HiFi re-check, the datum and the current design; on the
+ * datum-ratio axes when `ratio`. On screen (`live`) there is no legend (the page's key
+ * above the chart says it, and nothing in the plot hides under it), the cloud is drawn by the page
  * (thousands of dots) and the design on a layer of its own (it moves with the sliders).
  * An export has every other cloud cell each way, the legend and a `title`.
  */
-export function objectiveSpec({ front: fr, nsga, cloud, design }, { ratio = false, width = 720, height = 460, title = '', live = false } = {}) {
+export function objectiveSpec({ front: fr, nsga, cloud, design, adaptive = null }, { ratio = false, width = 720, height = 460, title = '', live = false } = {}) {
   if (!fr || fr.error) throw { message: `no front to draw${fr ? `: ${fr.error}` : ''}`, field: 'front' };
   const xy = planeXY(fr, ratio);
   const cloudPts = live || !cloud ? [] : cloudPoints(cloud, fr, ratio, 2);
@@ -130,6 +134,12 @@ export function objectiveSpec({ front: fr, nsga, cloud, design }, { ratio = fals
     const nf = nsga.study.front.map((p) => xy(p.bacc, p.dtl));
     series.push({ name: `NSGA-II front (${nf.length} pts)`, colour: COL.nsga, points: nf, style: 'dots', size: 2.6 });
   }
+  const was = adaptive && adaptive.was;
+  if (was) series.push(line('adaptive loop\'s front before its latest run', COL.adaptiveWas, was.front.map((p) => xy(p.bacc, p.dtl)), 2));
+  if (adaptive) {
+    const af = adaptive.front.map((p) => xy(p.bacc, p.dtl));
+    series.push(line(`adaptive loop's front (${af.length} pts)`, COL.adaptive, af, 2));
+  }
   const pk = xy(fr.study.pick.criteria.bacc, fr.study.pick.criteria.dtl);
   const rc = fr.recheck.rechecked;
   const dh = fr.datumHifi;
@@ -138,6 +148,9 @@ export function objectiveSpec({ front: fr, nsga, cloud, design }, { ratio = fals
   series.push(marker('pick re-checked (HiFi)', '#ffffff', COL.hifi, 'diamond', [hp], 9));
   series.push(marker(`min-max pick (${fr.study.evaluator})`, COL.pick, '#000000', 'diamond', [pk]));
   series.push(marker('datum', '#ffffff', '#000000', 'square', [datum], 6));
+  // The adaptive loop's picks over the min-max pick, so they show where they move.
+  if (was) series.push(marker('adaptive loop\'s pick before its latest run', COL.adaptiveWas, '#ffffff', 'triangle', [xy(was.pick.criteria.bacc, was.pick.criteria.dtl)], 6));
+  if (adaptive) series.push(marker('adaptive loop\'s pick', COL.adaptive, '#ffffff', 'triangle', [xy(adaptive.pick.criteria.bacc, adaptive.pick.criteria.dtl)], 7));
   if (!live && design) series.push(marker('current design', '#000000', '#ffffff', 'circle', [xy(design.bacc, design.dtl)], 4.5));
   return {
     title,
@@ -250,5 +263,39 @@ export function damperSpec(curve, { width = 360, height = 240, title = '', linea
     height,
     legend: 'upperLeft',
     series,
+  };
+}
+
+/**
+ * The adaptive loop's history (`a`: js/store.js `adaptive`) against the number of HiFi
+ * runs: the front's hypervolume on the surrogate as a change against the plan's front,
+ * and the pick's HiFi re-check error (largest of BAcc, DTL, SWS), both in %. The page
+ * draws its key above the chart (`legend: 'none'`).
+ */
+export function adaptiveSpec(a, { width = 420, height = 220, title = '', legend = 'none' } = {}) {
+  if (!a || !a.report.history.length) throw { message: 'no adaptive run yet', field: 'adaptive' };
+  const h = a.report.history;
+  const hv0 = h[0].hypervolume;
+  const gain = h.map((x) => [x.hifi_runs, 100 * (x.hypervolume / hv0 - 1)]);
+  const err = h.map((x, i) => [x.hifi_runs, a.errors[i]]);
+  const n0 = h[0].hifi_runs;
+  const n1 = Math.max(h[h.length - 1].hifi_runs, n0 + 1);
+  const [lo, hi] = extent([0, ...gain.map((p) => p[1]), ...err.map((p) => p[1])]);
+  const span = hi - lo || 1;
+  return {
+    title,
+    xLabel: 'HiFi runs [–]',
+    yLabel: 'change, error [%]',
+    xRange: [n0 - 0.3, n1 + 0.3],
+    yRange: [lo - 0.08 * span, hi + 0.12 * span],
+    width,
+    height,
+    legend,
+    series: [
+      line('front hypervolume vs the plan\'s [%]', COL.stm, gain, 2.5),
+      marker('front hypervolume vs the plan\'s [%]', COL.stm, COL.stm, 'circle', gain, 3.5),
+      line('pick\'s HiFi re-check error [%]', COL.hifi, err, 2.5),
+      marker('pick\'s HiFi re-check error [%]', '#ffffff', COL.hifi, 'square', err, 3.5),
+    ],
   };
 }

@@ -163,6 +163,26 @@ export class Compute {
     return this.heavy.call('studyReport', s);
   }
 
+  /**
+   * Starts the adaptive HiFi loop on the scenario of `s` (its plan on the HiFi, the fit,
+   * the front, the first proposal; heavy worker, where the run stays): see js/engine.js
+   * `Host.adaptiveStart`. The options are the core's defaults, as `ridelab surrogate
+   * --adaptive K` without further flags.
+   */
+  adaptiveStart(s) {
+    return this.heavy.call('adaptiveStart', s, null);
+  }
+
+  /** One more HiFi run of the loop started for the scenario of `s`, the refit and the new proposal (heavy worker). */
+  adaptiveStep(s) {
+    return this.heavy.call('adaptiveStep', s);
+  }
+
+  /** The loop so far: samples with reasons and the history of fronts (heavy worker). */
+  adaptiveReport(s) {
+    return this.heavy.call('adaptiveReport', s);
+  }
+
   /** FRFs and PSDs of the design (heavy worker). */
   spectra(s) {
     return this.heavy.call('spectra', s, NFREQ);

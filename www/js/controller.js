@@ -17,6 +17,7 @@ import { decodeHash } from './urlstate.js';
 import { FIELD_INPUT, explain, plainWords } from './controls.js';
 import { HIFI_GRID } from './compute.js';
 import { fmt } from './format.js';
+import { designText } from './chartspecs.js';
 
 /** A promise that resolves after the next frame has been painted. */
 function afterPaint() {
@@ -54,7 +55,9 @@ export class Controller {
      * Counters of what was done: fronts drawn, NSGA-II runs and the stale answers dropped,
      * and `nsgaLog` (per accepted NSGA-II answer: the scenario it was for and the one shown).
      */
-    this.counters = { frontDraws: 0, frontDrawnAt: 0, nsgaRuns: 0, nsgaDropped: 0, nsgaLog: [], firstMapAt: null };
+    this.counters = { frontDraws: 0, frontDrawnAt: 0, nsgaRuns: 0, nsgaDropped: 0, nsgaLog: [], firstMapAt: null, adaptiveDropped: 0 };
+    /** True while the adaptive loop runs (its buttons are disabled). */
+    this.adaptiveBusy = false;
     /** Called after the views show something new (a design, the HiFi column, the fit, the maps): the lesson panel re-reads its numbers. */
     this.onViewsChanged = () => {};
 
@@ -155,11 +158,16 @@ export class Controller {
     st.cloud = r.cloud;
     st.front = r.front;
     if (st.nsga && st.nsga.key !== scenarioKey(s)) st.nsga = null;
+    if (st.adaptive && st.adaptive.key !== scenarioKey(s)) {
+      st.adaptive = null;
+      this.counters.adaptiveDropped++;
+    }
   }
 
   /** Redraws what a new scenario changes and starts what it needs from the workers. */
   scenarioChanged() {
     this.render.scenario();
+    this.render.adaptive(this.adaptiveBusy);
     this.counters.frontDrawnAt = performance.now();
     this.counters.frontDraws++;
     this.showMaps();
@@ -411,6 +419,55 @@ export class Controller {
         this.render.nsga();
       }),
     );
+  }
+
+  /**
+   * `n` more HiFi runs of the adaptive loop (heavy worker), started on the current
+   * scenario first when there is none for it: before each run the proposal is shown, after
+   * it the panel, the markers and the plane. A scenario change drops the loop (js/store.js
+   * `adaptive`); a step answered after it is dropped too.
+   */
+  async runAdaptive(n) {
+    const st = this.store;
+    if (this.adaptiveBusy) return;
+    this.adaptiveBusy = true;
+    this.pending++;
+    this.render.adaptive(true);
+    try {
+      const s = st.state;
+      const key = scenarioKey(s);
+      if (!st.adaptive || st.adaptive.key !== key) {
+        this.render.adaptiveStatus(`Running the ${s.plan} plan on the HiFi and fitting ${s.surrogate}…`);
+        const r = await this.compute.adaptiveStart(s);
+        if (scenarioKey(st.state) !== key) return;
+        st.adaptive = { key, state: s, report: r.report, proposal: r.proposal, front: r.front, errors: [r.recheck.error], was: null, ms: [] };
+        this.adaptiveShown();
+      }
+      for (let k = 0; k < n; k++) {
+        const a = st.adaptive;
+        if (!a || a.proposal.error) break;
+        this.render.adaptiveStatus(`Running the HiFi at ${designText(a.proposal.candidate)} (${k + 1} of ${n})…`);
+        const r = await this.compute.adaptiveStep(a.state);
+        const report = st.adaptive === a ? await this.compute.adaptiveReport(a.state) : null;
+        if (st.adaptive !== a) return;
+        const was = { front: a.front, pick: a.report.history[a.report.history.length - 1].pick };
+        st.adaptive = { ...a, report, proposal: r.proposal, front: r.front, errors: [...a.errors, r.recheck.error], was, ms: [...a.ms, r.ms] };
+        this.adaptiveShown();
+      }
+    } catch (e) {
+      this.render.adaptiveStatus(`The adaptive run failed: ${plainWords(e.message || String(e))}`);
+    } finally {
+      this.adaptiveBusy = false;
+      this.pending--;
+      this.render.adaptive(false);
+    }
+  }
+
+  /** Redraws what shows the adaptive loop: its panel, the markers and the plane. */
+  adaptiveShown() {
+    this.render.adaptive(true);
+    this.render.markers();
+    this.render.plane();
   }
 
   /** FRFs and PSDs of the current design (heavy worker), 60 ms after the last change. */

@@ -16,6 +16,18 @@ export const SESSION_METHODS = [
 ];
 
 /**
+ * The adaptive HiFi loop's calls (issue #15), on the thread's one `AdaptiveRun` of the core
+ * (crate/src/web/mod.rs): `adaptiveStart(state, options)`, `adaptiveStep(state)`,
+ * `adaptiveReport(state)`. A step or report for another scenario than the run's is refused.
+ */
+export const ADAPTIVE_METHODS = ['adaptiveStart', 'adaptiveStep', 'adaptiveReport'];
+
+/** The largest |`100 (predicted / hifi - 1)`| of BAcc, DTL and SWS, %: a pick's HiFi re-check error. */
+function recheckError(predicted, hifi) {
+  return Math.max(...['bacc', 'dtl', 'sws'].map((k) => Math.abs(100 * (predicted[k] / hifi[k] - 1))));
+}
+
+/**
  * One thread's `Explorer` session (crate/src/web/explorer.rs), moved to each call's state
  * by the smallest setter: `setDesign` when only Ks and Cs changed (a slider move), else
  * `setState` (the core then re-parses only the fields that changed). A setter that throws
@@ -28,6 +40,9 @@ export class Host {
     this.scenarioKey = null;
     this.ks = null;
     this.cs = null;
+    /** The adaptive loop (`AdaptiveRun`) and the scenario key it was started for. */
+    this.adaptive = null;
+    this.adaptiveKey = null;
   }
 
   /** The session moved to `state` (throws the core's error naming the field). */
@@ -49,7 +64,69 @@ export class Host {
       const [state, ...rest] = args;
       return this.at(state)[method](...rest);
     }
+    if (ADAPTIVE_METHODS.includes(method)) return this[method](...args);
     throw { message: `no method ${method}`, field: '' };
+  }
+
+  /**
+   * Starts the adaptive loop on `state`'s scenario (its plan run on the HiFi, its
+   * surrogate fitted), replacing any earlier one: `{key, report, proposal, front, ms,
+   * recheck}` (`recheck`: the plan's pick re-run on the HiFi, `{rechecked, error}` with
+   * `error` the largest |error|, %). Throws the core's error naming the field.
+   */
+  adaptiveStart(state, options) {
+    const t0 = performance.now();
+    const run = new this.api.AdaptiveRun(state, options);
+    if (this.adaptive) this.adaptive.free();
+    this.adaptive = run;
+    this.adaptiveKey = JSON.stringify({ ...state, ks: 0, cs: 0 });
+    const report = run.report();
+    const { pick } = report.history[0];
+    const rechecked = this.at({ ...state, ks: pick.ks, cs: pick.cs }).criteria('hifi');
+    return {
+      key: this.adaptiveKey,
+      report,
+      proposal: this.proposal(),
+      front: run.front(),
+      recheck: { rechecked, error: recheckError(pick.criteria, rechecked) },
+      ms: performance.now() - t0,
+    };
+  }
+
+  /**
+   * One HiFi run at the proposal, the refit and the new front: `{added, step, recheck,
+   * proposal, front, ms}` (`recheck` as the core's, with `error` added; `ms`: the step's
+   * time in this thread, the next proposal and the front included).
+   */
+  adaptiveStep(state) {
+    const run = this.adaptiveFor(state);
+    const t0 = performance.now();
+    const r = run.step();
+    r.recheck.error = recheckError(r.recheck.predicted, r.recheck.rechecked);
+    const out = { ...r, proposal: this.proposal(), front: run.front() };
+    return { ...out, ms: performance.now() - t0 };
+  }
+
+  /** The loop so far (`ridelab surrogate ... --adaptive K`'s `adaptive`). */
+  adaptiveReport(state) {
+    return this.adaptiveFor(state).report();
+  }
+
+  /** The run of `state`'s scenario; throws `{field: 'adaptive'}` when there is none. */
+  adaptiveFor(state) {
+    if (!this.adaptive || JSON.stringify({ ...state, ks: 0, cs: 0 }) !== this.adaptiveKey) {
+      throw { message: 'adaptive: no adaptive run for this scenario (start one first)', field: 'adaptive' };
+    }
+    return this.adaptive;
+  }
+
+  /** The run's next proposal, or `{error}` when there is none (the box is full of samples). */
+  proposal() {
+    try {
+      return this.adaptive.propose();
+    } catch (e) {
+      return { error: toFailure(e).message };
+    }
   }
 }
 

@@ -267,11 +267,12 @@ export class MapView {
   }
 
   /**
-   * The design and datum points (N/m, N s/m), optionally the surrogate's sample points
-   * and the min-max pick ({ks, cs}), and the caption's text (the design's value).
+   * The design and datum points (N/m, N s/m), optionally the surrogate's sample points,
+   * the min-max pick ({ks, cs}) and the adaptive loop's `{added, next}` (the samples it
+   * added, its next proposal or null), and the caption's text (the design's value).
    */
-  setMarkers({ design, datum, samples = null, pick = null }, caption) {
-    this.markers = { design, datum, samples, pick };
+  setMarkers({ design, datum, samples = null, pick = null, adaptive = null }, caption) {
+    this.markers = { design, datum, samples, pick, adaptive };
     const label = caption.startsWith('design: ') ? 'design: ' : '';
     const labelEl = document.createElement('span');
     labelEl.className = 'at-label';
@@ -503,7 +504,7 @@ export class MapView {
 
   /** The markers on context `g` (CSS px) over the plot of layout `{fs, plot}`. */
   paintMarkers(g, { fs, plot }) {
-    const { design, datum, samples, pick } = this.markers;
+    const { design, datum, samples, pick, adaptive } = this.markers;
     const lw = this.thick;
     const inside = (p) => p[0] >= plot.x - 0.5 && p[0] <= plot.x + plot.w + 0.5 && p[1] >= plot.y - 0.5 && p[1] <= plot.y + plot.h + 0.5;
     const r = Math.max(4, fs * 0.45) * Math.sqrt(lw);
@@ -512,18 +513,24 @@ export class MapView {
     if (samples) {
       for (const smp of samples) {
         const q = this.toPlot(smp.ks, smp.cs, plot);
-        if (!inside(q)) continue;
-        const a = r * 0.75;
-        g.strokeStyle = '#fff';
-        g.lineWidth = 3.5 * lw;
+        if (inside(q)) cross(g, q, r, lw, '#7c2d12');
+      }
+    }
+    // The adaptive loop's samples: purple white-ringed crosses; its next run: a purple ring.
+    if (adaptive) {
+      for (const smp of adaptive.added) {
+        const q = this.toPlot(smp.ks, smp.cs, plot);
+        if (inside(q)) cross(g, q, r, lw, ADAPTIVE);
+      }
+      const nx = adaptive.next && this.toPlot(adaptive.next.ks, adaptive.next.cs, plot);
+      if (nx && inside(nx)) {
         g.beginPath();
-        g.moveTo(q[0] - a, q[1] - a);
-        g.lineTo(q[0] + a, q[1] + a);
-        g.moveTo(q[0] - a, q[1] + a);
-        g.lineTo(q[0] + a, q[1] - a);
+        g.arc(nx[0], nx[1], 1.6 * r, 0, 2 * Math.PI);
+        g.strokeStyle = '#fff';
+        g.lineWidth = 4.5 * lw;
         g.stroke();
-        g.strokeStyle = '#7c2d12';
-        g.lineWidth = 1.6 * lw;
+        g.strokeStyle = ADAPTIVE;
+        g.lineWidth = 2.2 * lw;
         g.stroke();
       }
     }
@@ -689,4 +696,23 @@ function diamond(g, [x, y], r) {
   g.lineTo(x, y + r);
   g.lineTo(x - r, y);
   g.closePath();
+}
+
+/** The adaptive loop's colour on the maps (its samples and next run; the plane's too). */
+const ADAPTIVE = '#7c3aed';
+
+/** A white-ringed diagonal cross of half size `0.75 r` at `[x, y]` in `colour` (a HiFi sample). */
+function cross(g, [x, y], r, lw, colour) {
+  const a = r * 0.75;
+  g.strokeStyle = '#fff';
+  g.lineWidth = 3.5 * lw;
+  g.beginPath();
+  g.moveTo(x - a, y - a);
+  g.lineTo(x + a, y + a);
+  g.moveTo(x - a, y + a);
+  g.lineTo(x + a, y - a);
+  g.stroke();
+  g.strokeStyle = colour;
+  g.lineWidth = 1.6 * lw;
+  g.stroke();
 }

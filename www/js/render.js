@@ -6,7 +6,8 @@
 import { MapView } from './mapview.js';
 import { renderPick } from './plane.js';
 import { renderCriteria, feasibilityText, routeNote, renderProps, renderModes } from './readout.js';
-import { renderMetrics, tuningText } from './surrogatepanel.js';
+import { renderMetrics, tuningText, renderAdaptive, proposalText } from './surrogatepanel.js';
+import { adaptiveSpec } from './chartspecs.js';
 import { MODEL_NAMES, datumStateOf, fitKeyOf, keyOf } from './store.js';
 import { GRID } from './compute.js';
 import { fmt, fmtInput, fmtPct } from './format.js';
@@ -72,7 +73,10 @@ export class Render {
   /** The objective plane from the store. */
   plane() {
     const st = this.store;
-    this.ui.plane.draw({ front: st.front, nsga: st.nsga, cloud: st.cloud, ratio: st.view.ratio });
+    const a = st.adaptive;
+    const adaptive = a && a.report.history.length ? { front: a.front, pick: a.report.history[a.report.history.length - 1].pick, was: a.was } : null;
+    this.ui.plane.draw({ front: st.front, nsga: st.nsga, cloud: st.cloud, ratio: st.view.ratio, adaptive });
+    $('op-key-adaptive').hidden = !adaptive;
     this.ui.plane.drawDesign(st.surrogate.design);
   }
 
@@ -195,13 +199,15 @@ export class Render {
     const datum = { ks: desc.datumKs, cs: desc.datumCs };
     const samples = st.view.plan && st.fit && st.fitKey === fitKeyOf(state) ? st.fit.samples : null;
     const pick = st.front && !st.front.error ? st.front.study.pick : null;
+    const a = st.adaptive;
+    const adaptive = a ? { added: a.report.added.map((x) => x.sample), next: a.proposal.error ? null : a.proposal.candidate } : null;
     const sur = st.view.model === 'surrogate';
     const value = sur ? st.surrogate.design : lofi.design;
     const ref = sur ? st.surrogate.datum : lofi.datum;
     for (const v of this.ui.maps) {
       const k = v.crit.key;
       const caption = shown && (st.view.model === 'lofi' || sur) ? MapView.caption(v.crit, value[k], ref[k], st.view.scale) : '';
-      v.setMarkers({ design: { ks: state.ks, cs: state.cs }, datum, samples, pick }, caption);
+      v.setMarkers({ design: { ks: state.ks, cs: state.cs }, datum, samples, pick, adaptive }, caption);
     }
   }
 
@@ -216,6 +222,25 @@ export class Render {
 
   fitStatus(text) {
     $('sur-status').textContent = text;
+  }
+
+  /**
+   * The Surrogate tab's adaptive loop: buttons (disabled while `busy`), the proposal's
+   * line, the samples added and the history chart; the map and plane keys of the loop.
+   */
+  adaptive(busy) {
+    const a = this.store.adaptive;
+    $('ad-next').disabled = busy;
+    $('ad-more').disabled = busy;
+    $('maps-key-adaptive').hidden = !a;
+    if (!busy) this.adaptiveStatus(a ? proposalText(a.proposal) : 'No adaptive run yet: "Next HiFi run" runs the plan on the HiFi, fits the surrogate and adds one HiFi run where it helps the front most.');
+    renderAdaptive($('ad-samples'), a);
+    $('ad-chart-box').hidden = !a;
+    if (a) this.ui.adaptiveChart.draw(adaptiveSpec(a));
+  }
+
+  adaptiveStatus(text) {
+    $('ad-status').textContent = text;
   }
 
   /** The NSGA-II front on the plane, and its line. */
@@ -285,6 +310,7 @@ export class Render {
       v.drawOverlay();
     }
     this.plane();
+    if (st.adaptive && !$('ad-chart-box').hidden) this.ui.adaptiveChart.draw(adaptiveSpec(st.adaptive));
     if (st.spectra) this.ui.spectra.show(st.spectra);
     if (st.time) this.ui.time.draw(st.time.result, st.state.speed, st.time.linear);
     if (this.ui.damper.visible()) this.ui.damper.refresh();

@@ -82,6 +82,15 @@ export class Store {
     /** FRFs and PSDs of the current design, and their key. */
     this.spectra = null;
     this.spectraKey = '';
+    /**
+     * The adaptive HiFi loop of the Surrogate tab (issue #15) when started, for the
+     * scenario `key`: `{key, state, report, proposal, front, errors, was, ms}`
+     * (`report`: the core's; `proposal`: the next run, or `{error}`; `front`: the loop's
+     * surrogate's front; `errors[i]`: the pick's HiFi re-check error after
+     * `report.history[i]`, %; `was`: the front and pick before the latest step, or null;
+     * `ms`: each step's time in the worker). Dropped when the scenario changes.
+     */
+    this.adaptive = null;
     /** The time response when run: `{result, linear, key, opts}` (`linear`: the same road with the linear damper, for a nonlinear run). */
     this.time = null;
     /** The last custom car: `{json, ks, cs, origin}` (`origin`: 'file' or 'editor'). */

@@ -1,5 +1,6 @@
-// The surrogate panel: the approach and plan pickers and the fit report (metrics on the
-// HiFi validation grid, tuning parameters), from the wasm export `surrogateFit`.
+// The surrogate panel: the approach and plan pickers, the fit report (metrics on the
+// HiFi validation grid, tuning parameters) from the wasm export `surrogateFit`, and the
+// adaptive HiFi loop's proposal line and table of added samples (issue #15).
 
 import { fmt } from './format.js';
 
@@ -122,4 +123,64 @@ export function tuningText(report) {
   const shown = report.tuning.slice(0, 12).map((p) => `${p.name} = ${fmt(p.value, 4)}`).join(', ');
   const more = report.tuning.length > 12 ? ` and ${report.tuning.length - 12} more` : '';
   return `${report.samples.length} HiFi samples (${report.plan_method}). Fit: ${d}. Tuning: ${shown || 'none'}${more}.`;
+}
+
+/**
+ * The adaptive loop's next run in words: where (Ks kN/m, Cs kNs/m), why (the core's
+ * reason), its expected hypervolume improvement and probability of meeting the
+ * objectives; or why there is none.
+ */
+export function proposalText(proposal) {
+  if (proposal.error) return `No further HiFi run: ${proposal.error.replace(/^adaptive: /, '')}.`;
+  const c = proposal.candidate;
+  return `Next HiFi run: Ks ${fmt(c.ks / 1000, 4)} kN/m, Cs ${fmt(c.cs / 1000, 4)} kNs/m, ${c.on_front ? 'on' : 'off'} the predicted front; ` +
+    `EHVI ${fmt(c.ehvi, 3)} (m/s²)·N, probability feasible ${fmt(100 * c.probability_feasible, 3)} %. Why: ${proposal.reason}.`;
+}
+
+/**
+ * The table of the samples the adaptive loop added (`a`: js/store.js `adaptive`, or null),
+ * in order: run number, Ks, Cs, and the front's hypervolume and the pick's HiFi re-check
+ * error after it, with the reason on a row of its own below (it is long; a phone keeps
+ * the numbers in view); the plan's row first.
+ */
+export function renderAdaptive(table, a) {
+  table.replaceChildren();
+  table.hidden = !a;
+  if (!a) return;
+  const h = a.report.history;
+  const cap = table.createCaption();
+  cap.textContent = `${a.report.surrogate} on ${a.report.plan} + ${a.report.added.length} adaptive runs (${a.report.uncertainty} uncertainty); hypervolume against the fixed reference point (${fmt(a.report.reference_point[0], 4)} m/s², ${fmt(a.report.reference_point[1], 4)} N).`;
+  const head = table.createTHead().insertRow();
+  for (const t of ['HiFi run', 'Ks kN/m', 'Cs kNs/m', 'Hypervolume (m/s²)·N', 'Pick error %']) {
+    const th = document.createElement('th');
+    th.scope = 'col';
+    th.textContent = t;
+    th.className = 'num';
+    head.append(th);
+  }
+  const body = table.createTBody();
+  const row = (kind, run, ks, cs, why, k) => {
+    const tr = body.insertRow();
+    tr.dataset.kind = kind;
+    const cells = [
+      [String(run), run],
+      [ks === null ? '–' : fmt(ks / 1000, 4), ks],
+      [cs === null ? '–' : fmt(cs / 1000, 4), cs],
+      [fmt(h[k].hypervolume, 5), h[k].hypervolume],
+      [fmt(a.errors[k], 3), a.errors[k]],
+    ];
+    for (const [text, v] of cells) {
+      const td = tr.insertCell();
+      td.textContent = text;
+      td.className = 'num';
+      if (v !== null) td.dataset.value = String(v);
+    }
+    const note = body.insertRow();
+    note.className = 'why';
+    const td = note.insertCell();
+    td.colSpan = cells.length;
+    td.textContent = why;
+  };
+  row('plan', `1–${h[0].hifi_runs}`, null, null, `The ${a.report.plan} plan.`, 0);
+  a.report.added.forEach((x, i) => row('added', x.run, x.sample.ks, x.sample.cs, x.reason, i + 1));
 }

@@ -64,6 +64,10 @@ export function installTestHooks({ store, controller, compute, ui, boot, lessons
     get fit() {
       return store.fit;
     },
+    /** The adaptive HiFi loop of the Surrogate tab (js/store.js `adaptive`) or null. */
+    get adaptive() {
+      return store.adaptive;
+    },
     get spectra() {
       return store.spectra;
     },
