@@ -399,6 +399,9 @@ pub struct Report {
     pub spectral: Criteria,
     /// Largest relative difference between the routes.
     pub route_difference: f64,
+    /// The frequency route's own error estimate relative to the variance (at most its
+    /// tolerance 1e-8 unless its panel splits ran out, as for some road warps).
+    pub spectral_error_estimate: f64,
     /// Lower band limit, Hz, when the response needs ISO 8608's low cutoff (road warp).
     pub low_cutoff_hz: Option<f64>,
     /// Natural frequencies and damping ratios.
@@ -451,6 +454,7 @@ pub fn report(kind: ModelKind, car: &Car, road: &Road) -> Result<Report> {
         route,
         spectral: spectral.criteria,
         route_difference: diff,
+        spectral_error_estimate: spectral.relative_error,
         low_cutoff_hz: spectral.low_cutoff_hz,
         modes: model.modes()?,
         body_bounce_hz: q.bounce_frequency(),

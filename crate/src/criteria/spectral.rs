@@ -253,7 +253,8 @@ fn to_rms(var: [f64; N_OUT]) -> Criteria {
 /// RMS criteria by the frequency route to relative tolerance `rtol` (on the variance).
 /// If the response is unbounded at low frequency (road warp), the band starts at
 /// ISO 8608's lowest spatial frequency 0.011 cycle/m and `low_cutoff_hz` says so. A
-/// quadrature that runs out of splits before `rtol` is an error that says how far it got.
+/// quadrature that runs out of splits before `rtol` says how far it got in
+/// `relative_error` (see [`SpectralCriteria::converged`]).
 pub fn criteria_spectral(model: &LinearModel, road: &Road, rtol: f64) -> Result<SpectralCriteria> {
     let sp = Spectrum::new(model, road)?;
     let cutoff = if warp_unbounded(&sp) {
@@ -267,18 +268,7 @@ pub fn criteria_spectral(model: &LinearModel, road: &Road, rtol: f64) -> Result<
             "frequency integral did not converge".into(),
         ));
     }
-    if !out.converged(rtol) {
-        return Err(not_converged(out.relative_error, rtol));
-    }
     Ok(out)
-}
-
-/// The error of a quadrature that ran out of splits.
-pub(crate) fn not_converged(relative_error: f64, rtol: f64) -> RideError {
-    RideError::Numerical(format!(
-        "frequency integral stopped at a relative error estimate of {relative_error:.1e} \
-         (asked {rtol:.1e}): its {MAX_SPLITS} panel splits ran out"
-    ))
 }
 
 /// True when the velocity transfer has a pole at zero frequency (static deflection
@@ -463,7 +453,7 @@ mod tests {
 
     /// The quadrature says how far it got: at 1e-8 it meets the tolerance and agrees with
     /// the closed form; asked for a tolerance of 0 (which no error estimate meets) the
-    /// splits run out, `converged` says so and `criteria_spectral` refuses with the estimate.
+    /// splits run out, and `converged` and the estimate say so.
     #[test]
     fn a_quadrature_that_runs_out_of_splits_says_so() {
         let q = QuarterCar {
@@ -490,9 +480,7 @@ mod tests {
             "and the estimate is still small"
         );
         assert_eq!(tight.evaluations, 15 * (2 * (4 + MAX_SPLITS) - 4));
-        let err = criteria_spectral(&model, &road, 0.0)
-            .unwrap_err()
-            .to_string();
-        assert!(err.contains("splits ran out"), "{err}");
+        let out = criteria_spectral(&model, &road, 0.0).unwrap();
+        assert!(!out.converged(0.0) && out.relative_error == tight.relative_error);
     }
 }
