@@ -773,6 +773,40 @@ fn bad_input_is_one_line_naming_the_option_with_exit_code_2() {
             &["map", "--model", "quarter", "--compute", "gpu"],
             "compute",
         ),
+        (
+            &["map", "--model", "quarter", "--comfort", "foo"],
+            "comfort",
+        ),
+        (&["optimize", "--comfort", "foo"], "comfort"),
+        (&["optimize", "--comfort", ""], "comfort"),
+        (
+            &[
+                "map",
+                "--model",
+                "full",
+                "--comfort",
+                "wk",
+                "--compute",
+                "gpu",
+            ],
+            "comfort",
+        ),
+        (
+            &["optimize", "--evaluator", "vba-qts", "--comfort", "wk"],
+            "comfort",
+        ),
+        (
+            &[
+                "optimize",
+                "--evaluator",
+                "vba-qts",
+                "--comfort",
+                "wk",
+                "--adaptive",
+                "2",
+            ],
+            "comfort",
+        ),
         (&["simulate"], "model"),
         (
             &["simulate", "--model", "full", "--duration", "-1"],
@@ -1318,5 +1352,201 @@ fn optimize_pick_rules_equal_the_library() {
             .unwrap();
         assert_same_json(&v, &to_json(&lib), rule);
         assert_eq!(v["pick"]["rule"], rule);
+    }
+}
+
+/// `map --comfort wk` (issue #16): the BAcc plane holds the ISO 2631-1 Wk-weighted RMS
+/// body acceleration of each design, equal to the frequency route and to the Kronecker
+/// route of that design to 1e-8 (the datum's too); DTL and SWS are the unweighted map's
+/// bit for bit; the JSON says `"comfort": "wk"`, the CSV names the column.
+#[test]
+fn map_comfort_wk_is_the_exact_weighted_acceleration() {
+    use ridelab::criteria::{bacc_wk_exact, bacc_wk_spectral};
+    let car = Car::datum();
+    let road = Road::default();
+    for (kind, model) in [("quarter", ModelKind::Quarter), ("full", ModelKind::Full)] {
+        let base = [
+            "map",
+            "--model",
+            kind,
+            "--ks-range",
+            "10000:40000:5",
+            "--cs-range",
+            "500:4000:4",
+        ];
+        let wk = json(&[&base[..], &["--comfort", "wk"]].concat());
+        let plain = json(&base);
+        assert_eq!(wk["comfort"], "wk");
+        assert!(plain.get("comfort").is_none());
+        assert_eq!(wk["units"]["bacc"], "m/s^2");
+        assert_eq!(wk["dtl"], plain["dtl"]);
+        assert_eq!(wk["sws"], plain["sws"]);
+        // SWS decides the mask here; the feasible set carries the weighted BAcc.
+        assert_eq!(wk["feasibility"]["mask"], plain["feasibility"]["mask"]);
+        assert_eq!(
+            wk["feasibility"]["summary"],
+            plain["feasibility"]["summary"]
+        );
+        for p in wk["feasibility"]["feasible_set"].as_array().unwrap() {
+            let k = wk["ks_values"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .position(|v| *v == p["ks"])
+                .unwrap()
+                + 5 * wk["cs_values"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .position(|v| *v == p["cs"])
+                    .unwrap();
+            assert_eq!(p["bacc"], wk["bacc"][k]);
+        }
+        let f = |v: &Value, k: usize| v.as_array().unwrap()[k].as_f64().unwrap();
+        let mut worst = 0.0f64;
+        for k in [0, 7, 13, 19] {
+            let (i, j) = (k % 5, k / 5);
+            let ks = f(&wk["ks_values"], i);
+            let cs = f(&wk["cs_values"], j);
+            let m = model.build(&car.with_front(ks, cs).unwrap());
+            let spectral = bacc_wk_spectral(&m, &road, 1e-11).unwrap();
+            let exact = bacc_wk_exact(&m, &road).unwrap();
+            let got = f(&wk["bacc"], k);
+            worst = worst.max((got / spectral - 1.0).abs());
+            assert!(
+                (got / spectral - 1.0).abs() < 1e-8,
+                "{kind} {k}: {got} vs {spectral}"
+            );
+            assert!(
+                (got / exact - 1.0).abs() < 1e-8,
+                "{kind} {k}: {got} vs {exact}"
+            );
+            // Not the unweighted value: the weighting is on.
+            assert!(
+                (got / f(&plain["bacc"], k) - 1.0).abs() > 0.05,
+                "{kind} {k}"
+            );
+        }
+        let datum = bacc_wk_spectral(&model.build(&car), &road, 1e-11).unwrap();
+        let got = wk["datum"]["criteria"]["bacc"].as_f64().unwrap();
+        assert!((got / datum - 1.0).abs() < 1e-8, "{kind} datum");
+        println!("{kind}: Wk map plane vs frequency route, worst relative difference {worst:.1e}");
+        let (code, csv, err) = ridelab(&[&base[..], &["--comfort", "wk", "--csv"]].concat());
+        assert_eq!(code, 0, "{err}");
+        assert!(
+            csv.starts_with("ks_n_per_m,cs_ns_per_m,bacc_wk_m_per_s2,dtl_n,sws_m,"),
+            "{csv}"
+        );
+    }
+}
+
+/// `--comfort bacc` is the default: the output is the same bytes as without the option
+/// (map JSON and CSV, optimize text and JSON).
+#[test]
+fn comfort_bacc_is_the_output_without_the_option() {
+    let map = [
+        "map",
+        "--model",
+        "quarter",
+        "--ks-range",
+        "10000:40000:7",
+        "--cs-range",
+        "500:4000:6",
+    ];
+    let opt = ["optimize", "--evaluator", "quarter", "--grid", "41"];
+    for (args, extra) in [
+        (&map[..], &["--json"][..]),
+        (&map[..], &["--csv"][..]),
+        (&opt[..], &[][..]),
+        (&opt[..], &["--json"][..]),
+    ] {
+        let without = ridelab(&[args, extra].concat());
+        let with = ridelab(&[args, extra, &["--comfort", "bacc"]].concat());
+        assert_eq!(without.0, 0, "{args:?} {extra:?}: {}", without.2);
+        assert_eq!(with, without, "{args:?} {extra:?}");
+        assert!(!without.1.contains("comfort\""), "{args:?} {extra:?}");
+    }
+}
+
+/// `optimize --comfort wk` on the HiFi (issue #16): the JSON is the library's; the front,
+/// the datum and the re-check hold Wk-weighted values (equal to the frequency route to
+/// 1e-8 at the datum and the pick); the min-max pick differs from the unweighted one; on
+/// the LoFi the pick is re-checked on the HiFi with the Wk measure too.
+#[test]
+fn optimize_comfort_wk_picks_and_rechecks_with_the_weighted_measure() {
+    use ridelab::comfort::Comfort;
+    use ridelab::criteria::bacc_wk_spectral;
+    use ridelab::optimize::{optimize_report_with, EvaluatorSpec};
+    let car = Car::datum();
+    let road = Road::default();
+    let wk_of = |ks: f64, cs: f64| {
+        bacc_wk_spectral(
+            &ModelKind::Full.build(&car.with_front(ks, cs).unwrap()),
+            &road,
+            1e-11,
+        )
+        .unwrap()
+    };
+    let close = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-8;
+    let num = |v: &Value| v.as_f64().unwrap();
+    for (kind, model) in [("full", ModelKind::Full), ("quarter", ModelKind::Quarter)] {
+        let args = ["optimize", "--evaluator", kind, "--grid", "41", "--json"];
+        let wk = json(&[&args[..], &["--comfort", "wk"]].concat());
+        let plain = json(&args);
+        let lib = optimize_report_with(
+            &car,
+            &road,
+            &ridelab::DesignBox::default(),
+            EvaluatorSpec::Model(model),
+            PlanSpec::parse("ae:10").unwrap(),
+            &Method::Stm(StmParams {
+                grid: 41,
+                ..StmParams::default()
+            }),
+            DesignObjectives::default(),
+            Comfort::Wk,
+        )
+        .unwrap();
+        assert_same_json(&wk, &to_json(&lib), &format!("optimize {kind} wk"));
+        assert_eq!(wk["comfort"], "wk");
+        assert!(close(
+            num(&wk["datum"]["bacc"]),
+            wk_of(car.front.spring, car.front.damper)
+        ));
+        assert_eq!(wk["datum"]["dtl"], plain["datum"]["dtl"]);
+        let (ks, cs) = (num(&wk["pick"]["ks"]), num(&wk["pick"]["cs"]));
+        let check = &wk["hifi_recheck"];
+        assert_eq!(check["evaluator"], "full");
+        assert!(
+            close(num(&check["rechecked"]["bacc"]), wk_of(ks, cs)),
+            "{kind}"
+        );
+        if kind == "full" {
+            assert!(close(num(&wk["pick"]["criteria"]["bacc"]), wk_of(ks, cs)));
+        }
+        let (pks, pcs) = (num(&plain["pick"]["ks"]), num(&plain["pick"]["cs"]));
+        assert!(
+            (ks - pks).abs() > 1.0 || (cs - pcs).abs() > 1.0,
+            "{kind}: the Wk pick ({ks}, {cs}) is the BAcc pick ({pks}, {pcs})"
+        );
+        println!(
+            "{kind}: BAcc pick Ks {pks:.1} Cs {pcs:.1}; Wk pick Ks {ks:.1} Cs {cs:.1}, re-checked Wk {:+.2} %, DTL {:+.2} %",
+            num(&check["rechecked_change_percent"][0]),
+            num(&check["rechecked_change_percent"][1])
+        );
+        let (code, text, err) = ridelab(&[
+            "optimize",
+            "--evaluator",
+            kind,
+            "--grid",
+            "41",
+            "--comfort",
+            "wk",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        assert!(
+            text.contains("  BAcc (Wk) ") && text.contains("re-check: BAcc (Wk) "),
+            "{text}"
+        );
     }
 }

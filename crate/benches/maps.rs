@@ -1,10 +1,12 @@
 //! Timings of the design maps: a LoFi 101 x 101 map and a HiFi 41 x 41 map of all three
 //! criteria over the default design box (datum car, class B, 20 m/s), on all available
-//! threads and on one; plus marching squares on the LoFi map.
+//! threads and on one; plus marching squares on the LoFi map; and both maps with the
+//! ISO 2631-1 Wk-weighted comfort in the BAcc field (`--comfort wk`, issue #16).
 //!
 //! Run: `cargo bench -p ridelab --bench maps`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use ridelab::comfort::WkComfort;
 use ridelab::design::DesignBox;
 use ridelab::maps::{auto_levels, contours, default_threads, Dcs, Grid, Scale};
 use ridelab::{Car, HiFi, LoFi, Road};
@@ -52,7 +54,15 @@ fn maps(c: &mut Criterion) {
             Dcs::compute_with_threads(black_box(&hifi), &g41, datum, Scale::Absolute, 1).unwrap()
         })
     });
+    let wk_hifi = WkComfort::full(hifi.clone());
+    slow.bench_function(format!("hifi 41x41 wk comfort ({threads} threads)"), |b| {
+        b.iter(|| Dcs::compute(black_box(&wk_hifi), &g41, datum, Scale::Absolute).unwrap())
+    });
     slow.finish();
+    let wk_lofi = WkComfort::quarter(&car, &road);
+    c.bench_function(&format!("lofi 41x41 wk comfort ({threads} threads)"), |b| {
+        b.iter(|| Dcs::compute(black_box(&wk_lofi), &g41, datum, Scale::Absolute).unwrap())
+    });
 }
 
 criterion_group!(benches, maps);

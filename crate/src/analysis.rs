@@ -244,6 +244,15 @@ impl HiFi {
         self.tally.counts()
     }
 
+    /// The linear model at design `(ks, cs)`: the symmetric half on correlated tracks,
+    /// the full car on independent tracks (the model of the exact fallback routes).
+    pub fn model_at(&self, ks: f64, cs: f64) -> LinearModel {
+        let mut m = self.base.clone();
+        m.k += ks * &self.dk;
+        m.c += cs * &self.dc;
+        m
+    }
+
     /// The criteria at `(ks, cs)` (N/m, N s/m), the route that gave them and, for the
     /// residue route, its error bound; counted in [`HiFi::route_counts`].
     pub fn evaluate_routed(&self, ks: f64, cs: f64) -> Result<Routed> {

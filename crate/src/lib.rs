@@ -6,6 +6,7 @@
 pub mod analysis;
 pub mod car;
 pub mod chart;
+pub mod comfort;
 pub mod criteria;
 pub mod design;
 pub mod doe;
@@ -26,6 +27,7 @@ pub mod web;
 
 pub use analysis::{HiFi, LoFi, ModelKind};
 pub use car::{Car, QuarterCar};
+pub use comfort::Comfort;
 pub use design::DesignBox;
 pub use error::{Result, RideError};
 pub use evaluate::{Criteria, Evaluator};

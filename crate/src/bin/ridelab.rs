@@ -10,6 +10,7 @@ use clap::{Args, Parser, Subcommand};
 use ridelab::analysis::{report, ModelKind, Report};
 use ridelab::car::Car;
 use ridelab::chart::{front_chart, line_chart_svg, map_chart_svg, map_report_charts};
+use ridelab::comfort::Comfort;
 use ridelab::design::DesignBox;
 use ridelab::doe::doe_report;
 use ridelab::dos::DesignObjectives;
@@ -17,7 +18,7 @@ use ridelab::error::{Result, RideError};
 use ridelab::gpu::Compute;
 use ridelab::maps::{map_csv, map_report_on, Axis, Grid, MapSettings, Scale};
 use ridelab::optimize::{
-    optimize_report, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, PickRule, StmParams,
+    optimize_report_with, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, PickRule, StmParams,
 };
 use ridelab::report::{build, ReportInputs, SECTIONS};
 use ridelab::road::{Road, RoadClass, Tracks};
@@ -125,6 +126,10 @@ struct OptimizeArgs {
     /// The pick: minmax (the thesis's), knee, or asf:W (weighted, comfort weight W in 0..1).
     #[arg(long, default_value = "minmax")]
     pick: PickRule,
+    /// The comfort objective: bacc (RMS body acceleration) or wk (ISO 2631-1
+    /// Wk-weighted), m/s^2; wk needs --evaluator quarter or full.
+    #[arg(long, default_value = "bacc")]
+    comfort: Comfort,
     /// STM grid points per variable, 2..2001.
     #[arg(long, default_value_t = StmParams::default().grid, value_parser = count, allow_negative_numbers = true)]
     grid: usize,
@@ -162,6 +167,10 @@ struct MapArgs {
     /// Criteria relative to the datum car's.
     #[arg(long)]
     relative: bool,
+    /// The comfort field: bacc (RMS body acceleration) or wk (ISO 2631-1 Wk-weighted),
+    /// m/s^2; the JSON's `comfort` says "wk" when it is weighted.
+    #[arg(long, default_value = "bacc")]
+    comfort: Comfort,
     /// Where the HiFi map is computed: gpu, cpu, or auto (a hardware GPU when there is
     /// one, else the CPU); the JSON's `compute` says which ran.
     #[arg(long, default_value = "auto")]
@@ -683,7 +692,7 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
     let design_box = DesignBox::default();
     let (mut out, looped) = match a.adaptive.options() {
         None => (
-            optimize_report(
+            optimize_report_with(
                 &car,
                 &road,
                 &design_box,
@@ -691,9 +700,16 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
                 a.plan,
                 &method,
                 objectives,
+                a.comfort,
             )?,
             None,
         ),
+        Some(_) if a.comfort == Comfort::Wk => {
+            return Err(RideError::field(
+                "comfort",
+                "wk needs --evaluator quarter or full: the adaptive loop's surrogates are fitted to the unweighted BAcc",
+            ))
+        }
         Some(options) => {
             let r = adaptive::optimize_report(
                 &car,
@@ -712,14 +728,12 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
         out.repick(a.pick, &car, &road)?;
     }
     if let Some(path) = &svg {
-        write_svg(
-            path,
-            &line_chart_svg(&front_chart(
-                &out.study,
-                &out.datum,
-                Some(&out.hifi_recheck),
-            ))?,
-        )?;
+        let mut chart = front_chart(&out.study, &out.datum, Some(&out.hifi_recheck));
+        if out.comfort == Comfort::Wk {
+            chart.title = chart.title.replacen("BAcc", out.comfort.label(), 1);
+            chart.x_label = format!("{} [m/s^2]", out.comfort.label());
+        }
+        write_svg(path, &line_chart_svg(&chart)?)?;
     }
     if let Some(looped) = looped {
         let report = adaptive::AdaptiveOptimizeReport {
@@ -758,10 +772,11 @@ fn adaptive_text(r: &adaptive::AdaptiveReport) -> String {
 fn optimize_text(out: &OptimizeReport) -> String {
     let (study, check) = (&out.study, &out.hifi_recheck);
     let p = &study.pick;
+    let bacc = out.comfort.label();
     format!(
         "front: {} points on {} ({} evaluations), hypervolume {:.4} (m/s^2) N against [{:.4}, {:.2}]\n\
-         {} pick: Ks {:.1} N/m, Cs {:.1} N s/m (pseudo-weights comfort {:.2}, road holding {:.2})\n  BAcc {:+.2} %, DTL {:+.2} %, SWS {:+.2} % against the datum\n\
-         HiFi re-check: BAcc {:+.2} %, DTL {:+.2} %, SWS {:+.2} % (prediction error {:.3} / {:.3} / {:.3} %)\n",
+         {} pick: Ks {:.1} N/m, Cs {:.1} N s/m (pseudo-weights comfort {:.2}, road holding {:.2})\n  {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} % against the datum\n\
+         HiFi re-check: {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} % (prediction error {:.3} / {:.3} / {:.3} %)\n",
         study.front.len(),
         study.evaluator,
         study.evaluations,
@@ -902,6 +917,7 @@ fn map_cmd(a: MapArgs) -> Result<String> {
             Scale::Absolute
         },
         objectives: a.objectives.objectives()?,
+        comfort: a.comfort,
         ..MapSettings::default()
     };
     let r = map_report_on(a.model, &car, &road, &settings, a.compute)?;

@@ -27,6 +27,10 @@ pub fn map_report_charts(r: &MapReport) -> Vec<(&'static str, MapChart)> {
         .iter()
         .enumerate()
         .map(|(k, &(key, name, long, unit, factor))| {
+            let (name, long) = match (k, r.comfort) {
+                (0, c @ crate::comfort::Comfort::Wk) => (c.label(), c.long_name()),
+                _ => (name, long),
+            };
             let (shown, unit, cmap): (Box<dyn Fn(f64) -> f64>, String, ColourMap) = match r.scale {
                 Scale::Absolute => (
                     Box::new(move |v| v * factor),

@@ -19,7 +19,9 @@ mod spectral;
 
 pub use closed_form::quarter_car_rms;
 pub use exact::criteria_exact;
-pub use iso2631::{bacc_wk_exact, bacc_wk_spectral, comfort_label, wk_gain};
+pub use iso2631::{
+    bacc_wk, bacc_wk_exact, bacc_wk_modal, bacc_wk_spectral, comfort_label, wk_gain,
+};
 pub use modal::{criteria_fast_exact, criteria_modal};
 pub use residue::{
     Certified, Decline, Residue, ResidueFamily, ResidueRoute, MAX_DOF, RESIDUE_TOLERANCE,

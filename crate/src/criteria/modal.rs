@@ -39,17 +39,81 @@ use num_complex::Complex64 as C64;
 const ZERO: C64 = C64::new(0.0, 0.0);
 
 /// A wheel group of one source: delay, input polynomials and output feed-through.
-struct Group {
-    tau: f64,
+pub(super) struct Group {
+    pub tau: f64,
     kr: Vec<f64>,
     cr: Vec<f64>,
     yr: [f64; N_OUT],
-    g: [f64; N_OUT],
+    pub g: [f64; N_OUT],
 }
 
 /// Exact RMS criteria by the modal route (see the module doc). Declines with an
 /// `Err(ModalInapplicable(..))` when the modal expansion is not accurate.
 pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
+    let Expansion {
+        lam,
+        sources,
+        intensity,
+    } = expand(model, road)?;
+    let ns = lam.len();
+    // 1 / -(lambda_k + lambda_m), shared by every output and wheel-group pair.
+    let inv_sum: Vec<C64> = (0..ns * ns)
+        .map(|km| -(lam[km / ns] + lam[km % ns]).inv())
+        .collect();
+    let mut var = [0.0; N_OUT];
+    for (groups, rho) in &sources {
+        for (gi, g) in groups.iter().enumerate() {
+            for (li, l) in groups.iter().enumerate().take(gi + 1) {
+                let dt = g.tau - l.tau;
+                let e: Vec<C64> = lam.iter().map(|&lm| (lm * dt).exp()).collect();
+                for (o, vo) in var.iter_mut().enumerate() {
+                    let (rg, rl) = (&rho[gi][o], &rho[li][o]);
+                    let rle: Vec<C64> = (0..ns).map(|m| rl[m] * e[m]).collect();
+                    let mut t = ZERO;
+                    for k in 0..ns {
+                        let row = &inv_sum[k * ns..(k + 1) * ns];
+                        let inner: C64 = (0..ns).map(|m| rle[m] * row[m]).sum();
+                        t += rg[k] * inner;
+                    }
+                    let mut t = t.re;
+                    if gi != li {
+                        t *= 2.0; // the (l, g) ordered pair gives the same value
+                        let bx: C64 = (0..ns).map(|k| rl[k] * (e[k] - 1.0) / lam[k]).sum();
+                        t -= 2.0 * g.g[o] * bx.re;
+                    }
+                    *vo += intensity * t;
+                }
+            }
+        }
+        for g in groups {
+            for l in groups {
+                for (o, v) in var.iter_mut().enumerate() {
+                    *v += intensity * g.g[o] * l.g[o] * g.tau.min(l.tau);
+                }
+            }
+        }
+    }
+    rms_of(var)
+}
+
+/// The modal expansion of a model on a road: the poles `lambda_k` of the first-order
+/// form and, per source, its wheel groups with the residues `rho[g][o][k]` of
+/// `T_g(s) / s` (the transfer from group `g`'s road velocity to output `o`).
+pub(super) struct Expansion {
+    /// The poles, rad/s.
+    pub lam: Vec<C64>,
+    /// Per source: the wheel groups (by increasing delay) and `rho[g][o][k]`.
+    pub sources: Vec<(Vec<Group>, Residues)>,
+    /// The white road velocity's intensity.
+    pub intensity: f64,
+}
+
+/// `rho[g][o][k]`: group, output, pole.
+pub(super) type Residues = Vec<Vec<Vec<C64>>>;
+
+/// The expansion of `model` on `road`, checked against a direct solve at 3 Hz; declines
+/// with `Err(ModalInapplicable(..))` where it is not accurate.
+pub(super) fn expand(model: &LinearModel, road: &Road) -> Result<Expansion> {
     road.validate()?;
     let n = model.n();
     for (name, mat) in [("M", &model.m), ("C", &model.c), ("K", &model.k)] {
@@ -142,11 +206,7 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
         .iter()
         .map(|&l| std::array::from_fn(|o| row(o, l)))
         .collect();
-    // 1 / -(lambda_k + lambda_m), shared by every output and wheel-group pair.
-    let inv_sum: Vec<C64> = (0..ns * ns)
-        .map(|km| -(lam[km / ns] + lam[km % ns]).inv())
-        .collect();
-    let mut var = [0.0; N_OUT];
+    let mut sources = Vec::with_capacity(exc.sources.len());
     for src in &exc.sources {
         let groups = groups(model, &kinv, &minv, &src.channels)?;
         // rho[g][o][k]
@@ -188,38 +248,13 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
                 }
             }
         }
-        for (gi, g) in groups.iter().enumerate() {
-            for (li, l) in groups.iter().enumerate().take(gi + 1) {
-                let dt = g.tau - l.tau;
-                let e: Vec<C64> = lam.iter().map(|&lm| (lm * dt).exp()).collect();
-                for (o, vo) in var.iter_mut().enumerate() {
-                    let (rg, rl) = (&rho[gi][o], &rho[li][o]);
-                    let rle: Vec<C64> = (0..ns).map(|m| rl[m] * e[m]).collect();
-                    let mut t = ZERO;
-                    for k in 0..ns {
-                        let row = &inv_sum[k * ns..(k + 1) * ns];
-                        let inner: C64 = (0..ns).map(|m| rle[m] * row[m]).sum();
-                        t += rg[k] * inner;
-                    }
-                    let mut t = t.re;
-                    if gi != li {
-                        t *= 2.0; // the (l, g) ordered pair gives the same value
-                        let bx: C64 = (0..ns).map(|k| rl[k] * (e[k] - 1.0) / lam[k]).sum();
-                        t -= 2.0 * g.g[o] * bx.re;
-                    }
-                    *vo += exc.intensity * t;
-                }
-            }
-        }
-        for g in &groups {
-            for l in &groups {
-                for (o, v) in var.iter_mut().enumerate() {
-                    *v += exc.intensity * g.g[o] * l.g[o] * g.tau.min(l.tau);
-                }
-            }
-        }
+        sources.push((groups, rho));
     }
-    rms_of(var)
+    Ok(Expansion {
+        lam,
+        sources,
+        intensity: exc.intensity,
+    })
 }
 
 /// Wheel groups of one source with their static gains; refuses unbounded responses.

@@ -10,6 +10,7 @@ use super::dos_mask::{
 use super::grid::Grid;
 use crate::analysis::{HiFi, LoFi, ModelKind};
 use crate::car::Car;
+use crate::comfort::Comfort;
 use crate::dos::{DesignObjectives, DosContext, Objective};
 use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
@@ -36,6 +37,10 @@ pub struct MapSettings {
     pub objectives: DesignObjectives,
     /// Automatic contour levels per criterion, at most (default 10, 0 for none).
     pub contour_levels: usize,
+    /// The comfort measure in the BAcc field (default the unweighted BAcc; left out of
+    /// the JSON then).
+    #[serde(skip_serializing_if = "Comfort::is_bacc")]
+    pub comfort: Comfort,
 }
 
 impl Default for MapSettings {
@@ -45,6 +50,7 @@ impl Default for MapSettings {
             scale: Scale::Absolute,
             objectives: DesignObjectives::default(),
             contour_levels: 10,
+            comfort: Comfort::Bacc,
         }
     }
 }
@@ -139,6 +145,10 @@ pub struct MapReport {
     pub layout: &'static str,
     /// Units.
     pub units: Units,
+    /// The comfort measure in `bacc` (and the datum's): `"wk"` for the ISO 2631-1
+    /// Wk-weighted RMS body acceleration, m/s^2; left out for the unweighted BAcc.
+    #[serde(skip_serializing_if = "Comfort::is_bacc")]
+    pub comfort: Comfort,
     /// The datum design and its absolute criteria.
     pub datum: DatumPoint,
     /// BAcc field.
@@ -168,14 +178,22 @@ pub fn map_report(
 ) -> Result<MapReport> {
     car.validate()?;
     road.validate()?;
-    match model {
-        ModelKind::Quarter => map_report_with(&LoFi::new(car, road), car, road, settings),
-        ModelKind::Full => map_report_with(&HiFi::new(car, road)?, car, road, settings),
+    match (settings.comfort, model) {
+        (Comfort::Bacc, ModelKind::Quarter) => {
+            map_report_with(&LoFi::new(car, road), car, road, settings)
+        }
+        (Comfort::Bacc, ModelKind::Full) => {
+            map_report_with(&HiFi::new(car, road)?, car, road, settings)
+        }
+        (comfort, model) => {
+            map_report_with(&*comfort.evaluator(model, car, road)?, car, road, settings)
+        }
     }
 }
 
 /// The map report on any evaluator (a surrogate, say) that models `car` on `road`; `car`
-/// gives the datum design and the DOS context, `road` is recorded.
+/// gives the datum design and the DOS context, `road` is recorded; `settings.comfort`
+/// only labels the report (the evaluator gives the comfort measure it was built with).
 pub fn map_report_with<E: Evaluator + Sync + ?Sized>(
     evaluator: &E,
     car: &Car,
@@ -238,6 +256,7 @@ pub fn map_report_with<E: Evaluator + Sync + ?Sized>(
         cs_values: grid.cs.values(),
         layout: LAYOUT,
         units,
+        comfort: settings.comfort,
         datum: map.datum,
         feasibility: Feasibility {
             objectives: dos.objectives,
@@ -273,6 +292,14 @@ pub fn map_report_on(
             "gpu: the GPU path maps the full model only (use --compute cpu or auto with the quarter car)",
         )),
         (ModelKind::Quarter, _) => map_report(model, car, road, settings),
+        // The exact Wk route runs on the CPU (the GPU route has no Wk filter).
+        (ModelKind::Full, Compute::Gpu) if settings.comfort == Comfort::Wk => Err(RideError::field(
+            "comfort",
+            "wk: the Wk-weighted comfort is computed on the CPU (use --compute cpu or auto)",
+        )),
+        (ModelKind::Full, _) if settings.comfort == Comfort::Wk => {
+            map_report(model, car, road, settings)
+        }
         (ModelKind::Full, _) => {
             settings.validate()?;
             let hifi = HiFiGrid::compute(car, road, &settings.grid, compute, default_threads())?;
@@ -287,15 +314,20 @@ pub fn map_report_on(
 /// The report as CSV, one row per grid point in map order (Cs rows, Ks columns):
 /// `ks_n_per_m,cs_ns_per_m,bacc_m_per_s2,dtl_n,sws_m,feasible,broken`, where `broken`
 /// lists the broken objectives' names separated by `;`. A relative report names its
-/// criteria columns `bacc_ratio,dtl_ratio,sws_ratio`.
+/// criteria columns `bacc_ratio,dtl_ratio,sws_ratio`. With Wk comfort the BAcc column is
+/// `bacc_wk_m_per_s2` (`bacc_wk_ratio`).
 pub fn map_csv(report: &MapReport) -> String {
     let mut out = String::with_capacity(64 * (report.bacc.len() + 1));
-    out.push_str(match report.scale {
+    let header = match report.scale {
         Scale::Absolute => "ks_n_per_m,cs_ns_per_m,bacc_m_per_s2,dtl_n,sws_m,feasible,broken\n",
         Scale::Relative => {
             "ks_n_per_m,cs_ns_per_m,bacc_ratio,dtl_ratio,sws_ratio,feasible,broken\n"
         }
-    });
+    };
+    match report.comfort {
+        Comfort::Bacc => out.push_str(header),
+        Comfort::Wk => out.push_str(&header.replacen("bacc_", "bacc_wk_", 1)),
+    }
     let g = report.grid;
     for k in 0..g.len() {
         let (i, j) = g.indices(k);

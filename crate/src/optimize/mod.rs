@@ -26,7 +26,10 @@ pub use minmax::{
 };
 pub use nsga2::{nsga2, Nsga2Params};
 pub use problem::{dominates, non_dominated, Eval, Problem, Solution};
-pub use report::{optimize_model, optimize_report, EvaluatorSpec, OptimizeReport};
+pub use report::{
+    optimize_model, optimize_model_with, optimize_report, optimize_report_with, EvaluatorSpec,
+    OptimizeReport,
+};
 pub use stm::{stm, StmParams};
 pub use study::{run_study, Method, Study};
 pub use suspension::{Counted, FrontPoint, SuspensionProblem};

@@ -11,6 +11,7 @@ use super::study::{run_study, Method, Study};
 use super::suspension::SuspensionProblem;
 use crate::analysis::{HiFi, LoFi, ModelKind};
 use crate::car::Car;
+use crate::comfort::{Comfort, WkComfort};
 use crate::design::DesignBox;
 use crate::dos::{DesignObjectives, DosContext};
 use crate::error::{Result, RideError};
@@ -82,6 +83,11 @@ pub struct OptimizeReport {
     pub datum: Criteria,
     /// The pick re-evaluated on the HiFi.
     pub hifi_recheck: Recheck,
+    /// The comfort measure of the front's BAcc axis, the datum's and the re-check's:
+    /// `"wk"` for the ISO 2631-1 Wk-weighted RMS body acceleration, m/s^2; left out for
+    /// the unweighted BAcc.
+    #[serde(skip_serializing_if = "Comfort::is_bacc")]
+    pub comfort: Comfort,
 }
 
 impl OptimizeReport {
@@ -89,7 +95,8 @@ impl OptimizeReport {
     /// `car` on `road` (the report's datum is that HiFi's).
     pub fn repick(&mut self, rule: PickRule, car: &Car, road: &Road) -> Result<()> {
         let p = pick(&self.study.front, &self.datum, rule)?;
-        self.hifi_recheck = recheck(&p, &HiFi::new(car, road)?, &self.datum)?;
+        let hifi = self.comfort.evaluator(ModelKind::Full, car, road)?;
+        self.hifi_recheck = recheck(&p, &*hifi, &self.datum)?;
         self.study.pick = p;
         Ok(())
     }
@@ -106,9 +113,45 @@ pub fn optimize_report(
     method: &Method,
     objectives: DesignObjectives,
 ) -> Result<OptimizeReport> {
+    optimize_report_with(
+        car,
+        road,
+        design_box,
+        evaluator,
+        plan,
+        method,
+        objectives,
+        Comfort::Bacc,
+    )
+}
+
+/// [`optimize_report`] with the comfort measure `comfort` on the front's BAcc axis, in
+/// the datum's criteria (so "BAcc no worse than the datum" compares like with like) and
+/// in the HiFi re-check. Wk comfort needs the LoFi or the HiFi: the surrogates are fitted
+/// to the unweighted BAcc, and asking one for Wk is an error naming `comfort`.
+#[allow(clippy::too_many_arguments)]
+pub fn optimize_report_with(
+    car: &Car,
+    road: &Road,
+    design_box: &DesignBox,
+    evaluator: EvaluatorSpec,
+    plan: PlanSpec,
+    method: &Method,
+    objectives: DesignObjectives,
+    comfort: Comfort,
+) -> Result<OptimizeReport> {
     objectives.validate()?;
-    let model = evaluator.build(car, road, design_box, plan)?;
-    optimize_model(car, road, design_box, model, method, objectives)
+    let model = match (comfort, evaluator) {
+        (Comfort::Bacc, _) => evaluator.build(car, road, design_box, plan)?,
+        (Comfort::Wk, EvaluatorSpec::Model(kind)) => comfort.evaluator(kind, car, road)?,
+        (Comfort::Wk, EvaluatorSpec::Surrogate(_)) => {
+            return Err(RideError::field(
+                "comfort",
+                "wk needs --evaluator quarter or full: the surrogates are fitted to the unweighted BAcc",
+            ))
+        }
+    };
+    optimize_model_with(car, road, design_box, model, method, objectives, comfort)
 }
 
 /// [`optimize_report`] on an evaluator built already (the adaptive loop's surrogate).
@@ -120,16 +163,42 @@ pub fn optimize_model(
     method: &Method,
     objectives: DesignObjectives,
 ) -> Result<OptimizeReport> {
+    optimize_model_with(
+        car,
+        road,
+        design_box,
+        model,
+        method,
+        objectives,
+        Comfort::Bacc,
+    )
+}
+
+/// [`optimize_model`] where `model` gives the comfort measure `comfort` in its BAcc slot:
+/// the datum and the re-check use the HiFi with the same measure.
+pub fn optimize_model_with(
+    car: &Car,
+    road: &Road,
+    design_box: &DesignBox,
+    model: Box<dyn Evaluator + Sync>,
+    method: &Method,
+    objectives: DesignObjectives,
+    comfort: Comfort,
+) -> Result<OptimizeReport> {
     objectives.validate()?;
-    let hifi = HiFi::new(car, road)?;
+    let hifi: Box<dyn Evaluator + Sync> = match comfort {
+        Comfort::Bacc => Box::new(HiFi::new(car, road)?),
+        Comfort::Wk => Box::new(WkComfort::full(HiFi::new(car, road)?)),
+    };
     let datum = hifi.evaluate(car.front.spring, car.front.damper)?;
     let problem =
         SuspensionProblem::new(model, *design_box, objectives, DosContext::new(car, datum))?;
     let study = run_study(&problem, method, None)?;
-    let hifi_recheck = recheck(&study.pick, &hifi, &datum)?;
+    let hifi_recheck = recheck(&study.pick, &*hifi, &datum)?;
     Ok(OptimizeReport {
         study,
         datum,
         hifi_recheck,
+        comfort,
     })
 }
