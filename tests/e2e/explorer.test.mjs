@@ -569,7 +569,7 @@ test('keyboard: every control is a native, focusable input', { timeout: TIMEOUT 
     return order;
   };
   // The workbench: the tabs, the design, the scenario, the map options, the maps themselves.
-  let order = await tabOrder(34);
+  let order = await tabOrder(36);
   for (const id of ['tab-car', 'tab-help', 'projector', 'ks-range', 'ks-num', 'cs-range', 'cs-num', 'reset-datum', 'to-pick', 'car', 'class', 'speed',
     'sws-range', 'sws-limit', 'map-model', 'map-scale', 'map-palette', 'show-plan', 'map-bacc-pick', 'map-dtl-pick', 'map-sws-pick', 'op-scale', 'op-nsga']) {
     assert.ok(order.includes(id), `${id} reachable with Tab (${order.join(', ')})`);

@@ -201,7 +201,7 @@ test('design box and objectives: edits apply, bad ones name the field and keep t
   await set('bb-hi', '1.2');
   s = await page.evaluate(() => window.__ridelab.state);
   assert.deepEqual(s.bounceBand, [1, 1.2]);
-  assert.match(await page.locator('#map-status').textContent(), /break the bounce band/);
+  assert.match(await page.locator('#map-status').textContent(), /break the body-bounce frequency band/);
   const bits = await page.evaluate(() => {
     const m = window.__ridelab.maps;
     let b = 0;
@@ -220,7 +220,7 @@ test('design box and objectives: edits apply, bad ones name the field and keep t
   await settle(page);
   s = await page.evaluate(() => window.__ridelab.state);
   assert.deepEqual(s.noWorse, [false, true, false]);
-  assert.match(await page.locator('#map-status').textContent(), /DTL ≤ datum/);
+  assert.match(await page.locator('#map-status').textContent(), /DTL no worse than datum/);
   await page.locator('.maps').screenshot({ path: path.join(OUT, 'maps-objectives.png') });
   await page.locator('#panel-objectives').screenshot({ path: path.join(OUT, 'objectives-panel.png') });
   // The link carries all of it.

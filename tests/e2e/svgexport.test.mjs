@@ -21,9 +21,9 @@ async function openWired() {
   const r = await openPage(suite.browser, suite.srv.url, { width: 1400, height: 1000, downloads: true });
   await settled(r.page, 150);
   const wired = await r.page.evaluate(async () => {
-    const { METHODS } = await import('./js/engine.js');
+    const { FUNCTIONS } = await import('./js/engine.js');
     const app = window.__ridelab;
-    return typeof app.api.lineChartSvg === 'function' && METHODS.includes('lineChartSvg') && METHODS.includes('mapChartSvg');
+    return typeof app.api.lineChartSvg === 'function' && FUNCTIONS.includes('lineChartSvg') && FUNCTIONS.includes('mapChartSvg');
   });
   assert.ok(wired, 'the page exports lineChartSvg and mapChartSvg');
   await r.page.click('#tab-time');

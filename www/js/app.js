@@ -10,7 +10,7 @@
 import init, * as api from '../ridelab.js';
 import { createEngine, deferredEngine } from './engine.js';
 import { Compute } from './compute.js';
-import { Store, readSession } from './store.js';
+import { Store, readSession, setKeyFields } from './store.js';
 import { Controller } from './controller.js';
 import { Render } from './render.js';
 import { Controls, plainWords } from './controls.js';
@@ -546,6 +546,7 @@ async function main() {
     const hifi = worker ? deferredEngine(worker, main) : main;
     compute = new Compute(api, { main, hifi, heavy: heavy ? deferredEngine(heavy, main) : main });
     Object.assign(store, await compute.boot());
+    setKeyFields(store.keyFields);
     Promise.resolve(hifi.ready).then(() => {
       $('version').textContent = `RideLab ${store.version}; HiFi model on the ${hifi.kind === 'worker' ? 'worker' : 'main'} thread.`;
     });

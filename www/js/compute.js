@@ -42,6 +42,7 @@ export class Compute {
       classes: await call('roadClasses'),
       surrogateNames: await call('surrogates'),
       objectives: await call('objectives'),
+      keyFields: await call('stateKeys'),
       version: await call('version'),
     };
   }

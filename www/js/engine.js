@@ -6,7 +6,7 @@
 /** The wasm functions that need no session (with SESSION_METHODS, the worker's whitelist). */
 export const FUNCTIONS = [
   'version', 'defaultState', 'presets', 'roadClasses', 'parseCar', 'checkState', 'surrogates',
-  'objectives', 'lineChartSvg', 'mapChartSvg',
+  'objectives', 'stateKeys', 'lineChartSvg', 'mapChartSvg',
 ];
 
 /** The methods of the core's `Explorer` session: an engine call is `(method, state, ...args)`. */

@@ -26,9 +26,24 @@ export const DEFAULT_VIEW = {
 /** What each map model is called on the page. */
 export const MODEL_NAMES = { lofi: 'LoFi', hifi: 'HiFi', surrogate: 'surrogate', error: 'surrogate error' };
 
-/** The key of everything a report depends on (car, road and design). */
+/**
+ * The state fields the page keys its answers by, from the core (`stateKeys`: the fields a
+ * design's reports depend on, and those a surrogate's fit and the maps depend on); set
+ * once at start-up by `setKeyFields`.
+ */
+const KEY_FIELDS = { report: null, fit: null };
+
+/** Takes the core's key fields `{report, fit}` (arrays of state field names). */
+export function setKeyFields({ report, fit }) {
+  KEY_FIELDS.report = report;
+  KEY_FIELDS.fit = fit;
+}
+
+const keyBy = (fields, s) => JSON.stringify(fields.map((k) => (s[k] === undefined ? null : s[k])));
+
+/** The key of a design's reports: car, design point and road. */
 export function keyOf(s) {
-  return JSON.stringify([s.car, s.carJson, s.ks, s.cs, s.class, s.speed, s.tracks]);
+  return keyBy(KEY_FIELDS.report, s);
 }
 
 /** The key of everything but the design point (maps, fronts and fits depend on it). */
@@ -36,9 +51,9 @@ export function scenarioKey(s) {
   return JSON.stringify({ ...s, ks: 0, cs: 0 });
 }
 
-/** The key of everything the surrogate's fit depends on. */
+/** The key of everything the surrogate's fit and the maps' values depend on. */
 export function fitKeyOf(s) {
-  return JSON.stringify([s.car, s.carJson, s.class, s.speed, s.tracks, s.ksMin, s.ksMax, s.csMin, s.csMax, s.surrogate, s.plan]);
+  return keyBy(KEY_FIELDS.fit, s);
 }
 
 /** The state `s` at the datum design of its car (`desc` from `describe`). */

@@ -18,6 +18,6 @@ pub use adaptive::{PageLoop, PageStep};
 pub use fields::ui_field;
 pub use maps::{MapModel, ModelMap};
 pub use session::{EvaluatorKind, Session};
-pub use state::{Scenario, State, STATE_FIELDS};
+pub use state::{Scenario, State, FIT_FIELDS, REPORT_FIELDS, STATE_FIELDS};
 pub use studies::{FrontModel, FrontResult, Spectra, TimeResult};
 pub use surrogate::{fit, fit_report, FitKey, FittedSurrogate};

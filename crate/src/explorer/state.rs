@@ -13,6 +13,27 @@ use crate::surrogate::{PlanSpec, SurrogateSpec};
 use crate::LoFi;
 use serde::{Deserialize, Serialize};
 
+/// The state fields a surrogate's fit and every map's values depend on (those of
+/// [`super::FitKey`]; the objectives only judge a map): two states equal in these fields
+/// have the same fit (tested). The page keys its fits and maps by them.
+pub const FIT_FIELDS: [&str; 11] = [
+    "car",
+    "carJson",
+    "class",
+    "speed",
+    "tracks",
+    "ksMin",
+    "ksMax",
+    "csMin",
+    "csMax",
+    "surrogate",
+    "plan",
+];
+
+/// The state fields a design's LoFi and HiFi reports depend on: the car, the design and
+/// the road. The page keys its HiFi readout by them.
+pub const REPORT_FIELDS: [&str; 7] = ["car", "carJson", "ks", "cs", "class", "speed", "tracks"];
+
 /// The JS names of the [`State`] fields.
 pub const STATE_FIELDS: [&str; 19] = [
     "car",

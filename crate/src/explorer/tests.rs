@@ -386,3 +386,61 @@ fn state_fields_are_the_serialised_keys() {
     want.sort();
     assert_eq!(keys, want);
 }
+
+/// `FIT_FIELDS` and `REPORT_FIELDS` are what the page keys fits and reports by: every
+/// state field changed alone (to another valid value) changes the fit key exactly when it
+/// is a fit field, and the design's LoFi report (its numbers, car or road) exactly when it
+/// is a report field.
+#[test]
+fn the_key_field_lists_are_what_fits_and_reports_depend_on() {
+    use crate::analysis::{report, ModelKind};
+    let others: [(&str, serde_json::Value); 18] = [
+        ("car", "compact".into()),
+        ("ks", 21_000.0.into()),
+        ("cs", 1_500.0.into()),
+        ("class", "A".into()),
+        ("speed", 25.0.into()),
+        ("tracks", "independent".into()),
+        ("ksMin", 12_000.0.into()),
+        ("ksMax", 38_000.0.into()),
+        ("csMin", 600.0.into()),
+        ("csMax", 3_800.0.into()),
+        ("swsLimit", 0.008.into()),
+        ("bounceBand", serde_json::json!([0.9, 1.4])),
+        ("dampingBand", serde_json::json!([0.25, 0.45])),
+        ("noWorse", serde_json::json!([true, false, false])),
+        ("dtlMargin", 3.0.into()),
+        ("travel", serde_json::json!([0.08, 3.0])),
+        ("surrogate", "vba-qts".into()),
+        ("plan", "ae:8".into()),
+    ];
+    let base = State::default();
+    let base_s = base.scenario().unwrap();
+    let base_report = report(ModelKind::Quarter, &base_s.design, &base_s.road).unwrap();
+    let mut seen = vec!["carJson"];
+    for (field, value) in others {
+        let mut v = serde_json::to_value(&base).unwrap();
+        v[field] = value;
+        let state: State = serde_json::from_value(v).unwrap();
+        let s = state.scenario().unwrap_or_else(|e| panic!("{field}: {e}"));
+        let fit_changed = FitKey::of(&s) != FitKey::of(&base_s);
+        assert_eq!(fit_changed, FIT_FIELDS.contains(&field), "{field}: fit key");
+        let r = report(ModelKind::Quarter, &s.design, &s.road).unwrap();
+        // The quarter car sees one track: the road itself says whether the tracks changed.
+        let report_changed =
+            r.bacc != base_report.bacc || r.car != base_report.car || r.road != base_report.road;
+        assert_eq!(
+            report_changed,
+            REPORT_FIELDS.contains(&field),
+            "{field}: report"
+        );
+        seen.push(field);
+    }
+    seen.sort_unstable();
+    let mut all = STATE_FIELDS.to_vec();
+    all.sort_unstable();
+    assert_eq!(
+        seen, all,
+        "every state field is tried (carJson goes with car)"
+    );
+}
