@@ -3,6 +3,8 @@
 // takes a few milliseconds) or in a Web Worker ("worker": same module, same numbers).
 // Errors are always `{message, field}` objects; `field` names the state field at fault.
 
+import { scenarioKey } from './store.js';
+
 /** The wasm functions that need no session (with SESSION_METHODS, the worker's whitelist). */
 export const FUNCTIONS = [
   'version', 'defaultState', 'presets', 'roadClasses', 'parseCar', 'checkState', 'surrogates',
@@ -47,7 +49,7 @@ export class Host {
 
   /** The session moved to `state` (throws the core's error naming the field). */
   at(state) {
-    const key = JSON.stringify({ ...state, ks: 0, cs: 0 });
+    const key = scenarioKey(state);
     if (!this.explorer) this.explorer = new this.api.Explorer(state);
     else if (key !== this.scenarioKey) this.explorer.setState(state);
     else if (state.ks !== this.ks || state.cs !== this.cs) this.explorer.setDesign(state.ks, state.cs);
@@ -79,7 +81,7 @@ export class Host {
     const run = new this.api.AdaptiveRun(state, options);
     if (this.adaptive) this.adaptive.free();
     this.adaptive = run;
-    this.adaptiveKey = JSON.stringify({ ...state, ks: 0, cs: 0 });
+    this.adaptiveKey = scenarioKey(state);
     const report = run.report();
     const { pick } = report.history[0];
     const rechecked = this.at({ ...state, ks: pick.ks, cs: pick.cs }).criteria('hifi');
@@ -114,7 +116,7 @@ export class Host {
 
   /** The run of `state`'s scenario; throws `{field: 'adaptive'}` when there is none. */
   adaptiveFor(state) {
-    if (!this.adaptive || JSON.stringify({ ...state, ks: 0, cs: 0 }) !== this.adaptiveKey) {
+    if (!this.adaptive || scenarioKey(state) !== this.adaptiveKey) {
       throw { message: 'adaptive: no adaptive run for this scenario (start one first)', field: 'adaptive' };
     }
     return this.adaptive;

@@ -673,7 +673,7 @@ fn adaptive_section(
             "section 5 found no feasible design, so there is no front to improve".into(),
         ));
     };
-    let n = plan.plan()?.points(&inputs.design_box).len();
+    let n = plan.plan()?.levels.len();
     let initial = n.div_ceil(2);
     let options = AdaptiveOptions {
         runs: n - initial,
