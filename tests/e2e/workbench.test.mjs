@@ -559,6 +559,31 @@ test('saved designs: Keep (and S) keeps up to three, side by side with the reado
   await page.waitForFunction(() => window.__ridelab.state.ks === 30000 && window.__ridelab.state.cs === 2500);
   await page.locator('#compare thead th[data-saved="2"] button[aria-label^="Remove"]').click();
   assert.equal(await page.$$eval('#compare thead th[data-saved]', (ths) => ths.length), 2, 'one removed');
+  // The link carries the kept designs; a fresh page evaluates them again to the same numbers.
+  await page.waitForFunction(() => /[#&]ks=30000&.*&keep=30000%3A2500%2C20000%3A1500$/.test(location.hash));
+  const link = await page.evaluate(() => location.hash);
+  const savedOf = (p) => p.evaluate(() => window.__ridelab.saved.map((s) => ({ ks: s.ks, cs: s.cs, lofi: s.lofi, hifi: s.hifi })));
+  const before = await savedOf(page);
   assertClean(log);
   await context.close();
+  const again = await open(link);
+  await again.page.waitForFunction(() => window.__ridelab.saved.length === 2);
+  const after = await savedOf(again.page);
+  assert.deepEqual(after.map((s) => [s.ks, s.cs]), [[30000, 2500], [20000, 1500]], 'the link\'s designs, in order');
+  for (const [i, s] of after.entries()) {
+    for (const m of ['lofi', 'hifi']) {
+      for (const c of ['bacc', 'dtl', 'sws']) {
+        const rel = Math.abs(s[m][c] / before[i][m][c] - 1);
+        assert.ok(rel <= 1e-12, `design ${i + 1} ${m} ${c}: ${s[m][c]} vs ${before[i][m][c]} (1e-12)`);
+      }
+    }
+  }
+  assert.equal(await again.page.$$eval('#compare thead th[data-saved]', (ths) => ths.length), 2, 'both in the table');
+  assertClean(again.log);
+  await again.context.close();
+  // A bad list is refused with the field named, and the default view shown.
+  const bad = await open('#ks=15000&cs=1000&keep=1:2:3');
+  assert.match(await bad.page.locator('#banner').innerText(), /keep: '1:2:3' is not Ks:Cs pairs/);
+  assert.equal(await bad.page.evaluate(() => window.__ridelab.saved.length), 0);
+  await bad.context.close();
 });

@@ -29,7 +29,7 @@ import { fmt, fmtInput, parseNumber } from './format.js';
 import { download, mapsCsv, frontCsv, slidePng, zip } from './exports.js';
 import { allSvgs, exportCharts, objectiveChart } from './svgexport.js';
 import { installTestHooks } from './testhooks.js';
-import { keepDesign, renderCompare, MAX_SAVED } from './compare.js';
+import { keepDesign, renderCompare, savedEntry, MAX_SAVED } from './compare.js';
 import { LessonPanel } from './lessonpanel.js';
 import { isLessonHash } from './lessons.js';
 
@@ -223,25 +223,25 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
     onRemove: (i) => {
       st.saved = st.saved.filter((_, j) => j !== i);
       showSaved();
+      st.scheduleUrl();
     },
   });
   /** Keeps the design once its HiFi column is current (js/compare.js). */
   const keep = async () => {
     while (!ctl.isSettled()) await new Promise((r) => setTimeout(r, 20));
-    const crit = (r) => (r ? { bacc: r.bacc, dtl: r.dtl, sws: r.sws } : null);
-    st.saved = keepDesign(st.saved, {
-      ks: st.state.ks,
-      cs: st.state.cs,
-      lofi: crit(st.lofi.design),
-      hifi: st.hifiCurrent() ? crit(st.hifi.design) : null,
-      datum: {
-        design: { ks: st.desc.datumKs, cs: st.desc.datumCs },
-        lofi: crit(st.lofi.datum),
-        hifi: st.hifiDatumCurrent() ? crit(st.hifi.datum) : null,
-      },
-    });
+    st.saved = keepDesign(st.saved, savedEntry(st.state.ks, st.state.cs, st.lofi.design, st.hifiCurrent() ? st.hifi.design : null, {
+      ks: st.desc.datumKs,
+      cs: st.desc.datumCs,
+      lofi: st.lofi.datum,
+      hifi: st.hifiDatumCurrent() ? st.hifi.datum : null,
+    }));
     showSaved();
+    st.scheduleUrl();
     $('compare-hint').textContent = `${st.saved.length} of ${MAX_SAVED} designs kept; "Keep" again adds the current one (the oldest goes).`;
+  };
+  ctl.onSavedChanged = () => {
+    showSaved();
+    $('compare-hint').textContent = `${st.saved.length} of ${MAX_SAVED} designs kept, from the link, evaluated on its car and road; "Keep" adds the current one (the oldest goes).`;
   };
   $('keep').addEventListener('click', keep);
   $('map-scale').addEventListener('change', (ev) => ctl.setView({ scale: ev.target.value }));

@@ -1,6 +1,6 @@
 // Saved designs side by side: up to three designs kept from the sliders, each with its
 // LoFi and HiFi criteria and their change against the datum, beside the datum itself
-// (the Pick tab). Plain data in, a table out; the page keeps the list (not in the link).
+// (the Pick tab). Plain data in, a table out; the page keeps the list, the link its Ks, Cs.
 
 import { fmt, fmtPct } from './format.js';
 
@@ -21,6 +21,23 @@ const ROWS = [
 export function keepDesign(saved, entry) {
   const rest = saved.filter((s) => !(s.ks === entry.ks && s.cs === entry.cs));
   return [...rest, entry].slice(-MAX_SAVED);
+}
+
+/** `{bacc, dtl, sws}` of a report (SI), or null. */
+const crit = (r) => (r ? { bacc: r.bacc, dtl: r.dtl, sws: r.sws } : null);
+
+/**
+ * A kept design's entry from its reports and its datum's (`lofi`, `hifi`: reports with
+ * `bacc`, `dtl`, `sws` in SI, or null where not computed; `datum`: `{ks, cs, lofi, hifi}`).
+ */
+export function savedEntry(ks, cs, lofi, hifi, datum) {
+  return {
+    ks,
+    cs,
+    lofi: crit(lofi),
+    hifi: crit(hifi),
+    datum: { design: { ks: datum.ks, cs: datum.cs }, lofi: crit(datum.lofi), hifi: crit(datum.hifi) },
+  };
 }
 
 const el = (tag, text, cls) => {

@@ -18,6 +18,7 @@ import { FIELD_INPUT, explain, plainWords } from './controls.js';
 import { HIFI_GRID } from './compute.js';
 import { fmt } from './format.js';
 import { designText } from './chartspecs.js';
+import { savedEntry } from './compare.js';
 
 /** A promise that resolves after the next frame has been painted. */
 function afterPaint() {
@@ -60,6 +61,8 @@ export class Controller {
     this.adaptiveBusy = false;
     /** Called after the views show something new (a design, the HiFi column, the fit, the maps): the lesson panel re-reads its numbers. */
     this.onViewsChanged = () => {};
+    /** Called when a link or session file replaced the kept designs (app.js redraws them). */
+    this.onSavedChanged = () => {};
 
     this.hifiRun = latestOnly(async (req) => {
       const dkey = keyOf(req.datumState);
@@ -532,6 +535,7 @@ export class Controller {
       return { state: { ...st.defaults }, view: {} };
     };
     if (d.problems.length) return fallback(d.problems.join('; '));
+    const kept = d.kept;
     const s = { ...st.defaults, ...d.state };
     if (s.car !== 'custom') s.carJson = null;
     try {
@@ -545,14 +549,14 @@ export class Controller {
     } catch (e) {
       return fallback(explain(e, e.field));
     }
-    return { state: s, view: d.view };
+    return { state: s, view: d.view, kept };
   }
 
   /**
    * Shows `state` and `view` in place of the current ones; `origin` ('link' or
    * 'session') names where a custom car came from.
    */
-  async load({ state, view }, origin = 'link') {
+  async load({ state, view, kept = null }, origin = 'link') {
     const st = this.store;
     let r;
     try {
@@ -572,6 +576,30 @@ export class Controller {
     if (st.view.projector !== projector) this.render.projector();
     this.scenarioChanged();
     this.requestHifi(performance.now());
+    if (kept) await this.restoreKept(kept);
+  }
+
+  /**
+   * The kept designs of a link or session file (`[[ks N/m, cs N s/m], ...]`), evaluated
+   * on the current scenario (LoFi and HiFi reports, and the datum's), in place of the kept
+   * list; a design that cannot be evaluated is left out and named in a banner.
+   */
+  async restoreKept(kept) {
+    const st = this.store;
+    const s0 = st.state;
+    const evaluate = (ks, cs) => this.compute.design({ ...s0, ks, cs }, st.desc, true).catch((e) => ({ error: e }));
+    const datum = await evaluate(st.desc.datumKs, st.desc.datumCs);
+    const out = [];
+    const failed = [];
+    for (const [ks, cs] of kept) {
+      const r = await evaluate(ks, cs);
+      if (r.error || datum.error) failed.push(`Ks ${fmt(ks / 1000, 4)} kN/m, Cs ${fmt(cs / 1000, 4)} kNs/m (${explain(r.error || datum.error, 'ks')})`);
+      else out.push(savedEntry(ks, cs, r.lofi, r.hifi, { ks: st.desc.datumKs, cs: st.desc.datumCs, lofi: datum.lofi, hifi: datum.hifi }));
+    }
+    st.saved = out;
+    if (failed.length) this.controls.banner(`The link's kept designs ${failed.join('; ')} could not be evaluated; the others are kept.`);
+    this.onSavedChanged();
+    st.scheduleUrl();
   }
 
   /** Loads a hash (a link, or the address bar's after a hash change). */

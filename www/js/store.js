@@ -4,6 +4,7 @@
 // handed plain data, see js/render.js).
 
 import { encodeHash } from './urlstate.js';
+import { MAX_SAVED } from './compare.js';
 
 /** The page-only settings of a fresh view. */
 export const DEFAULT_VIEW = {
@@ -78,7 +79,7 @@ export class Store {
     this.surrogate = { design: null, datum: null };
     /** HiFi reports and the state keys they belong to (may lag the state). */
     this.hifi = { design: null, datum: null, key: '', datumKey: '' };
-    /** Designs kept to compare side by side (js/compare.js; not in the link). */
+    /** Designs kept to compare side by side (js/compare.js; their Ks, Cs are in the link). */
     this.saved = [];
     /** The LoFi and surrogate maps at the page's grid, each with the scenario key it is for. */
     this.maps = null;
@@ -150,22 +151,28 @@ export class Store {
   writeUrl() {
     clearTimeout(this.urlTimer);
     this.urlTimer = null;
-    const hash = encodeHash(this.state, this.view);
+    const hash = encodeHash(this.state, this.view, this.keptDesigns());
     if (hash !== location.hash) {
       this.lastHash = hash;
       history.replaceState(null, '', hash);
     }
   }
 
-  /** The session file's object: `{ridelab: "session", version, state, view}`. */
+  /** The kept designs' `[[ks N/m, cs N s/m], ...]` (what the link and the session file hold). */
+  keptDesigns() {
+    return this.saved.map((s) => [s.ks, s.cs]);
+  }
+
+  /** The session file's object: `{ridelab: "session", version, state, view, kept}`. */
   session() {
-    return { ridelab: 'session', version: 1, state: this.state, view: { ...this.view } };
+    return { ridelab: 'session', version: 1, state: this.state, view: { ...this.view }, kept: this.keptDesigns() };
   }
 }
 
 /**
- * A session file's `{state, view}`: throws `{message}` for text that is not JSON, not a
- * RideLab session, or a view with keys or values the page does not know.
+ * A session file's `{state, view, kept}`: throws `{message}` for text that is not JSON, not
+ * a RideLab session, a view with keys or values the page does not know, or kept designs
+ * that are not up to MAX_SAVED pairs of numbers > 0.
  */
 export function readSession(text) {
   let s;
@@ -176,7 +183,7 @@ export function readSession(text) {
   }
   if (!s || typeof s !== 'object' || s.ridelab !== 'session') throw { message: 'not a RideLab session file (no "ridelab": "session")' };
   if (typeof s.state !== 'object' || s.state === null) throw { message: 'the session has no state' };
-  const unknown = Object.keys(s).filter((k) => !['ridelab', 'version', 'state', 'view'].includes(k));
+  const unknown = Object.keys(s).filter((k) => !['ridelab', 'version', 'state', 'view', 'kept'].includes(k));
   if (unknown.length) throw { message: `unknown session key '${unknown[0]}'` };
   const view = { ...DEFAULT_VIEW };
   for (const [k, v] of Object.entries(s.view || {})) {
@@ -193,5 +200,10 @@ export function readSession(text) {
     if (!ok) throw { message: `view: ${k} cannot be ${JSON.stringify(v)}` };
     view[k] = v;
   }
-  return { state: { ...s.state }, view };
+  const kept = s.kept ?? [];
+  const pair = (xy) => Array.isArray(xy) && xy.length === 2 && xy.every((x) => Number.isFinite(x) && x > 0);
+  if (!Array.isArray(kept) || kept.length > MAX_SAVED || !kept.every(pair)) {
+    throw { message: `kept: at most ${MAX_SAVED} [Ks N/m, Cs N s/m] pairs of numbers > 0` };
+  }
+  return { state: { ...s.state }, view, kept: kept.length ? kept : null };
 }

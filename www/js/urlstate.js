@@ -8,11 +8,18 @@
 // maps' model, their sample plan (samples=0 hides it), colour scale and palette, the
 // objective plane's axes and projector mode (`large=1`, from earlier links, means proj=1).
 // A custom car travels as its JSON text: car=custom&carjson=...
+// The designs kept to compare travel as keep=ks:cs,ks:cs (N/m : N s/m, at most MAX_SAVED);
+// the page evaluates them again on the link's car and road.
+
+import { MAX_SAVED } from './compare.js';
 
 const NUMBERS = { ks: 'ks', cs: 'cs', speed: 'speed', dm: 'dtlMargin' };
 
-/** The hash (with '#') for `state` (core state) and `view` (page-only settings). */
-export function encodeHash(state, view) {
+/**
+ * The hash (with '#') for `state` (core state), `view` (page-only settings) and `kept`
+ * (the designs kept to compare, `[[ks N/m, cs N s/m], ...]`).
+ */
+export function encodeHash(state, view, kept = []) {
   const p = new URLSearchParams();
   p.set('car', state.car);
   if (state.car === 'custom' && state.carJson) p.set('carjson', state.carJson);
@@ -36,16 +43,18 @@ export function encodeHash(state, view) {
   if (view.ratio) p.set('axes', 'ratio');
   if (view.palette && view.palette !== 'viridis') p.set('pal', view.palette);
   if (view.projector) p.set('proj', '1');
+  if (kept.length) p.set('keep', kept.map(([ks, cs]) => `${ks}:${cs}`).join(','));
   return '#' + p.toString();
 }
 
 /**
- * Reads a hash. Returns `{state, view, problems}`: `state` holds only the keys present
- * (the caller merges them over the defaults and lets the core validate them), and
- * `problems` lists what could not be read at all (then the caller uses the defaults).
+ * Reads a hash. Returns `{state, view, kept, problems}`: `state` holds only the keys
+ * present (the caller merges them over the defaults and lets the core validate them),
+ * `kept` the kept designs (`null` when the link has none), and `problems` lists what
+ * could not be read at all (then the caller uses the defaults).
  */
 export function decodeHash(hash) {
-  const out = { state: {}, view: {}, problems: [] };
+  const out = { state: {}, view: {}, kept: null, problems: [] };
   const text = (hash || '').replace(/^#/, '');
   if (text === '') return out;
   let p;
@@ -102,6 +111,12 @@ export function decodeHash(hash) {
     } else if (key === 'pal') {
       if (v === 'viridis' || v === 'cividis') out.view.palette = v;
       else out.problems.push(`pal: '${raw}' is not 'viridis' or 'cividis'`);
+    } else if (key === 'keep') {
+      const pairs = v.split(',').map((x) => x.split(':').map((y) => (y.trim() === '' ? NaN : Number(y))));
+      if (pairs.length > MAX_SAVED) out.problems.push(`keep: at most ${MAX_SAVED} designs, not ${pairs.length}`);
+      else if (!pairs.every((xy) => xy.length === 2 && xy.every((x) => Number.isFinite(x) && x > 0))) {
+        out.problems.push(`keep: '${raw}' is not Ks:Cs pairs in N/m and N s/m (numbers > 0)`);
+      } else out.kept = pairs;
     } else if (key === 'proj' || key === 'large') {
       if (v === '1' || v === '0') out.view.projector = v === '1';
       else out.problems.push(`${key}: '${raw}' is not 0 or 1`);
