@@ -519,3 +519,51 @@ fn the_modal_route_declines_by_type_and_the_kronecker_route_answers() {
     let fast = ridelab::criteria::criteria_fast_exact(&m, &road).unwrap();
     assert_eq!(fast, criteria_exact(&m, &road).unwrap());
 }
+
+/// The page's slider readout (`analysis::readout`) is the report without its second
+/// route: the same criteria, routes, modes and ride properties bit for bit, and the
+/// Wk-weighted comfort by the modal route within 1e-8 of the report's frequency route
+/// (integrated to 1e-9), on every preset, both models, both tracks, a road warp included.
+#[test]
+fn readout_is_the_report_without_its_second_route() {
+    use ridelab::analysis::{readout, report};
+    let mut warp = Car::datum();
+    warp.track_front = 1.522;
+    warp.track_rear = 1.510;
+    let mut cars: Vec<Car> = PRESETS.iter().map(|(n, _)| Car::preset(n).unwrap()).collect();
+    cars.push(warp);
+    let mut spectral_seen = false;
+    let mut worst_wk = 0.0f64;
+    for car in &cars {
+        for tracks in [Tracks::Correlated, Tracks::Independent] {
+            for class in [RoadClass::B, RoadClass::D] {
+                let road = Road { class, speed: 20.0, tracks };
+                for kind in [ModelKind::Quarter, ModelKind::Full] {
+                    let full = report(kind, car, &road).unwrap();
+                    let light = readout(kind, car, &road).unwrap();
+                    let what = format!("{} {tracks:?} {class:?} {kind:?}", car.name);
+                    assert_eq!(
+                        [light.bacc, light.dtl, light.sws, light.dtl_relative],
+                        [full.bacc, full.dtl, full.sws, full.dtl_relative],
+                        "{what}"
+                    );
+                    assert_eq!(light.route, full.route, "{what}");
+                    assert_eq!(light.low_cutoff_hz, full.low_cutoff_hz, "{what}");
+                    assert_eq!(light.modes, full.modes, "{what}");
+                    assert_eq!(
+                        [light.ks, light.cs, light.body_bounce_hz, light.damping_ratio, light.wheel_rate, light.static_wheel_load],
+                        [full.ks, full.cs, full.body_bounce_hz, full.damping_ratio, full.wheel_rate, full.static_wheel_load],
+                        "{what}"
+                    );
+                    let wk = (light.bacc_wk / full.bacc_wk - 1.0).abs();
+                    worst_wk = worst_wk.max(wk);
+                    assert!(wk < 1e-8, "{what}: Wk {} vs {} ({wk:e})", light.bacc_wk, full.bacc_wk);
+                    assert_eq!(light.comfort, full.comfort, "{what}");
+                    spectral_seen |= light.route == "spectral";
+                }
+            }
+        }
+    }
+    assert!(spectral_seen, "a road warp took the spectral route");
+    eprintln!("readout vs report: Wk-weighted comfort within {worst_wk:.1e}");
+}

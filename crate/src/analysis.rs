@@ -3,7 +3,7 @@
 
 use crate::car::{Car, QuarterCar};
 use crate::criteria::{
-    bacc_wk_spectral, comfort_label, criteria_exact, criteria_fast_exact, criteria_modal,
+    bacc_wk, bacc_wk_spectral, comfort_label, criteria_exact, criteria_fast_exact, criteria_modal,
     criteria_spectral, quarter_car_rms, Certified, ResidueFamily, ResidueRoute,
 };
 use crate::error::{Result, RideError};
@@ -465,6 +465,90 @@ pub fn report(kind: ModelKind, car: &Car, road: &Road) -> Result<Report> {
         route_difference: diff,
         spectral_error_estimate: spectral.relative_error,
         low_cutoff_hz: spectral.low_cutoff_hz,
+        modes: model.modes()?,
+        body_bounce_hz: q.bounce_frequency(),
+        critical_damping: q.critical_damping(),
+        damping_ratio: crate::dos::damping_ratio(q.ks, q.cs, q.ms),
+        wheel_rate: q.wheel_rate(),
+        static_wheel_load: car.front_wheel_load(),
+    })
+}
+
+/// What the page's readout shows of one design while a slider moves: [`Report`]'s
+/// criteria, modes and ride properties without its second route. `bacc`, `dtl`, `sws` are
+/// the report's own (the exact route; the frequency route where a road warp needs ISO
+/// 8608's low cutoff), `bacc_wk` is exact by the modal route ([`bacc_wk`], where the report
+/// integrates the frequency route to 1e-9). The report's adaptive quadratures are most of
+/// its time (about 1.8 of 1.9 ms for the full car in the page); the page asks for the
+/// full report once the design has settled.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Readout {
+    /// Model kind.
+    pub model: ModelKind,
+    /// Front spring rate, N/m.
+    pub ks: f64,
+    /// Front damper rate, N s/m.
+    pub cs: f64,
+    /// RMS body acceleration above the front wheel, m/s^2.
+    pub bacc: f64,
+    /// RMS dynamic tyre load, N.
+    pub dtl: f64,
+    /// RMS suspension working space, m.
+    pub sws: f64,
+    /// ISO 2631-1 Wk-weighted RMS body acceleration above the front wheel, m/s^2.
+    pub bacc_wk: f64,
+    /// ISO 2631-1 Annex C's likely comfort reaction to `bacc_wk`.
+    pub comfort: &'static str,
+    /// RMS DTL relative to the static front wheel load, -.
+    pub dtl_relative: f64,
+    /// Which route gave `bacc`, `dtl`, `sws`: "exact" or "spectral".
+    pub route: &'static str,
+    /// Lower band limit, Hz, when the response needs ISO 8608's low cutoff (road warp).
+    pub low_cutoff_hz: Option<f64>,
+    /// Natural frequencies and damping ratios.
+    pub modes: Vec<Mode>,
+    /// Front body-bounce frequency on the ride rate, Hz.
+    pub body_bounce_hz: f64,
+    /// Front critical damping `2 sqrt(ks ms)`, N s/m.
+    pub critical_damping: f64,
+    /// Front damping ratio `cs / (2 sqrt(ks ms))`, -.
+    pub damping_ratio: f64,
+    /// Front wheel (ride) rate `Kw = ks kt / (ks + kt)`, N/m.
+    pub wheel_rate: f64,
+    /// Static front wheel load, N.
+    pub static_wheel_load: f64,
+}
+
+/// The readout of one design of `car` on `road` (see [`Readout`]).
+pub fn readout(kind: ModelKind, car: &Car, road: &Road) -> Result<Readout> {
+    car.validate()?;
+    road.validate()?;
+    let model = kind.build(car);
+    let (values, route, low_cutoff_hz) = match criteria_fast_exact(&model, road) {
+        Ok(c) => (c, "exact", None),
+        Err(RideError::RoadWarp(why)) => {
+            let s = criteria_spectral(&model, road, 1e-8)?;
+            match s.low_cutoff_hz {
+                Some(f) => (s.criteria, "spectral", Some(f)),
+                None => return Err(RideError::RoadWarp(why)),
+            }
+        }
+        Err(e) => return Err(e),
+    };
+    let wk = bacc_wk(&model, road)?;
+    let q = car.quarter();
+    Ok(Readout {
+        model: kind,
+        ks: q.ks,
+        cs: q.cs,
+        bacc: values.bacc,
+        dtl: values.dtl,
+        sws: values.sws,
+        bacc_wk: wk,
+        comfort: comfort_label(wk),
+        dtl_relative: values.dtl / car.front_wheel_load(),
+        route,
+        low_cutoff_hz,
         modes: model.modes()?,
         body_bounce_hz: q.bounce_frequency(),
         critical_damping: q.critical_damping(),

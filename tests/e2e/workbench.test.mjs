@@ -587,3 +587,22 @@ test('saved designs: Keep (and S) keeps up to three, side by side with the reado
   assert.equal(await bad.page.evaluate(() => window.__ridelab.saved.length), 0);
   await bad.context.close();
 });
+
+test('defect: the readout, pick, metrics and compare tables fit their column (no sideways scroll) at 390 x 844 and in the drawer at 1600 x 1000', { timeout: TIMEOUT }, async () => {
+  for (const [width, height] of [[390, 844], [1600, 1000]]) {
+    const { page, context, log } = await open('#ks=15000&cs=1000', { width, height });
+    await page.click('#keep');
+    await page.waitForFunction(() => window.__ridelab.saved.length === 1);
+    for (const tab of ['pick', 'surrogate']) {
+      await page.click(`#tab-${tab}`);
+      await page.waitForFunction(() => document.querySelector('#sur-metrics tbody tr'));
+      const tables = await page.evaluate(() => [...document.querySelectorAll('.table-wrap > table')]
+        .filter((t) => t.offsetParent !== null)
+        .map((t) => ({ id: t.id, scroll: t.parentElement.scrollWidth, width: t.parentElement.clientWidth })));
+      assert.ok(tables.length >= 2, `${width}: ${tab} tab shows its tables (${tables.map((t) => t.id)})`);
+      for (const t of tables) assert.ok(t.scroll <= t.width + 1, `${width} x ${height}, ${tab} tab: #${t.id} is ${t.scroll} px in ${t.width} px`);
+    }
+    assertClean(log);
+    await context.close();
+  }
+});

@@ -114,14 +114,15 @@ export class Compute {
 
   /**
    * A new design point of the same scenario: its LoFi report and surrogate criteria, and
-   * with `withHifi` its HiFi report too (about 3 ms, on the main thread so every view
-   * follows the slider in one frame; null when it fails).
+   * with `withHifi` its HiFi readout too (the report without its frequency-route check,
+   * about 0.1 ms, on the main thread so every view follows the slider in one frame; null
+   * when it fails). The full HiFi report follows from the HiFi worker (`hifiReport`).
    */
   async design(s, desc, withHifi) {
     const lofi = await this.main.call('analyse', s, 'lofi');
     const sur = await this.main.call('criteria', s, 'surrogate');
     let hifi = null;
-    if (withHifi) hifi = await this.main.call('analyse', s, 'hifi').catch(() => null);
+    if (withHifi) hifi = await this.main.call('readout', s, 'hifi').catch(() => null);
     return { lofi, surrogate: { ...sur, dtl_relative: sur.dtl / desc.staticWheelLoad }, hifi };
   }
 

@@ -20,6 +20,9 @@ import { fmt } from './format.js';
 import { designText } from './chartspecs.js';
 import { savedEntry } from './compare.js';
 
+/** How long a design rests before its HiFi readout is checked by the full report, ms. */
+const CHECK_AFTER_MS = 120;
+
 /** A promise that resolves after the next frame has been painted. */
 function afterPaint() {
   return new Promise((r) => requestAnimationFrame(() => setTimeout(r, 0)));
@@ -63,6 +66,8 @@ export class Controller {
     this.onViewsChanged = () => {};
     /** Called when a link or session file replaced the kept designs (app.js redraws them). */
     this.onSavedChanged = () => {};
+    /** The timer that asks for the full HiFi report once a slider move has rested. */
+    this.checkTimer = null;
 
     this.hifiRun = latestOnly(async (req) => {
       const dkey = keyOf(req.datumState);
@@ -93,7 +98,7 @@ export class Controller {
 
   /** True when every view shows the current state and nothing is queued. */
   isSettled() {
-    return this.pending === 0 && this.pendingDesign === null && this.store.hifiCurrent();
+    return this.pending === 0 && this.pendingDesign === null && this.store.hifiChecked();
   }
 
   /** Runs `fn` after every earlier update; each reads the state when it starts. */
@@ -245,14 +250,23 @@ export class Controller {
       this.designChanged();
       this.metrics.design.push(performance.now() - start);
       requestAnimationFrame(() => this.metrics.frame.push(performance.now() - start));
-      if (r.hifi) this.metrics.full.push(performance.now() - start);
-      else this.requestHifi(start);
+      // With a readout, the full report (the same numbers and their frequency-route
+      // check) from the HiFi worker once the design has rested for CHECK_AFTER_MS, so a
+      // drag is not interrupted by its answers; without one, the HiFi column itself.
+      clearTimeout(this.checkTimer);
+      if (r.hifi) {
+        this.metrics.full.push(performance.now() - start);
+        this.checkTimer = setTimeout(() => this.requestHifi(start, { counted: false }), CHECK_AFTER_MS);
+      } else this.requestHifi(start);
       return true;
     });
   }
 
-  /** The HiFi reports of the current design and datum from the HiFi worker (the latest request waits). */
-  requestHifi(t0) {
+  /**
+   * The HiFi reports of the current design and datum from the HiFi worker (the latest
+   * request waits); `counted`: its arrival is when the HiFi column became current (metrics).
+   */
+  requestHifi(t0, { counted = true } = {}) {
     const st = this.store;
     const s = st.state;
     this.track(
@@ -261,9 +275,10 @@ export class Controller {
           if (!r || r.key !== keyOf(st.state)) return; // superseded
           st.hifi.design = r.design;
           st.hifi.key = r.key;
+          st.hifi.checkedKey = r.key;
           this.render.hifi();
           this.onViewsChanged();
-          this.metrics.full.push(performance.now() - r.t0);
+          if (counted) this.metrics.full.push(performance.now() - r.t0);
         })
         .catch((e) => this.controls.banner(`The HiFi model failed: ${e.message || e}`, 'error')),
     );

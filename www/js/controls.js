@@ -114,6 +114,28 @@ export class Controls {
   }
 
   /**
+   * Puts the design (Ks, Cs) into its fields and sliders: all a slider move changes, so
+   * a drag rewrites these and nothing else. The sliders span the design box (and the
+   * design, if it lies outside); no step grid (step "any"), so they sit exactly at any
+   * value, the datum's included.
+   */
+  syncDesign(s, desc) {
+    if (!this.bad.has('ks')) setValue($('ks-num'), fmtInput(s.ks / 1000, 3));
+    if (!this.bad.has('cs')) setValue($('cs-num'), fmtInput(s.cs / 1000, 3));
+    const box = desc.designBox;
+    const ksR = $('ks-range');
+    const csR = $('cs-range');
+    setAttr(ksR, 'min', String(Math.min(box.ks_min, s.ks) / 1000));
+    setAttr(ksR, 'max', String(Math.max(box.ks_max, s.ks) / 1000));
+    setAttr(csR, 'min', String(Math.min(box.cs_min, s.cs) / 1000));
+    setAttr(csR, 'max', String(Math.max(box.cs_max, s.cs) / 1000));
+    setValue(ksR, String(s.ks / 1000));
+    setValue(csR, String(s.cs / 1000));
+    setAttr(ksR, 'aria-valuetext', `${fmtInput(s.ks / 1000, 3)} kN/m`);
+    setAttr(csR, 'aria-valuetext', `${fmtInput(s.cs / 1000, 3)} kNs/m`);
+  }
+
+  /**
    * Puts `state` into every control that does not hold a refused entry (menus always
    * show the state); `desc` gives the design box, `view` the view settings,
    * `custom` the custom car's label, `swsDragging` leaves the SWS slider alone.
@@ -121,40 +143,27 @@ export class Controls {
   sync(state, desc, view, { customLabel = null, swsDragging = false } = {}) {
     const s = state;
     const put = (field, id, value) => {
-      if (!this.bad.has(field)) $(id).value = value;
+      if (!this.bad.has(field)) setValue($(id), value);
     };
-    put('ks', 'ks-num', fmtInput(s.ks / 1000, 3));
-    put('cs', 'cs-num', fmtInput(s.cs / 1000, 3));
+    this.syncDesign(s, desc);
     put('speed', 'speed', fmtInput(s.speed, 3));
     $('speed-kmh').textContent = `(${fmt(s.speed * 3.6, 3)} km/h)`;
-    $('class').value = s.class;
-    $('tracks').value = s.tracks;
+    setValue($('class'), s.class);
+    setValue($('tracks'), s.tracks);
     put('swsLimit', 'sws-limit', s.swsLimit == null ? '' : fmtInput(s.swsLimit * 1000, 4));
     // The SWS slider spans 1 to 20 mm (and the limit, if outside); no limit: its top.
     const swsMm = s.swsLimit == null ? null : s.swsLimit * 1000;
     const sws = $('sws-range');
     sws.min = String(Math.min(1, swsMm ?? 1));
     sws.max = String(Math.max(20, swsMm ?? 20));
-    if (!swsDragging) sws.value = String(swsMm ?? sws.max);
+    if (!swsDragging) setValue(sws, String(swsMm ?? sws.max));
     const box = desc.designBox;
     if (!this.bad.has('box')) {
-      $('ks-min').value = fmtInput(box.ks_min / 1000, 4);
-      $('ks-max').value = fmtInput(box.ks_max / 1000, 4);
-      $('cs-min').value = fmtInput(box.cs_min / 1000, 4);
-      $('cs-max').value = fmtInput(box.cs_max / 1000, 4);
+      setValue($('ks-min'), fmtInput(box.ks_min / 1000, 4));
+      setValue($('ks-max'), fmtInput(box.ks_max / 1000, 4));
+      setValue($('cs-min'), fmtInput(box.cs_min / 1000, 4));
+      setValue($('cs-max'), fmtInput(box.cs_max / 1000, 4));
     }
-    // The sliders span the design box (and the design, if it lies outside); no step
-    // grid (step "any"), so they sit exactly at any value, the datum's included.
-    const ksR = $('ks-range');
-    const csR = $('cs-range');
-    ksR.min = String(Math.min(box.ks_min, s.ks) / 1000);
-    ksR.max = String(Math.max(box.ks_max, s.ks) / 1000);
-    csR.min = String(Math.min(box.cs_min, s.cs) / 1000);
-    csR.max = String(Math.max(box.cs_max, s.cs) / 1000);
-    ksR.value = String(s.ks / 1000);
-    csR.value = String(s.cs / 1000);
-    ksR.setAttribute('aria-valuetext', `${fmtInput(s.ks / 1000, 3)} kN/m`);
-    csR.setAttribute('aria-valuetext', `${fmtInput(s.cs / 1000, 3)} kNs/m`);
     for (const [field, lo, hi, band] of [['bounceBand', 'bb-lo', 'bb-hi', s.bounceBand], ['dampingBand', 'db-lo', 'db-hi', s.dampingBand]]) {
       put(field, lo, band ? fmtInput(band[0], 4) : '');
       put(field, hi, band ? fmtInput(band[1], 4) : '');
@@ -163,8 +172,8 @@ export class Controls {
     ['nw-bacc', 'nw-dtl', 'nw-sws'].forEach((id, i) => ($(id).checked = !!nw[i]));
     ensureOption($('sur-approach'), s.surrogate);
     ensureOption($('sur-plan'), s.plan);
-    $('sur-approach').value = s.surrogate;
-    $('sur-plan').value = s.plan;
+    setValue($('sur-approach'), s.surrogate);
+    setValue($('sur-plan'), s.plan);
     const car = $('car');
     let opt = car.querySelector('option[value="custom"]');
     if (customLabel) {
@@ -173,20 +182,30 @@ export class Controls {
         opt.value = 'custom';
         car.append(opt);
       }
-      opt.textContent = customLabel;
+      if (opt.textContent !== customLabel) opt.textContent = customLabel;
     } else if (opt) {
       opt.remove();
     }
-    car.value = s.car;
-    $('map-scale').value = view.scale;
+    setValue(car, s.car);
+    setValue($('map-scale'), view.scale);
     // Error maps are in % of the HiFi whatever the colour setting.
     $('map-scale').disabled = view.model === 'error';
-    $('map-model').value = view.model;
-    $('map-palette').value = view.palette;
+    setValue($('map-model'), view.model);
+    setValue($('map-palette'), view.palette);
     $('show-plan').checked = view.plan;
     $('projector').checked = view.projector;
-    $('op-scale').value = view.ratio ? 'ratio' : 'abs';
+    setValue($('op-scale'), view.ratio ? 'ratio' : 'abs');
   }
+}
+
+/** Sets a control's value only when it differs (a write restyles the control). */
+function setValue(el, value) {
+  if (el.value !== value) el.value = value;
+}
+
+/** Sets an attribute only when it differs. */
+function setAttr(el, name, value) {
+  if (el.getAttribute(name) !== value) el.setAttribute(name, value);
 }
 
 /** Adds `value` to a select's options when a link or session names one not listed. */

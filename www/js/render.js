@@ -68,6 +68,7 @@ export class Render {
     this.plane();
     renderPick($('op-pick'), st.front);
     this.pickSummary();
+    this.controls();
   }
 
   /** The objective plane from the store. */
@@ -107,7 +108,7 @@ export class Render {
     // The linear damper's force-velocity line follows Cs while the time panel is open.
     if (this.ui.damper.linear && this.ui.damper.visible()) this.ui.damper.refresh();
     this.timeStale();
-    this.controls();
+    this.ui.controls.syncDesign(st.state, st.desc);
   }
 
   /** The HiFi column and modes, greyed while they belong to an earlier state. */

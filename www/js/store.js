@@ -78,7 +78,8 @@ export class Store {
     /** The surrogate's criteria of the design and the datum (`{bacc, dtl, sws, dtl_relative}`). */
     this.surrogate = { design: null, datum: null };
     /** HiFi reports and the state keys they belong to (may lag the state). */
-    this.hifi = { design: null, datum: null, key: '', datumKey: '' };
+    /** `design` may be the quick readout of a slider move (`checkedKey` lags `key` until the full report is in). */
+    this.hifi = { design: null, datum: null, key: '', datumKey: '', checkedKey: '' };
     /** Designs kept to compare side by side (js/compare.js; their Ks, Cs are in the link). */
     this.saved = [];
     /** The LoFi and surrogate maps at the page's grid, each with the scenario key it is for. */
@@ -122,6 +123,11 @@ export class Store {
   }
 
   /** True when the HiFi datum report belongs to the current scenario. */
+  /** The HiFi column is current and holds the full report (with its frequency-route check). */
+  hifiChecked() {
+    return this.hifiCurrent() && this.hifi.checkedKey === this.hifi.key;
+  }
+
   hifiDatumCurrent(s = this.state) {
     return this.hifi.datumKey === keyOf(datumStateOf(s, this.desc));
   }

@@ -16,7 +16,7 @@ use super::maps::{error_values, MapModel, ModelMap};
 use super::state::{Scenario, State};
 use super::studies::{self, FrontModel, FrontResult, Spectra, TimeResult};
 use super::surrogate::{fit, fit_report, FitKey, FittedSurrogate};
-use crate::analysis::{report, ModelKind, Report};
+use crate::analysis::{readout, report, ModelKind, Readout, Report};
 use crate::dos::DosContext;
 use crate::error::Result;
 use crate::evaluate::{Criteria, Evaluator};
@@ -110,6 +110,12 @@ impl Session {
     /// The full analysis report of the design by one model (as `ridelab eval`).
     pub fn report(&self, kind: ModelKind) -> Result<Report> {
         report(kind, &self.scenario.design, &self.scenario.road)
+    }
+
+    /// The design's readout by one model: the report without its second route (see
+    /// [`Readout`]), what the page shows while a slider moves.
+    pub fn readout(&self, kind: ModelKind) -> Result<Readout> {
+        readout(kind, &self.scenario.design, &self.scenario.road)
     }
 
     /// The map of `model` on the `nx` x `ny` cell-centre grid of the design box, its
