@@ -56,18 +56,69 @@ function worstDiff(a, b, at = '') {
 
 const CAR = () => path.join(ROOT, 'assets/cars/sedan.json');
 
+/** Records every frame the objective plane draws: the adaptive pick's BAcc, DTL and the front's length. */
+function recordPlane(page) {
+  return page.evaluate(() => {
+    const plane = window.__ridelab.objPlane;
+    const draw = plane.draw;
+    window.__planeFrames = [];
+    plane.draw = function (data, frame) {
+      const a = data.adaptive;
+      if (frame && a) window.__planeFrames.push({ bacc: a.pick.criteria.bacc, dtl: a.pick.criteria.dtl, n: a.front.length, final: !this.animating });
+      return draw.call(this, data, frame);
+    };
+  });
+}
+
 test('adaptive loop: 2 clicks and "Run 5 more" equal `ridelab surrogate --plan ae:5 --adaptive 7`', { timeout: TIMEOUT }, async (t) => {
   const { page, context, log } = await open('#plan=ae:5');
   assert.match(await page.textContent('#ad-status'), /No adaptive run yet/);
   await press(page, '#ad-next');
   let a = await page.evaluate(() => window.__ridelab.adaptive);
   assert.equal(a.report.added.length, 1, 'one click, one HiFi run');
+
+  // The second run moves the loop's front and pick on the plane: frames between the old
+  // and the new place (monotone, eased), then exactly the computed ones.
+  await recordPlane(page);
   await press(page, '#ad-next');
+  const moved = await page.evaluate(() => ({
+    frames: window.__planeFrames,
+    moved: window.__ridelab.objPlane.moved,
+    drawn: window.__ridelab.objPlane.data.adaptive,
+    a: window.__ridelab.adaptive,
+  }));
+  const [p0, p1] = [moved.a.was.pick.criteria, moved.a.report.history.at(-1).pick.criteria];
+  const between = moved.frames.slice(0, -1);
+  t.diagnostic(`move: ${moved.moved.frames} frames in ${moved.moved.ms.toFixed(0)} ms; pick BAcc ${p0.bacc} -> ${p1.bacc}, DTL ${p0.dtl} -> ${p1.dtl}`);
+  assert.ok(moved.moved.frames >= 3, `the move is animated (${moved.moved.frames} frames)`);
+  assert.ok(moved.moved.ms >= 400 && moved.moved.ms < 1300, `about 400 ms (${moved.moved.ms} ms)`);
+  assert.equal(between.length, moved.moved.frames, 'every frame recorded');
+  for (const key of ['bacc', 'dtl']) {
+    const [lo, hi] = [Math.min(p0[key], p1[key]), Math.max(p0[key], p1[key])];
+    const tol = 1e-12 * hi;
+    const seq = between.map((f) => f[key]);
+    assert.ok(seq.every((v) => v >= lo - tol && v <= hi + tol), `${key}: every frame between the old and the new pick`);
+    const dir = Math.sign(p1[key] - p0[key]);
+    assert.ok(seq.every((v, i) => i === 0 || dir * (v - seq[i - 1]) >= -tol), `${key}: the pick moves one way`);
+  }
+  assert.ok(between.every((f) => f.n === Math.max(moved.a.was.front.length, moved.a.front.length)), 'the fronts resampled to a common length');
+  assert.deepEqual(moved.drawn.front, moved.a.front, 'after the move the plane draws the computed front, exactly');
+  assert.deepEqual(moved.drawn.pick, moved.a.report.history.at(-1).pick, 'and the computed pick');
+  assert.deepEqual(moved.drawn.was, moved.a.was);
+
+  // With reduced motion the five runs jump: no frames in between.
+  await page.emulateMedia({ reducedMotion: 'reduce' });
+  await page.evaluate(() => (window.__planeFrames = []));
   await press(page, '#ad-more');
+  const jumped = await page.evaluate(() => ({ moved: window.__ridelab.objPlane.moved, frames: window.__planeFrames.length }));
+  assert.deepEqual(jumped, { moved: { frames: 0, ms: 0 }, frames: 0 }, 'reduced motion: no animation');
+  await page.emulateMedia({ reducedMotion: 'no-preference' });
+
   a = await page.evaluate(() => window.__ridelab.adaptive);
   const state = await page.evaluate(() => window.__ridelab.state);
   assert.equal(state.plan, 'ae:5');
-  const native = cli('surrogate', '--approach', state.surrogate, '--plan', 'ae:5', '--adaptive', '7', '--car', CAR(), '--class', 'B', '--speed', '20').adaptive;
+  const out = cli('surrogate', '--approach', state.surrogate, '--plan', 'ae:5', '--adaptive', '7', '--car', CAR(), '--class', 'B', '--speed', '20');
+  const native = out.adaptive;
 
   // The samples, in order, with their reasons: the same designs and words.
   const r = a.report;
@@ -135,6 +186,123 @@ test('adaptive loop: 2 clicks and "Run 5 more" equal `ridelab surrogate --plan a
   assert.ok(await countColour(page, 'op-base', [124, 58, 237], 60) > 20, 'the adaptive front is drawn on the plane');
   assert.equal(await page.locator('#op-key-adaptive').isVisible(), true);
   await page.screenshot({ path: path.join(OUT, 'adaptive-1280.png') });
+
+  // The uncertainty map: the loop's sigma, %, at the 80 x 60 cells; its check against the
+  // HiFi is the CLI's estimate of the same kind for the same 12 samples (`uncertainty`).
+  const u = a.uncertainty;
+  const est = out.uncertainty.find((x) => x.method === r.uncertainty);
+  assert.equal(est.status, 'estimated', JSON.stringify(est));
+  assert.equal(u.levels, 20);
+  assert.equal(u.check.method, r.uncertainty);
+  // Correlations and means to 1e-9 relative; the estimate on the grid to 1e-9 of its
+  // largest value (at a sample it is at its floor, ~1e-4 %, where wasm and native
+  // arithmetic differ in the 7th digit).
+  const wu = worstDiff(
+    { pearson: u.check.pearson, spearman: u.check.spearman, e: u.check.estimated_mean_percent, t: u.check.true_mean_percent },
+    { pearson: est.pearson, spearman: est.spearman, e: est.estimated_mean_percent, t: est.true_mean_percent },
+    'uncertainty',
+  );
+  for (const key of ['bacc', 'dtl', 'sws']) {
+    const [x, y] = [u.check.map_percent[key], est.map_percent[key]];
+    assert.equal(x.length, 400);
+    const top = Math.max(...y);
+    const d = Math.max(...x.map((v, i) => Math.abs(v - y[i]))) / top;
+    assert.ok(d < 1e-9, `${key}: the estimate on the grid, page vs CLI, ${d} of its largest`);
+  }
+  t.diagnostic(`uncertainty (${r.uncertainty}): page vs CLI largest relative difference ${wu.toExponential(2)}; Pearson ${JSON.stringify(u.check.pearson)}, Spearman ${JSON.stringify(u.check.spearman)}; at the samples ${JSON.stringify(u.atSamples)} %; ${u.ms.toFixed(0)} ms in the worker`);
+  assert.ok(wu < 1e-9, `uncertainty page vs CLI: ${wu}`);
+  await page.locator('#ad-unc-box').scrollIntoViewIfNeeded();
+  assert.equal(await page.locator('#ad-unc-box').isVisible(), true);
+  const box = await page.evaluate(() => window.__ridelab.desc.designBox);
+  const samples = [...r.initial, ...r.added.map((x) => x.sample)];
+  for (const [k, key] of ['bacc', 'dtl', 'sws'].entries()) {
+    await page.selectOption('#ad-unc-crit', key);
+    const shown = await page.evaluate(() => {
+      const v = window.__ridelab.uncertaintyPanel.view;
+      const stat = (name) => document.querySelector(`#ad-unc-caption [data-stat="${name}"]`);
+      return {
+        id: v.base.id, nx: v.data.nx, ny: v.data.ny, shown: [...v.data.shown], unit: v.data.unit, lo: v.data.lo, visible: !v.fig.hidden,
+        markers: v.markers.samples.length + v.markers.adaptive.added.length,
+        caption: document.getElementById('ad-unc-caption').textContent,
+        pearson: { value: stat('pearson').dataset.value, text: stat('pearson').textContent },
+        spearman: { value: stat('spearman').dataset.value, text: stat('spearman').textContent },
+      };
+    });
+    assert.equal(shown.id, `map-sigma-${key}`);
+    assert.ok(shown.visible);
+    assert.equal(shown.unit, '% estimated 1σ');
+    assert.equal(shown.lo, 0, 'the colour scale starts at 0 %');
+    assert.equal(shown.markers, 12, 'the 12 HiFi samples marked');
+    const n = u.nx * u.ny;
+    assert.deepEqual(shown.shown, [...u.map.slice(k * n, (k + 1) * n)], `${key}: the map is the core's`);
+    // The caption: the kind in words, the core's correlations (exact in data-value, to 3 digits in the text).
+    assert.match(shown.caption, r.uncertainty === 'loo' ? /leave-one-out cross-validation/ : /predictive standard deviation/);
+    assert.match(shown.caption, /20 × 20 HiFi grid/);
+    for (const stat of ['pearson', 'spearman']) {
+      const want = u.check[stat][key];
+      assert.equal(Number(shown[stat].value), want, `${key} ${stat}: the caption's is the core's`);
+      assert.ok(Math.abs(Number(shown[stat].text.replace('−', '-')) - want) <= 5e-4 + 1e-12, `${key} ${stat}: ${shown[stat].text} vs ${want}`);
+    }
+    // At the samples sigma is at its floor (the core's value at the samples is below 1e-4
+    // of the map's largest for an interpolating surrogate); the cells holding a sample lie
+    // below the map's median, and the tenth of the cells farthest from every sample
+    // average more than those cells.
+    const peak = Math.max(...shown.shown);
+    assert.ok(u.atSamples[key] <= 1e-4 * peak, `${key}: ${u.atSamples[key]} % at the samples vs ${peak} % peak`);
+    const cell = (ks, cs) => {
+      const i = Math.min(u.nx - 1, Math.floor(((ks - box.ks_min) / (box.ks_max - box.ks_min)) * u.nx));
+      const j = Math.min(u.ny - 1, Math.floor(((cs - box.cs_min) / (box.cs_max - box.cs_min)) * u.ny));
+      return j * u.nx + i;
+    };
+    const sorted = [...shown.shown].sort((x, y) => x - y);
+    const med = sorted[Math.floor(n / 2)];
+    const atCells = samples.map((p) => shown.shown[cell(p.ks, p.cs)]);
+    assert.ok(atCells.every((v) => v < med), `${key}: sample cells ${atCells.map((v) => v.toPrecision(2))} below the median ${med}`);
+    const dist = [];
+    for (let j = 0; j < u.ny; j++) {
+      for (let i = 0; i < u.nx; i++) {
+        const [x, y] = [(i + 0.5) / u.nx, (j + 0.5) / u.ny];
+        const d = Math.min(...samples.map((p) => Math.hypot(x - (p.ks - box.ks_min) / (box.ks_max - box.ks_min), y - (p.cs - box.cs_min) / (box.cs_max - box.cs_min))));
+        dist.push([d, shown.shown[j * u.nx + i]]);
+      }
+    }
+    dist.sort((x, y) => y[0] - x[0]);
+    const far = dist.slice(0, n / 10).reduce((acc, x) => acc + x[1], 0) / (n / 10);
+    const near = atCells.reduce((acc, v) => acc + v, 0) / atCells.length;
+    t.diagnostic(`${key}: sigma at the sample cells ${near.toPrecision(3)} %, median ${med.toPrecision(3)} %, farthest tenth ${far.toPrecision(3)} %, peak ${peak.toPrecision(3)} %`);
+    assert.ok(far > near, `${key}: far ${far} vs near ${near}`);
+  }
+  assert.ok(await countColour(page, 'map-sigma-sws', [68, 1, 84], 50) > 20, 'the map is painted (viridis from 0)');
+  await page.locator('#ad-unc-box').screenshot({ path: path.join(OUT, 'adaptive-uncertainty.png') });
+
+  // The plane's exports carry the loop's front and pick with their legend entries.
+  const ex = await page.evaluate(async () => {
+    const { objectiveChart } = await import('./js/svgexport.js');
+    const { frontCsv } = await import('./js/exports.js');
+    const app = window.__ridelab;
+    const data = app.exportData();
+    const spec = objectiveChart(data);
+    const svg = await app.svg('line', spec);
+    const doc = new DOMParser().parseFromString(svg, 'image/svg+xml');
+    return {
+      series: spec.series.map((x) => ({ name: x.name, points: x.points })),
+      texts: [...doc.querySelectorAll('text')].map((e) => e.textContent.trim()),
+      purple: [...doc.querySelectorAll('polyline')].filter((e) => e.getAttribute('stroke') === '#7C3AED').map((e) => e.getAttribute('points').trim().split(/\s+/).length),
+      csv: frontCsv(app.front, app.nsga, data.adaptive).trim().split('\n').filter((l) => l.startsWith('adaptive,')),
+    };
+  });
+  const name = `adaptive loop's front (${a.front.length} pts)`;
+  const series = ex.series.find((x) => x.name === name);
+  assert.ok(series, `the export has the loop's front: ${ex.series.map((x) => x.name).join('; ')}`);
+  assert.deepEqual(series.points, a.front.map((p) => [p.bacc, p.dtl]), 'every point of the loop\'s front');
+  const pickSeries = ex.series.find((x) => x.name === 'adaptive loop\'s pick');
+  assert.deepEqual(pickSeries.points, [[last.criteria.bacc, last.criteria.dtl]]);
+  assert.ok(ex.texts.includes(name), 'the legend names the loop\'s front');
+  assert.ok(ex.texts.includes('adaptive loop\'s pick'), 'and its pick');
+  assert.ok(ex.purple.length >= 1 && ex.purple.every((m) => m >= 2 && m <= a.front.length), `the front's polyline in the SVG (${ex.purple})`);
+  assert.equal(ex.csv.length, a.front.length, 'the CSV lists the loop\'s front');
+  assert.deepEqual(ex.csv.map((l) => l.split(',').slice(1, 3).map(Number)), a.front.map((p) => [p.ks, p.cs]));
+  assert.equal(ex.csv.filter((l) => l.endsWith(',1')).length, 1, 'its pick marked once');
   assertClean(log);
   await context.close();
 });

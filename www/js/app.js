@@ -23,6 +23,8 @@ import { CarEditor, carFieldMessage } from './careditor.js';
 import { Guide } from './guide.js';
 import { Workbench, bindShortcuts } from './workbench.js';
 import { buildPickers } from './surrogatepanel.js';
+import { UncertaintyPanel } from './uncertaintypanel.js';
+import { adaptivePlane } from './chartspecs.js';
 import { loadTables } from './colormap.js';
 import { keyStep } from './steps.js';
 import { fmt, fmtInput, parseNumber } from './format.js';
@@ -429,6 +431,7 @@ function exportDataOf(store, ui) {
     cloud: st.cloud,
     design: st.surrogate.design,
     ratio: st.view.ratio,
+    adaptive: adaptivePlane(st.adaptive),
     spectra: st.spectra,
     time: st.time ? st.time.result : null,
     timeLinear: st.time ? st.time.linear : null,
@@ -440,7 +443,7 @@ function exportDataOf(store, ui) {
 function wireExports({ store: st, controller: ctl, controls, ui, compute }) {
   const status = (t) => ($('export-status').textContent = t);
   const failed = (what) => (e) => status(`${what} failed: ${e.message || e}`);
-  $('front-csv').addEventListener('click', () => download(`ridelab-front-${stamp(st.state)}.csv`, new Blob([frontCsv(st.front, st.nsga)], { type: 'text/csv' })));
+  $('front-csv').addEventListener('click', () => download(`ridelab-front-${stamp(st.state)}.csv`, new Blob([frontCsv(st.front, st.nsga, adaptivePlane(st.adaptive))], { type: 'text/csv' })));
   $('maps-csv').addEventListener('click', () => {
     const shown = st.shownMaps();
     if (!shown) return;
@@ -582,6 +585,12 @@ async function main() {
     }),
     damper: new DamperChart($('tp-fv')),
     adaptiveChart: new Plot($('ad-chart'), { aspect: 0.5 }),
+    uncertainty: new UncertaintyPanel({ box: $('ad-unc-box'), select: $('ad-unc-crit'), maps: $('ad-unc-map'), caption: $('ad-unc-caption') }, {
+      onPick: (ks, cs) => controller.changeDesign(Math.round(ks / 10) * 10, Math.round(cs / 5) * 5, 'ks'),
+      onKey: onMapKey,
+      contours: (field, nx, ny, levels) => compute.contours(field, nx, ny, levels),
+      objectives: store.objectives,
+    }),
     carEditor: new CarEditor($('car-fields')),
   };
   const render = new Render(store, ui);

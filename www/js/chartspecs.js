@@ -91,6 +91,15 @@ export function cloudPoints(cloud, front, ratio, step) {
   return out;
 }
 
+/**
+ * What the objective plane draws of the adaptive loop `a` (js/store.js `adaptive`, or
+ * null): `{front, pick, was}` (its surrogate's front, its latest pick, the front and pick
+ * before its latest run or null), or null when no loop runs.
+ */
+export function adaptivePlane(a) {
+  return a && a.report.history.length ? { front: a.front, pick: a.report.history[a.report.history.length - 1].pick, was: a.was } : null;
+}
+
 /** The legend entries of the objective plane (the page draws them as a key above it). */
 export const PLANE_KEY = [
   { key: 'cloud', label: 'feasible designs (surrogate)' },

@@ -16,6 +16,8 @@ export const HIFI_GRID = GRID;
 export const CLOUD_GRID = { nx: 96, ny: 72 };
 /** Side of the HiFi grid the surrogate panel validates the fit on. */
 export const VALIDATION_LEVELS = 20;
+/** The adaptive loop's uncertainty map (cells; heavy worker, about 5000 estimates). */
+export const UNCERTAINTY_GRID = { nx: 80, ny: 60 };
 /** Frequencies of the FRF / PSD plots (log spaced, 0.1..100 Hz). */
 export const NFREQ = 240;
 /** The time panel's run: 10 s at 1 ms, every 10th sample kept (the seed and damper are the user's). */
@@ -183,6 +185,15 @@ export class Compute {
   /** The loop so far: samples with reasons and the history of fronts (heavy worker). */
   adaptiveReport(s) {
     return this.heavy.call('adaptiveReport', s);
+  }
+
+  /**
+   * The adaptive loop's uncertainty map at UNCERTAINTY_GRID and how well it predicts the
+   * true error on the VALIDATION_LEVELS HiFi grid (heavy worker; the first call runs that
+   * grid on the HiFi): js/engine.js `Host.adaptiveUncertainty`.
+   */
+  adaptiveUncertainty(s) {
+    return this.heavy.call('adaptiveUncertainty', s, UNCERTAINTY_GRID.nx, UNCERTAINTY_GRID.ny, VALIDATION_LEVELS);
   }
 
   /** FRFs and PSDs of the design (heavy worker). */

@@ -15,7 +15,7 @@ import { latestOnly } from './engine.js';
 import { DEFAULT_VIEW, MODEL_NAMES, datumStateOf, fitKeyOf, keyOf, scenarioKey } from './store.js';
 import { decodeHash } from './urlstate.js';
 import { FIELD_INPUT, explain, plainWords } from './controls.js';
-import { HIFI_GRID } from './compute.js';
+import { HIFI_GRID, VALIDATION_LEVELS } from './compute.js';
 import { fmt } from './format.js';
 import { designText } from './chartspecs.js';
 import { savedEntry } from './compare.js';
@@ -96,9 +96,9 @@ export class Controller {
     return p ? { ks: p.ks, cs: p.cs } : { ks: this.store.state.ks, cs: this.store.state.cs };
   }
 
-  /** True when every view shows the current state and nothing is queued. */
+  /** True when every view shows the current state (the plane's animation ended) and nothing is queued. */
   isSettled() {
-    return this.pending === 0 && this.pendingDesign === null && this.store.hifiChecked();
+    return this.pending === 0 && this.pendingDesign === null && this.store.hifiChecked() && !this.render.ui.plane.animating;
   }
 
   /** Runs `fn` after every earlier update; each reads the state when it starts. */
@@ -458,7 +458,10 @@ export class Controller {
         this.render.adaptiveStatus(`Running the ${s.plan} plan on the HiFi and fitting ${s.surrogate}…`);
         const r = await this.compute.adaptiveStart(s);
         if (scenarioKey(st.state) !== key) return;
-        st.adaptive = { key, state: s, report: r.report, proposal: r.proposal, front: r.front, errors: [r.recheck.error], was: null, ms: [] };
+        this.render.adaptiveStatus(`Checking the uncertainty estimate against the HiFi on its ${VALIDATION_LEVELS} × ${VALIDATION_LEVELS} grid…`);
+        const uncertainty = await this.compute.adaptiveUncertainty(s);
+        if (scenarioKey(st.state) !== key) return;
+        st.adaptive = { key, state: s, report: r.report, proposal: r.proposal, front: r.front, errors: [r.recheck.error], was: null, ms: [], uncertainty };
         this.adaptiveShown();
       }
       for (let k = 0; k < n; k++) {
@@ -467,10 +470,11 @@ export class Controller {
         this.render.adaptiveStatus(`Running the HiFi at ${designText(a.proposal.candidate)} (${k + 1} of ${n})…`);
         const r = await this.compute.adaptiveStep(a.state);
         const report = st.adaptive === a ? await this.compute.adaptiveReport(a.state) : null;
+        const uncertainty = st.adaptive === a ? await this.compute.adaptiveUncertainty(a.state) : null;
         if (st.adaptive !== a) return;
         const was = { front: a.front, pick: a.report.history[a.report.history.length - 1].pick };
-        st.adaptive = { ...a, report, proposal: r.proposal, front: r.front, errors: [...a.errors, r.recheck.error], was, ms: [...a.ms, r.ms] };
-        this.adaptiveShown();
+        st.adaptive = { ...a, report, proposal: r.proposal, front: r.front, errors: [...a.errors, r.recheck.error], was, ms: [...a.ms, r.ms], uncertainty };
+        this.adaptiveShown(true);
       }
     } catch (e) {
       this.render.adaptiveStatus(`The adaptive run failed: ${plainWords(e.message || String(e))}`);
@@ -481,11 +485,14 @@ export class Controller {
     }
   }
 
-  /** Redraws what shows the adaptive loop: its panel, the markers and the plane. */
-  adaptiveShown() {
+  /**
+   * Redraws what shows the adaptive loop: its panel, the markers and the plane (after a
+   * step, `animate`: the front and pick move there from where they were).
+   */
+  adaptiveShown(animate = false) {
     this.render.adaptive(true);
     this.render.markers();
-    this.render.plane();
+    this.render.plane(animate);
   }
 
   /** FRFs and PSDs of the current design (heavy worker), 60 ms after the last change. */

@@ -20,9 +20,10 @@ export const SESSION_METHODS = [
 /**
  * The adaptive HiFi loop's calls (issue #15), on the thread's one `AdaptiveRun` of the core
  * (crate/src/web/mod.rs): `adaptiveStart(state, options)`, `adaptiveStep(state)`,
- * `adaptiveReport(state)`. A step or report for another scenario than the run's is refused.
+ * `adaptiveReport(state)`, `adaptiveUncertainty(state, nx, ny, levels)`. A step or report
+ * for another scenario than the run's is refused.
  */
-export const ADAPTIVE_METHODS = ['adaptiveStart', 'adaptiveStep', 'adaptiveReport'];
+export const ADAPTIVE_METHODS = ['adaptiveStart', 'adaptiveStep', 'adaptiveReport', 'adaptiveUncertainty'];
 
 /** The largest |`100 (predicted / hifi - 1)`| of BAcc, DTL and SWS, %: a pick's HiFi re-check error. */
 function recheckError(predicted, hifi) {
@@ -112,6 +113,21 @@ export class Host {
   /** The loop so far (`ridelab surrogate ... --adaptive K`'s `adaptive`). */
   adaptiveReport(state) {
     return this.adaptiveFor(state).report();
+  }
+
+  /**
+   * The loop's uncertainty estimate: `{nx, ny, map, levels, check, atSamples, ms}`
+   * (`map`: sigma, %, at the `nx` x `ny` cell centres, three planes as the maps';
+   * `check`, `atSamples`: the core's `uncertaintyCheck(levels)`, how well sigma predicts
+   * the true error on the `levels` x `levels` HiFi grid, and its largest value at the
+   * samples, %).
+   */
+  adaptiveUncertainty(state, nx, ny, levels) {
+    const run = this.adaptiveFor(state);
+    const t0 = performance.now();
+    const map = run.uncertaintyMap(nx, ny);
+    const c = run.uncertaintyCheck(levels);
+    return { nx, ny, map, levels: c.levels, check: c.check, atSamples: c.at_samples_percent, ms: performance.now() - t0 };
   }
 
   /** The run of `state`'s scenario; throws `{field: 'adaptive'}` when there is none. */

@@ -39,15 +39,19 @@ export function mapsCsv(box, model, m) {
   return lines.join('\n') + '\n';
 }
 
-/** CSV of the STM front and the NSGA-II one when computed (`{error}` results are left out). */
-export function frontCsv(front, nsga) {
+/**
+ * CSV of the STM front, the NSGA-II one when computed (`{error}` results are left out)
+ * and the adaptive loop's front when one runs (`adaptive`: js/chartspecs.js
+ * `adaptivePlane`; method `adaptive`, its pick marked).
+ */
+export function frontCsv(front, nsga, adaptive = null) {
   const lines = ['method,ks_N_per_m,cs_Ns_per_m,bacc_m_per_s2,dtl_N,sws_m,pick'];
+  const row = (name, p, pick) => lines.push(`${name},${p.ks},${p.cs},${p.bacc},${p.dtl},${p.sws},${pick ? 1 : 0}`);
   for (const [name, r] of [['stm', front], ['nsga2', nsga]]) {
     if (!r || r.error) continue;
-    r.study.front.forEach((p, i) => {
-      lines.push(`${name},${p.ks},${p.cs},${p.bacc},${p.dtl},${p.sws},${i === r.study.pick.index ? 1 : 0}`);
-    });
+    r.study.front.forEach((p, i) => row(name, p, i === r.study.pick.index));
   }
+  if (adaptive) adaptive.front.forEach((p, i) => row('adaptive', p, i === adaptive.pick.index));
   return lines.join('\n') + '\n';
 }
 

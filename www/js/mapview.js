@@ -29,6 +29,8 @@ export const CRITERIA = [
 
 /** The caption of an error map. */
 const ERROR_TEACH = 'Surrogate minus HiFi in % of the HiFi: blue where the surrogate is lower, red where higher.';
+/** The caption of an uncertainty map. */
+const SIGMA_TEACH = 'Estimated 1σ relative error of the surrogate in %: zero at its HiFi samples, larger away from them.';
 
 /** The hatch of each family of objectives (the core's `objectives()`): lines, dots, lines. */
 const HATCH_OF_FAMILY = { limit: '/', band: 'dots', datum: '-' };
@@ -172,8 +174,9 @@ export class MapView {
    * New map data. `maps`: {nx, ny, values, feasible, broken, feasibleCount} from the
    * engine; `box`: design box (N/m, N s/m); `swsLimit`: m or null; `scale`: "abs" or
    * "rel"; `datum`: the datum's criteria {bacc, dtl, sws} by the map's model (for "rel");
-   * `kind`: "value" (criteria) or "error" (the planes hold the surrogate's signed error
-   * against the HiFi, %, and `scale` is ignored); `palette`: the colour map of absolute
+   * `kind`: "value" (criteria), "error" (the planes hold the surrogate's signed error
+   * against the HiFi, %, and `scale` is ignored) or "sigma" (the estimated 1σ relative
+   * error, %, on the absolute palette from 0); `palette`: the colour map of absolute
    * values ("viridis" or "cividis") and `tables` the colour tables by name. `draw` false
    * leaves the drawing to a later `drawBase()` (the page splits a map's update over two
    * tasks).
@@ -184,12 +187,14 @@ export class MapView {
     const off = this.crit.plane * n;
     const f = this.crit.factor;
     const error = kind === 'error';
+    const sigma = kind === 'sigma';
     if (error) scale = 'rel';
+    if (sigma) scale = 'abs';
     const ref = datum ? datum[this.crit.key] : 1;
     const shown = new Float64Array(n);
     for (let k = 0; k < n; k++) {
       const v = values[off + k];
-      shown[k] = error ? v : scale === 'rel' ? (v / ref - 1) * 100 : v * f;
+      shown[k] = error || sigma ? v : scale === 'rel' ? (v / ref - 1) * 100 : v * f;
     }
     // The colour range spans every design in the box, the infeasible ones too: their
     // values show through the hatching.
@@ -200,6 +205,7 @@ export class MapView {
       if (v < lo) lo = v;
       if (v > hi) hi = v;
     }
+    if (sigma) lo = 0;
     if (scale === 'rel') {
       const m = Math.max(Math.abs(lo), Math.abs(hi), 1e-9);
       lo = -m;
@@ -251,15 +257,15 @@ export class MapView {
       // Contour levels and lines: at the colour bar's ticks, set when it is drawn.
       levels: [], levelsKey: null, contours: [],
       infeasible: maps.feasibleCount < n,
-      unit: error ? '% error vs HiFi' : scale === 'rel' ? '% vs datum' : this.crit.unit,
+      unit: error ? '% error vs HiFi' : sigma ? '% estimated 1σ' : scale === 'rel' ? '% vs datum' : this.crit.unit,
       shown, kind, feasible: maps.feasible, broken: maps.broken,
     };
-    const teach = error ? ERROR_TEACH : this.crit.teach;
+    const teach = error ? ERROR_TEACH : sigma ? SIGMA_TEACH : this.crit.teach;
     this.teachEl.textContent = teach;
     this.capEl.title = teach;
     this.base.setAttribute(
       'aria-label',
-      `${error ? `Surrogate error in ${this.crit.long}` : this.crit.long} map over spring rate Ks ${box.ks_min / KS_UNIT} to ${box.ks_max / KS_UNIT} kN/m ` +
+      `${error ? `Surrogate error in ${this.crit.long}` : sigma ? `Estimated uncertainty of the surrogate's ${this.crit.long}` : this.crit.long} map over spring rate Ks ${box.ks_min / KS_UNIT} to ${box.ks_max / KS_UNIT} kN/m ` +
         `and damper rate Cs ${box.cs_min / CS_UNIT} to ${box.cs_max / CS_UNIT} kNs/m; ` +
         `values ${fmt(lo)} to ${fmt(hi)} ${this.data.unit}.`,
     );

@@ -2,7 +2,8 @@
 // page's dots), the Pareto fronts, the min-max pick and its HiFi re-check, the datum
 // (plotters, js/chartspecs.js), and the current design on an overlay canvas (it moves
 // with the sliders). A design beyond the axes stays in view: pinned to the edge with an
-// arrow towards it. A click selects the nearest front point. Handed plain data.
+// arrow towards it. A click selects the nearest front point. After an adaptive HiFi run
+// the loop's front and pick move to their new place (`move`). Handed plain data.
 
 import { Plot } from './plot.js';
 import { CLOUD_OPACITY, cloudPoints, objectiveSpec, planeXY } from './chartspecs.js';
@@ -10,6 +11,48 @@ import { fmt, fmtPct } from './format.js';
 
 /** The live layer's colours (the charts' own are in js/chartspecs.js). */
 const CLOUD_FILL = `rgba(120, 160, 210, ${CLOUD_OPACITY})`;
+
+/** How long the adaptive loop's front and pick take to move to their new place, ms. */
+export const MOVE_MS = 400;
+
+/** True when the reader asked for less motion (the plane then jumps). */
+function reducedMotion() {
+  return typeof matchMedia === 'function' && matchMedia('(prefers-reduced-motion: reduce)').matches;
+}
+
+/**
+ * `front` (points `{bacc, dtl}`, in order along the front) resampled at `m` equal steps
+ * of its length, the length measured in units of `scale` = `[BAcc, DTL]` so both axes
+ * count alike: `[[bacc, dtl]]`, first and last points kept.
+ */
+export function resampleFront(front, m, scale) {
+  const pts = front.map((p) => [p.bacc, p.dtl]);
+  const s = [0];
+  for (let i = 1; i < pts.length; i++) {
+    s.push(s[i - 1] + Math.hypot((pts[i][0] - pts[i - 1][0]) / scale[0], (pts[i][1] - pts[i - 1][1]) / scale[1]));
+  }
+  const len = s[s.length - 1];
+  const out = [];
+  let j = 0;
+  for (let k = 0; k < m; k++) {
+    const u = m > 1 ? (len * k) / (m - 1) : 0;
+    while (j < pts.length - 2 && s[j + 1] < u) j++;
+    const a = pts[j];
+    const b = pts[Math.min(j + 1, pts.length - 1)];
+    const f = s[j + 1] > s[j] ? Math.min(1, (u - s[j]) / (s[j + 1] - s[j])) : 0;
+    out.push([a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])]);
+  }
+  return out;
+}
+
+/** `[BAcc, DTL]` spans of the points of both fronts (1 where there is none). */
+function spans(...fronts) {
+  const span = (k) => {
+    const v = fronts.flat().map((p) => p[k]);
+    return Math.max(...v) - Math.min(...v) || 1;
+  };
+  return [span('bacc'), span('dtl')];
+}
 
 export class ObjectivePlane {
   /**
@@ -26,6 +69,11 @@ export class ObjectivePlane {
     this.designAt = null;
     this.designClamped = false;
     this.thick = 1;
+    /** True while the adaptive front moves (`move`); `moved`: the last move's `{frames, ms}`. */
+    this.animating = false;
+    this.moved = null;
+    this.raf = null;
+    this.moveTimer = null;
     overlay.addEventListener('click', (ev) => {
       const p = this.nearest(ev);
       if (p) onSelect(p);
@@ -41,9 +89,11 @@ export class ObjectivePlane {
    * The plane of `data` = `{front, nsga, cloud, ratio}` in three layers on the base
    * canvas: plotters' axes, the cloud of feasible designs (thousands of dots in one
    * path), then plotters' fronts and markers. With no front the core's message (naming
-   * the binding objective) replaces the plot.
+   * the binding objective) replaces the plot. Ends a move in progress (`frame`: the
+   * move's own frames).
    */
-  draw(data) {
+  draw(data, frame = false) {
+    if (!frame) this.stopMove();
     this.data = data;
     const fr = data.front;
     if (!fr || fr.error) {
@@ -62,6 +112,62 @@ export class ObjectivePlane {
       this.base.draw(spec, 'series');
     }
     this.drawDesign(this.design);
+  }
+
+  /**
+   * Draws `data`, the adaptive loop's front and pick moving there over MOVE_MS ms from
+   * `data.adaptive.was` (one frame per animation frame: both fronts resampled at the same
+   * fractions of their length and blended, the pick on a straight line, eased). With
+   * prefers-reduced-motion, or nothing to move from, it jumps. The last frame is
+   * `draw(data)` itself, so what stays drawn is exactly the computed front and pick.
+   */
+  move(data) {
+    this.stopMove();
+    const a = data.adaptive;
+    if (!a || !a.was || !a.was.front.length || !a.front.length || reducedMotion()) {
+      this.draw(data);
+      if (a && a.was) this.moved = { frames: 0, ms: 0 };
+      return;
+    }
+    const m = Math.max(a.was.front.length, a.front.length, 2);
+    const scale = spans(a.was.front, a.front);
+    const p0 = resampleFront(a.was.front, m, scale);
+    const p1 = resampleFront(a.front, m, scale);
+    const c0 = a.was.pick.criteria;
+    const c1 = a.pick.criteria;
+    const t0 = performance.now();
+    let frames = 0;
+    this.animating = true;
+    const finish = (now) => {
+      this.stopMove();
+      this.moved = { frames, ms: now - t0 };
+      this.draw(data, true);
+    };
+    // A hidden page gets no animation frames: the move ends on a timer then.
+    this.moveTimer = setTimeout(() => finish(performance.now()), 3 * MOVE_MS);
+    const step = (now) => {
+      const t = Math.min(1, (now - t0) / MOVE_MS);
+      if (t >= 1) {
+        finish(now);
+        return;
+      }
+      const e = t * t * (3 - 2 * t);
+      const mix = (x, y) => x + e * (y - x);
+      const front = p0.map((p, i) => ({ bacc: mix(p[0], p1[i][0]), dtl: mix(p[1], p1[i][1]) }));
+      const pick = { ...a.pick, criteria: { ...c1, bacc: mix(c0.bacc, c1.bacc), dtl: mix(c0.dtl, c1.dtl) } };
+      frames++;
+      this.draw({ ...data, adaptive: { ...a, front, pick } }, true);
+      this.raf = requestAnimationFrame(step);
+    };
+    this.raf = requestAnimationFrame(step);
+  }
+
+  /** Stops a move in progress where it is (the caller draws what comes next). */
+  stopMove() {
+    if (this.raf !== null) cancelAnimationFrame(this.raf);
+    clearTimeout(this.moveTimer);
+    this.raf = null;
+    this.animating = false;
   }
 
   /** The current design's marker (`design`: its surrogate criteria `{bacc, dtl}`). */

@@ -7,7 +7,7 @@ import { MapView } from './mapview.js';
 import { renderPick } from './plane.js';
 import { renderCriteria, feasibilityText, routeNote, renderProps, renderModes } from './readout.js';
 import { renderMetrics, tuningText, renderAdaptive, proposalText } from './surrogatepanel.js';
-import { adaptiveSpec } from './chartspecs.js';
+import { adaptivePlane, adaptiveSpec } from './chartspecs.js';
 import { MODEL_NAMES, datumStateOf, fitKeyOf, keyOf } from './store.js';
 import { GRID } from './compute.js';
 import { fmt, fmtInput, fmtPct } from './format.js';
@@ -71,12 +71,13 @@ export class Render {
     this.controls();
   }
 
-  /** The objective plane from the store. */
-  plane() {
+  /** The objective plane from the store (`animate`: the adaptive loop's front and pick move to where they are now). */
+  plane(animate = false) {
     const st = this.store;
-    const a = st.adaptive;
-    const adaptive = a && a.report.history.length ? { front: a.front, pick: a.report.history[a.report.history.length - 1].pick, was: a.was } : null;
-    this.ui.plane.draw({ front: st.front, nsga: st.nsga, cloud: st.cloud, ratio: st.view.ratio, adaptive });
+    const adaptive = adaptivePlane(st.adaptive);
+    const data = { front: st.front, nsga: st.nsga, cloud: st.cloud, ratio: st.view.ratio, adaptive };
+    if (animate) this.ui.plane.move(data);
+    else this.ui.plane.draw(data);
     $('op-key-adaptive').hidden = !adaptive;
     this.ui.plane.drawDesign(st.surrogate.design);
   }
@@ -210,6 +211,7 @@ export class Render {
       const caption = shown && (st.view.model === 'lofi' || sur) ? MapView.caption(v.crit, value[k], ref[k], st.view.scale) : '';
       v.setMarkers({ design: { ks: state.ks, cs: state.cs }, datum, samples, pick, adaptive }, caption);
     }
+    this.ui.uncertainty.moveDesign({ ks: state.ks, cs: state.cs });
   }
 
   /** The surrogate panel's report and the markers of its samples. */
@@ -238,6 +240,16 @@ export class Render {
     renderAdaptive($('ad-samples'), a);
     $('ad-chart-box').hidden = !a;
     if (a) this.ui.adaptiveChart.draw(adaptiveSpec(a));
+    this.uncertainty();
+  }
+
+  /** The adaptive loop's uncertainty map and its caption (hidden without a loop). */
+  uncertainty() {
+    const st = this.store;
+    this.ui.uncertainty.show(st.adaptive, {
+      box: st.desc.designBox, design: { ks: st.state.ks, cs: st.state.cs }, datum: { ks: st.desc.datumKs, cs: st.desc.datumCs },
+      palette: st.view.palette, tables: this.ui.tables,
+    });
   }
 
   adaptiveStatus(text) {
@@ -297,7 +309,7 @@ export class Render {
     const on = this.store.view.projector;
     document.documentElement.classList.toggle('projector', on);
     const thick = on ? 1.8 : 1;
-    for (const v of [...this.ui.maps, this.ui.plane, this.ui.spectra, this.ui.time, this.ui.damper]) v.setStyle({ thick });
+    for (const v of [...this.ui.maps, this.ui.plane, this.ui.spectra, this.ui.time, this.ui.damper, this.ui.uncertainty]) v.setStyle({ thick });
     requestAnimationFrame(() => this.redrawAll());
   }
 
@@ -312,6 +324,7 @@ export class Render {
     }
     this.plane();
     if (st.adaptive && !$('ad-chart-box').hidden) this.ui.adaptiveChart.draw(adaptiveSpec(st.adaptive));
+    this.ui.uncertainty.redraw();
     if (st.spectra) this.ui.spectra.show(st.spectra);
     if (st.time) this.ui.time.draw(st.time.result, st.state.speed, st.time.linear);
     if (this.ui.damper.visible()) this.ui.damper.refresh();

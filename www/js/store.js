@@ -101,11 +101,13 @@ export class Store {
     this.spectraKey = '';
     /**
      * The adaptive HiFi loop of the Surrogate tab (issue #15) when started, for the
-     * scenario `key`: `{key, state, report, proposal, front, errors, was, ms}`
+     * scenario `key`: `{key, state, report, proposal, front, errors, was, ms, uncertainty}`
      * (`report`: the core's; `proposal`: the next run, or `{error}`; `front`: the loop's
      * surrogate's front; `errors[i]`: the pick's HiFi re-check error after
      * `report.history[i]`, %; `was`: the front and pick before the latest step, or null;
-     * `ms`: each step's time in the worker). Dropped when the scenario changes.
+     * `ms`: each step's time in the worker; `uncertainty`: the loop's uncertainty map and
+     * its check against the HiFi, js/engine.js `Host.adaptiveUncertainty`). Dropped when
+     * the scenario changes.
      */
     this.adaptive = null;
     /** The time response when run: `{result, linear, key, opts}` (`linear`: the same road with the linear damper, for a nonlinear run). */

@@ -9,12 +9,16 @@ import { OUTPUTS, designText, objectiveSpec, output, spectraSpec, timeSpec } fro
 /** The map models' names in titles. */
 const MAP_MODELS = { lofi: 'LoFi', hifi: 'HiFi', surrogate: 'surrogate', error: 'surrogate error vs HiFi' };
 
-/** The objective plane as on screen (`ratio`: its datum-ratio axes), with a title. */
-export function objectiveChart({ state, front, nsga, cloud, design, ratio }, { width = 720, height = 460 } = {}) {
+/**
+ * The objective plane as on screen (`ratio`: its datum-ratio axes; `adaptive`: the
+ * adaptive loop's front and picks, js/chartspecs.js `adaptivePlane`, when one runs), with
+ * a title.
+ */
+export function objectiveChart({ state, front, nsga, cloud, design, ratio, adaptive = null }, { width = 720, height = 460 } = {}) {
   const title = front && !front.error
     ? `Objective plane (surrogate ${front.study.evaluator}): ${state.car}, class ${state.class} at ${state.speed} m/s`
     : '';
-  return objectiveSpec({ front, nsga, cloud, design }, { ratio, width, height, title });
+  return objectiveSpec({ front, nsga, cloud, design, adaptive }, { ratio, width, height, title });
 }
 
 /** One FRF (`which` = 'frf') or PSD ('psd') chart of output `key`, with a title. */
@@ -61,7 +65,7 @@ export function mapChart(view, model, { width = 640, height = 480 } = {}) {
  * Every chart there is data for, as `[{name, kind, spec, view?}]` (`kind`: 'line' or
  * 'map'; a map also names its `view`): the objective plane, the FRF and PSD plots, the
  * time response (once run) and the three maps. `data`: `{state, front, nsga, cloud,
- * design, ratio, spectra, time, views, model}`.
+ * design, ratio, adaptive, spectra, time, views, model}`.
  */
 export function exportCharts(data) {
   const out = [];

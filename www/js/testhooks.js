@@ -81,7 +81,10 @@ export function installTestHooks({ store, controller, compute, ui, boot, lessons
     },
     // The views.
     views: ui.maps,
+    /** The objective plane (js/plane.js): `data` is what it drew last, `animating` and `moved` its adaptive move. */
     objPlane: ui.plane,
+    /** The adaptive loop's uncertainty map (js/uncertaintypanel.js). */
+    uncertaintyPanel: ui.uncertainty,
     spectraPanel: ui.spectra,
     timePanel: ui.time,
     damperChart: ui.damper,

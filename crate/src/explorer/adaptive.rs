@@ -1,7 +1,8 @@
 //! The page's "next HiFi run" (issue #15): the adaptive loop of
 //! [`crate::surrogate::adaptive`] on the state's scenario, one HiFi run per step, with what
 //! the page draws after each: where the run went and why, the surrogate's new front and
-//! pick, the pick's HiFi re-check, and the uncertainty map.
+//! pick, the pick's HiFi re-check, and the uncertainty map with how well it predicts the
+//! true error on a HiFi validation grid.
 //!
 //! The loop starts from the state's surrogate and plan and judges fronts by the state's
 //! design objectives against the datum's HiFi criteria, with STM on a 201 x 201 grid refined
@@ -17,8 +18,10 @@ use crate::optimize::{recheck, FrontPoint, Recheck, StmParams};
 use crate::surrogate::adaptive::{
     AdaptiveLoop, AdaptiveOptions, AdaptiveReport, Added, Decision, Proposal, Step,
 };
+use crate::surrogate::metrics::ByCriterion;
 use crate::surrogate::sample_plan;
-use crate::surrogate::Setting;
+use crate::surrogate::uncertainty::{check, UncertaintyCheck};
+use crate::surrogate::{Setting, ValidationSet};
 use serde::Serialize;
 
 /// What one "next HiFi run" gives the page.
@@ -32,10 +35,30 @@ pub struct PageStep {
     pub recheck: Recheck,
 }
 
+/// Most levels per axis of the page's validation grid (`40 x 40` = 1600 HiFi runs).
+pub const MAX_CHECK_LEVELS: usize = 40;
+
+/// How the page's uncertainty map reads against the truth.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PageUncertainty {
+    /// Levels per axis of the HiFi validation grid.
+    pub levels: usize,
+    /// The loop's current estimate against the true relative error of its surrogate on
+    /// the grid (`uncertainty::check`: Pearson and Spearman correlation of `sigma_k` with
+    /// `|S_k / F_k - 1|`, the means, and the estimate at the grid's points).
+    pub check: UncertaintyCheck,
+    /// The largest estimate at the loop's HiFi samples, %, per criterion: its noise
+    /// floor (0 for an interpolating surrogate up to the Kriging nugget's share, the fit's
+    /// own residual for a least-squares one such as VBA).
+    pub at_samples_percent: ByCriterion<f64>,
+}
+
 /// An adaptive loop on one scenario, with the HiFi it runs.
 pub struct PageLoop {
     state: AdaptiveLoop,
     hifi: HiFi,
+    /// The HiFi validation grid, kept once run (it does not change as samples are added).
+    validation: Option<ValidationSet>,
 }
 
 impl PageLoop {
@@ -61,7 +84,11 @@ impl PageLoop {
             initial,
             options,
         )?;
-        Ok(PageLoop { state, hifi })
+        Ok(PageLoop {
+            state,
+            hifi,
+            validation: None,
+        })
     }
 
     /// Where the next HiFi run would go, and why (the marker before the run).
@@ -115,5 +142,36 @@ impl PageLoop {
             }
         }
         Ok(out)
+    }
+
+    /// How well the uncertainty estimate predicts the true error of the loop's current
+    /// surrogate on the `levels x levels` HiFi validation grid over the design box (run
+    /// on the HiFi once, `levels^2` runs, and kept), and the estimate at the samples.
+    /// Errors name `levels` outside `2..=`[`MAX_CHECK_LEVELS`].
+    pub fn uncertainty_check(&mut self, levels: usize) -> Result<PageUncertainty> {
+        if !(2..=MAX_CHECK_LEVELS).contains(&levels) {
+            return Err(RideError::field(
+                "levels",
+                format!("the validation grid needs 2 to {MAX_CHECK_LEVELS} levels per axis, got {levels}"),
+            ));
+        }
+        if self.validation.as_ref().is_none_or(|v| v.levels != levels) {
+            let b = self.state.setting().design_box;
+            self.validation = Some(ValidationSet::new(&self.hifi, &b, levels)?);
+        }
+        let validation = self.validation.as_ref().expect("set above");
+        let est = self.state.uncertain();
+        let mut floor = [0.0f64; 3];
+        for smp in self.state.samples() {
+            let s = est.relative_std(smp.ks, smp.cs)?;
+            for k in 0..3 {
+                floor[k] = floor[k].max(100.0 * s[k]);
+            }
+        }
+        Ok(PageUncertainty {
+            levels,
+            check: check(est, validation)?,
+            at_samples_percent: ByCriterion::from_fn(|k| floor[k]),
+        })
     }
 }

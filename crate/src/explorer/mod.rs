@@ -14,7 +14,7 @@ pub mod surrogate;
 #[cfg(test)]
 mod tests;
 
-pub use adaptive::{PageLoop, PageStep};
+pub use adaptive::{PageLoop, PageStep, PageUncertainty, MAX_CHECK_LEVELS};
 pub use fields::ui_field;
 pub use maps::{MapModel, ModelMap};
 pub use session::{EvaluatorKind, Session};

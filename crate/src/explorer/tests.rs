@@ -364,6 +364,66 @@ fn the_pages_adaptive_loop_is_the_clis() {
     }
     let e = page.uncertainty_map(1, 4).unwrap_err().to_string();
     assert!(e.starts_with("nx: "), "{e}");
+
+    // The check against the truth, re-derived point by point on a 6 x 6 HiFi grid (Ks
+    // level outer): the estimate of the CLI's loop and |S / F - 1| of its surrogate, %;
+    // correlations to 1e-12.
+    let levels = 6;
+    let u = page.uncertainty_check(levels).unwrap();
+    let (mut sigma, mut truth) = ([vec![], vec![], vec![]], [vec![], vec![], vec![]]);
+    for i in 0..levels {
+        for j in 0..levels {
+            let t = |l: usize| l as f64 / (levels - 1) as f64;
+            let (ks, cs) = sc.dbox.scale(t(i), t(j));
+            let s = cli.uncertain().relative_std(ks, cs).unwrap();
+            let p = cli.model().evaluate(ks, cs).unwrap().to_array();
+            let f = hifi.evaluate(ks, cs).unwrap().to_array();
+            for k in 0..3 {
+                sigma[k].push(100.0 * s[k]);
+                truth[k].push(100.0 * (p[k] / f[k] - 1.0).abs());
+            }
+        }
+    }
+    use crate::surrogate::metrics::{pearson, spearman};
+    for k in 0..3 {
+        let (r, rho) = (
+            pearson(&sigma[k], &truth[k]),
+            spearman(&sigma[k], &truth[k]),
+        );
+        let (got_r, got_rho) = (
+            u.check.pearson.to_array()[k],
+            u.check.spearman.to_array()[k],
+        );
+        assert!(
+            (got_r.unwrap() - r.unwrap()).abs() < 1e-12,
+            "{k}: {got_r:?} vs {r:?}"
+        );
+        assert!(
+            (got_rho.unwrap() - rho.unwrap()).abs() < 1e-12,
+            "{k}: {got_rho:?} vs {rho:?}"
+        );
+        // The grid's points are scaled from the plan's unit levels: equal to 1e-12.
+        for (got, want) in u.check.map_percent.to_array()[k].iter().zip(&sigma[k]) {
+            assert!((got - want).abs() <= 1e-12 * want.abs(), "{k}: {got} vs {want}");
+        }
+    }
+    assert_eq!(u.levels, levels);
+    // gp-mul interpolates: at its 7 samples the estimate is at the nugget's floor, below
+    // 1e-4 of its largest value on the map (the estimator's own test bounds the same).
+    let peak = map.iter().copied().fold(0.0, f64::max);
+    for k in 0..3 {
+        let floor = *u.at_samples_percent.to_array()[k];
+        assert!(
+            floor >= 0.0 && floor <= 1e-4 * peak,
+            "{k}: {floor} % vs peak {peak} %"
+        );
+    }
+    // The grid is run once and kept; a bad size names `levels`.
+    assert_eq!(page.uncertainty_check(levels).unwrap(), u);
+    for bad in [1, MAX_CHECK_LEVELS + 1] {
+        let e = page.uncertainty_check(bad).unwrap_err().to_string();
+        assert!(e.starts_with("levels: "), "{e}");
+    }
 }
 
 /// The page's list of state keys (unknown keys are refused against it) is exactly the

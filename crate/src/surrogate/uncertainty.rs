@@ -392,6 +392,33 @@ pub struct UncertaintyCheck {
     pub map_percent: ByCriterion<Vec<f64>>,
 }
 
+/// How well an estimate predicts the size of the true error at the same points.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ErrorCorrelation {
+    /// Pearson's `r` of `sigma_i` against `|e_i|` (`None`: fewer than 2 points, a
+    /// non-finite value, or no spread in one of them).
+    pub pearson: Option<f64>,
+    /// Spearman's rank correlation of the same (ties share their mean rank).
+    pub spearman: Option<f64>,
+}
+
+/// The correlation of the estimates `sigma` with the sizes `|e_i|` of the true errors
+/// `error` (same points, same units; the sign of an error is dropped):
+///
+/// ```text
+/// r = sum_i (sigma_i - mean sigma) (|e_i| - mean |e|) / sqrt(sum_i (sigma_i - mean sigma)^2 sum_i (|e_i| - mean |e|)^2)
+/// ```
+///
+/// and Spearman's rank correlation (Pearson's of the ranks). Both `None` for slices of
+/// unequal length.
+pub fn error_correlation(sigma: &[f64], error: &[f64]) -> ErrorCorrelation {
+    let size: Vec<f64> = error.iter().map(|e| e.abs()).collect();
+    ErrorCorrelation {
+        pearson: pearson(sigma, &size),
+        spearman: spearman(sigma, &size),
+    }
+}
+
 /// Compares `est` with the true errors on `validation` (module doc).
 pub fn check(est: &Uncertain, validation: &ValidationSet) -> Result<UncertaintyCheck> {
     let mut sigma: [Vec<f64>; 3] = Default::default();
@@ -405,11 +432,12 @@ pub fn check(est: &Uncertain, validation: &ValidationSet) -> Result<UncertaintyC
         }
     }
     let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+    let r: [ErrorCorrelation; 3] = std::array::from_fn(|k| error_correlation(&sigma[k], &truth[k]));
     Ok(UncertaintyCheck {
         method: est.method,
         description: est.method.description().into(),
-        pearson: ByCriterion::from_fn(|k| pearson(&sigma[k], &truth[k])),
-        spearman: ByCriterion::from_fn(|k| spearman(&sigma[k], &truth[k])),
+        pearson: ByCriterion::from_fn(|k| r[k].pearson),
+        spearman: ByCriterion::from_fn(|k| r[k].spearman),
         estimated_mean_percent: ByCriterion::from_fn(|k| mean(&sigma[k])),
         true_mean_percent: ByCriterion::from_fn(|k| mean(&truth[k])),
         map_percent: ByCriterion::from_fn(|k| std::mem::take(&mut sigma[k])),
@@ -620,6 +648,30 @@ mod tests {
             .unwrap_err()
             .to_string()
             .starts_with("uncertainty"));
+    }
+
+    /// `error_correlation` by hand: `sigma = [0, 1, 2, 5]`, errors `[1, -1, -3, 4]`, so
+    /// `|e| = [1, 1, 3, 4]`. Deviations from the means 2 and 2.25: `(-2, -1, 0, 3)` and
+    /// `(-1.25, -1.25, 0.75, 1.75)`; `Sxy = 2.5 + 1.25 + 0 + 5.25 = 9`, `Sxx = 14`,
+    /// `Syy = 6.75`, `r = 9 / sqrt(94.5)`. Ranks `(1, 2, 3, 4)` and `(1.5, 1.5, 3, 4)`:
+    /// `Sxy = 4.5`, `Sxx = 5`, `Syy = 4.5`, `rho = 4.5 / sqrt(22.5) = sqrt(0.9)`. An
+    /// estimate exactly proportional to `|e|` correlates 1 by both, whatever the signs.
+    #[test]
+    fn error_correlation_by_hand() {
+        let c = error_correlation(&[0.0, 1.0, 2.0, 5.0], &[1.0, -1.0, -3.0, 4.0]);
+        assert!(
+            (c.pearson.unwrap() - 9.0 / 94.5f64.sqrt()).abs() < 1e-12,
+            "{c:?}"
+        );
+        assert!((c.spearman.unwrap() - 0.9f64.sqrt()).abs() < 1e-12, "{c:?}");
+        let e = [0.3, -1.7, 2.2, -0.05, 4.0, -3.1];
+        let sigma: Vec<f64> = e.iter().map(|v: &f64| 2.5 * v.abs()).collect();
+        let c = error_correlation(&sigma, &e);
+        assert!((c.pearson.unwrap() - 1.0).abs() < 1e-12, "{c:?}");
+        assert!((c.spearman.unwrap() - 1.0).abs() < 1e-12, "{c:?}");
+        // No spread in the estimate, or unequal lengths: no correlation.
+        assert_eq!(error_correlation(&[1.0; 6], &e).pearson, None);
+        assert_eq!(error_correlation(&[1.0, 2.0], &e).spearman, None);
     }
 
     /// How well each estimate predicts the true error on the 20 x 20 HiFi validation grid,

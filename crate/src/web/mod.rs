@@ -310,8 +310,11 @@ pub fn damper_curve_js(damper: JsValue, v_max: f64) -> Result<JsValue, JsValue> 
 /// returns `{added, step: {hifi_runs, front_points, hypervolume, pick}, recheck}`.
 /// `report()` is the loop so far (samples in order with reasons, the `history` of
 /// hypervolume and pick per HiFi run, as `ridelab surrogate ... --adaptive K` gives it),
-/// `front()` the surrogate's front and `uncertaintyMap(nx, ny)` the estimate, %, in the
-/// maps' layout. `options` (optional, the CLI's names): `{criterion: "ehvi-front" |
+/// `front()` the surrogate's front, `uncertaintyMap(nx, ny)` the estimate, %, in the
+/// maps' layout, and `uncertaintyCheck(levels)` how well it predicts the true error on a
+/// `levels x levels` HiFi grid: `{levels, check: {method, description, pearson,
+/// spearman, estimated_mean_percent, true_mean_percent, map_percent}, at_samples_percent}`
+/// (by criterion `{bacc, dtl, sws}`; the grid is run on the HiFi once and kept). `options` (optional, the CLI's names): `{criterion: "ehvi-front" |
 /// "ehvi", uncertainty: "model" | "loo", candidates, min_distance, seed}`.
 #[wasm_bindgen(js_name = AdaptiveRun)]
 pub struct AdaptiveRun(crate::explorer::PageLoop);
@@ -360,5 +363,12 @@ impl AdaptiveRun {
     pub fn uncertainty_map(&self, nx: usize, ny: usize) -> Result<Float64Array, JsValue> {
         let m = self.0.uncertainty_map(nx, ny).map_err(js_error)?;
         Ok(Float64Array::from(m.as_slice()))
+    }
+
+    /// How well the estimate predicts the true error on the `levels x levels` HiFi grid
+    /// (errors name `levels`).
+    #[wasm_bindgen(js_name = uncertaintyCheck)]
+    pub fn uncertainty_check(&mut self, levels: usize) -> Result<JsValue, JsValue> {
+        to_js(&self.0.uncertainty_check(levels).map_err(js_error)?)
     }
 }
