@@ -151,7 +151,11 @@ impl Session {
 
     /// A model's values on `grid`, kept or computed.
     fn values(&mut self, model: MapModel, grid: &Grid) -> Result<Rc<Dcs>> {
-        if let Some(k) = self.kept.iter().find(|k| k.model == model && k.grid == *grid) {
+        if let Some(k) = self
+            .kept
+            .iter()
+            .find(|k| k.model == model && k.grid == *grid)
+        {
             return Ok(Rc::clone(&k.values));
         }
         let datum = &self.scenario.datum;
@@ -195,13 +199,20 @@ impl Session {
         if planes.len() != 3 * n {
             return Err(RideError::field(
                 "values",
-                format!("must hold 3 x {nx} x {ny} = {} numbers (got {})", 3 * n, planes.len()),
+                format!(
+                    "must hold 3 x {nx} x {ny} = {} numbers (got {})",
+                    3 * n,
+                    planes.len()
+                ),
             ));
         }
         if let Some(k) = planes.iter().position(|v| !(v.is_finite() && *v > 0.0)) {
             return Err(RideError::field(
                 "values",
-                format!("value {k} is {}, not a finite positive criterion", planes[k]),
+                format!(
+                    "value {k} is {}, not a finite positive criterion",
+                    planes[k]
+                ),
             ));
         }
         let values = (0..n)

@@ -475,16 +475,29 @@ fn hifi_values_from_the_gpu_path_are_kept_and_shown() {
         crate::error::RideError::Field { field, .. } => field,
         other => panic!("{other}"),
     };
-    assert_eq!(field_of(x.keep_hifi_planes(nx, ny, &planes[1..]).unwrap_err()), "values");
+    assert_eq!(
+        field_of(x.keep_hifi_planes(nx, ny, &planes[1..]).unwrap_err()),
+        "values"
+    );
     let mut bad = planes.clone();
     bad[5] = f64::NAN;
-    assert_eq!(field_of(x.keep_hifi_planes(nx, ny, &bad).unwrap_err()), "values");
-    assert_eq!(x.hifi_path(nx, ny), Some(ComputePath::Cpu), "a refused hand-in keeps the CPU values");
+    assert_eq!(
+        field_of(x.keep_hifi_planes(nx, ny, &bad).unwrap_err()),
+        "values"
+    );
+    assert_eq!(
+        x.hifi_path(nx, ny),
+        Some(ComputePath::Cpu),
+        "a refused hand-in keeps the CPU values"
+    );
     x.keep_hifi_planes(nx, ny, &planes).unwrap();
     assert_eq!(x.hifi_path(nx, ny), Some(ComputePath::Gpu));
     let gpu = x.map(MapModel::HiFi, nx, ny).unwrap();
     assert_eq!(gpu.planes(), planes);
-    assert_eq!(gpu.values.datum, cpu.values.datum, "the datum stays the CPU HiFi's");
+    assert_eq!(
+        gpu.values.datum, cpu.values.datum,
+        "the datum stays the CPU HiFi's"
+    );
     let worst = gpu
         .planes()
         .iter()
@@ -495,7 +508,10 @@ fn hifi_values_from_the_gpu_path_are_kept_and_shown() {
     let sur = x.map(MapModel::Surrogate, nx, ny).unwrap().planes();
     let err = x.map(MapModel::SurrogateError, nx, ny).unwrap().planes();
     for k in 0..3 * n {
-        assert!((err[k] - 100.0 * (sur[k] / planes[k] - 1.0)).abs() < 1e-9, "cell {k}");
+        assert!(
+            (err[k] - 100.0 * (sur[k] / planes[k] - 1.0)).abs() < 1e-9,
+            "cell {k}"
+        );
     }
     let faster = State {
         speed: 25.0,
