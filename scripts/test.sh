@@ -16,6 +16,9 @@ cargo test --workspace --features ridelab/gpu
 # dependencies with other features (no dev-dependencies) for about 2 minutes.
 test -x target/debug/ridelab
 
+# The page's crates (wasm-only ones such as wasm-bindgen-futures for the GPU path) are
+# fetched first: Trunk builds offline.
+cargo fetch --target wasm32-unknown-unknown
 echo "== wasm build of the page (trunk build --release --offline)"
 trunk build --release --offline
 

@@ -357,6 +357,141 @@ fn map_compute_says_which_path_ran() {
     }
 }
 
+/// `optimize --compute` (issue #13): the default prints no `compute` where auto finds no
+/// hardware GPU (lavapipe is software), and `--compute cpu` is that output plus
+/// `"compute": "cpu"`; `--compute gpu` without an adapter, or off STM on the full car, is
+/// one line naming the option, exit code 2; with an adapter (lavapipe here) STM's grid runs
+/// on the GPU: every front point within 1e-4 relative of the CPU HiFi at its design, at
+/// least 90 % of the front's designs the CPU front's own, the hypervolume within 1e-4
+/// relative and the pick within one grid cell (Ks and Cs) of the CPU's.
+#[test]
+fn optimize_compute_says_which_path_ran_and_the_gpu_front_is_the_cpus() {
+    let base = [
+        "optimize",
+        "--evaluator",
+        "full",
+        "--method",
+        "stm",
+        "--grid",
+        "41",
+        "--json",
+    ];
+    let with = |extra: &[&'static str]| -> Vec<&'static str> { [&base[..], extra].concat() };
+    let default = json(&base);
+    let mut cpu = json(&with(&["--compute", "cpu"]));
+    assert_eq!(cpu["compute"], "cpu");
+    assert!(cpu.get("adapter").is_none());
+    if default.get("compute").is_none() {
+        cpu.as_object_mut().unwrap().remove("compute");
+        assert_eq!(
+            cpu, default,
+            "--compute cpu is the default output plus `compute`"
+        );
+    } else {
+        // A hardware GPU: auto took it.
+        assert_eq!(default["compute"], "gpu");
+    }
+    let fails = |args: &[&str], env: Option<(&str, &str)>, why: &str| {
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_ridelab"));
+        cmd.args(args);
+        if let Some((k, v)) = env {
+            cmd.env(k, v);
+        }
+        let out = cmd.output().expect("runs");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.starts_with(why), "{args:?}: {err}");
+    };
+    let other = if cfg!(target_os = "macos") {
+        "dx12"
+    } else {
+        "metal"
+    };
+    let no_adapter = if cfg!(feature = "gpu") {
+        "error: compute: gpu: no GPU adapter"
+    } else {
+        "error: compute: gpu: this build has no GPU path"
+    };
+    fails(
+        &with(&["--compute", "gpu"]),
+        Some(("WGPU_BACKEND", other)),
+        no_adapter,
+    );
+    fails(
+        &[
+            "optimize",
+            "--evaluator",
+            "quarter",
+            "--compute",
+            "gpu",
+            "--json",
+        ],
+        None,
+        "error: compute: gpu: the GPU path evaluates STM's grid on the full car",
+    );
+    fails(
+        &[
+            "optimize",
+            "--evaluator",
+            "full",
+            "--method",
+            "nsga2",
+            "--compute",
+            "gpu",
+        ],
+        None,
+        "error: compute: gpu:",
+    );
+    let (code, out, err) = ridelab(&with(&["--compute", "gpu"]));
+    if code != 0 {
+        use std::io::Write;
+        let _ = writeln!(
+            std::io::stderr(),
+            "optimize --compute gpu: SKIPPED ({})",
+            err.trim()
+        );
+        return;
+    }
+    let gpu: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(gpu["compute"], "gpu");
+    assert!(gpu["adapter"].as_str().is_some_and(|a| !a.is_empty()));
+    let hifi = HiFi::new(&Car::datum(), &Road::default()).unwrap();
+    let point = |p: &Value, k: &str| p[k].as_f64().unwrap();
+    let (gf, cf) = (
+        gpu["front"].as_array().unwrap(),
+        cpu["front"].as_array().unwrap(),
+    );
+    assert!(gf.len() >= 5, "{} GPU front points", gf.len());
+    let mut shared = 0;
+    for p in gf {
+        let (ks, cs) = (point(p, "ks"), point(p, "cs"));
+        let want = hifi.evaluate(ks, cs).unwrap();
+        for (k, w) in [("bacc", want.bacc), ("dtl", want.dtl), ("sws", want.sws)] {
+            let e = (point(p, k) / w - 1.0).abs();
+            assert!(e <= 1e-4, "front point ({ks}, {cs}) {k}: {e:.2e}");
+        }
+        shared += usize::from(
+            cf.iter()
+                .any(|q| point(q, "ks") == ks && point(q, "cs") == cs),
+        );
+    }
+    assert!(
+        10 * shared >= 9 * gf.len(),
+        "{shared} of {} GPU front designs on the CPU front",
+        gf.len()
+    );
+    let (hg, hc) = (
+        gpu["hypervolume"].as_f64().unwrap(),
+        cpu["hypervolume"].as_f64().unwrap(),
+    );
+    assert!((hg / hc - 1.0).abs() <= 1e-4, "hypervolume {hg} vs {hc}");
+    let b = ridelab::DesignBox::default();
+    let (pg, pc) = (&gpu["pick"], &cpu["pick"]);
+    assert!((point(pg, "ks") - point(pc, "ks")).abs() <= (b.ks_max - b.ks_min) / 40.0);
+    assert!((point(pg, "cs") - point(pc, "cs")).abs() <= (b.cs_max - b.cs_min) / 40.0);
+}
+
 /// The CLI's `optimize` output through the library: the datum on the HiFi, the problem on
 /// the chosen evaluator, the study, and the pick re-checked on the HiFi.
 fn optimize_by_library(evaluator: &str, method: Method) -> Value {

@@ -31,6 +31,7 @@ import { fmt, fmtInput, parseNumber } from './format.js';
 import { download, mapsCsv, frontCsv, slidePng, zip } from './exports.js';
 import { allSvgs, exportCharts, objectiveChart } from './svgexport.js';
 import { installTestHooks } from './testhooks.js';
+import { pathText, computeMode } from './gpupath.js';
 import { keepDesign, renderCompare, savedEntry, MAX_SAVED } from './compare.js';
 import { LessonPanel } from './lessonpanel.js';
 import { isLessonHash } from './lessons.js';
@@ -532,7 +533,7 @@ async function main() {
   // the HiFi readout of each design (a few ms) and is never busy with long jobs; the
   // other runs those, so a slider move never waits behind them.
   const worker = kind === 'worker' ? createEngine(api, 'worker') : null;
-  const heavy = kind === 'worker' ? createEngine(api, 'worker') : null;
+  const heavy = kind === 'worker' ? createEngine(api, 'worker', { gpu: computeMode(location.search) }) : null;
   worker?.catch(() => {}); // handled by deferredEngine (falls back to the main thread)
   heavy?.catch(() => {});
   try {
@@ -550,6 +551,10 @@ async function main() {
     compute = new Compute(api, { main, hifi, heavy: heavy ? deferredEngine(heavy, main) : main });
     Object.assign(store, await compute.boot());
     setKeyFields(store.keyFields);
+    compute.gpuStatus().then((g) => {
+      // Until a HiFi map says otherwise (a GPU failure), the path the GPU status gives.
+      if (!$('compute-path').textContent) $('compute-path').textContent = `HiFi maps: ${pathText(g.adapter ? 'gpu' : 'cpu', g)}.`;
+    });
     Promise.resolve(hifi.ready).then(() => {
       $('version').textContent = `RideLab ${store.version}; HiFi model on the ${hifi.kind === 'worker' ? 'worker' : 'main'} thread.`;
     });

@@ -152,6 +152,15 @@ export class Compute {
     return { maps, datum };
   }
 
+  /**
+   * The GPU path of the HiFi maps (heavy worker, js/gpupath.js): `{adapter, reason,
+   * failure}` once the GPU is open (`adapter` its name) or refused (`reason`). Without
+   * the worker the CPU draws them.
+   */
+  gpuStatus() {
+    return this.heavy.call('gpuStatus').catch(() => ({ adapter: null, reason: 'no WebGPU adapter: the HiFi maps are drawn on the main thread', failure: null }));
+  }
+
   /** The surrogate's fit report, validated on the HiFi grid (heavy worker). */
   fit(s) {
     return this.heavy.call('surrogateFit', s, VALIDATION_LEVELS);

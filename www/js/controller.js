@@ -387,6 +387,7 @@ export class Controller {
           if (!r) return;
           this.metrics.modelMaps.push(r.ms);
           st.modelMaps = { model: r.model, key: scenarioKey(r.s), maps: r.maps, datum: r.datum, ms: r.ms };
+          if (r.maps.compute) this.render.computePath(r.maps.compute, r.maps.gpu);
           if (r.model === st.view.model && scenarioKey(r.s) === scenarioKey(st.state)) this.showMaps();
         })
         .catch((e) => this.render.mapStatus(`The ${MODEL_NAMES[model]} maps failed: ${e.message || e}`, 'bad')),

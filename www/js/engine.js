@@ -4,6 +4,7 @@
 // Errors are always `{message, field}` objects; `field` names the state field at fault.
 
 import { scenarioKey } from './store.js';
+import { GpuPath } from './gpupath.js';
 
 /** The wasm functions that need no session (with SESSION_METHODS, the worker's whitelist). */
 export const FUNCTIONS = [
@@ -25,6 +26,15 @@ export const SESSION_METHODS = [
  */
 export const ADAPTIVE_METHODS = ['adaptiveStart', 'adaptiveStep', 'adaptiveReport', 'adaptiveUncertainty'];
 
+/**
+ * The GPU path's calls (issue #13), on a host made with `{gpu: mode}` (the heavy worker):
+ * `gpuStatus()` resolves to `{adapter, reason, failure}` once the GPU is open or refused.
+ * On such a host `maps(state, 'hifi' | 'error', nx, ny)` resolves (a promise) to the
+ * map with the GPU's HiFi values when there is an adapter, else the CPU's; either way
+ * with `compute` ("gpu" or "cpu") and `gpu` (the status) set.
+ */
+export const GPU_METHODS = ['gpuStatus'];
+
 /** The largest |`100 (predicted / hifi - 1)`| of BAcc, DTL and SWS, %: a pick's HiFi re-check error. */
 function recheckError(predicted, hifi) {
   return Math.max(...['bacc', 'dtl', 'sws'].map((k) => Math.abs(100 * (predicted[k] / hifi[k] - 1))));
@@ -37,8 +47,12 @@ function recheckError(predicted, hifi) {
  * leaves the session, and what this host remembers of it, at the last good state.
  */
 export class Host {
-  constructor(api) {
+  constructor(api, { gpu = null } = {}) {
     this.api = api;
+    /** The GPU path of the HiFi maps (js/gpupath.js; `gpu` its mode), on the heavy worker only. */
+    this.gpu = gpu ? new GpuPath(api, gpu) : null;
+    /** The scenario and grid whose GPU map failed (the CPU drew it; not asked again). */
+    this.gpuFailedKey = null;
     this.explorer = null;
     this.scenarioKey = null;
     this.ks = null;
@@ -60,15 +74,42 @@ export class Host {
     return this.explorer;
   }
 
-  /** Runs one engine call synchronously. */
+  /** Runs one engine call: synchronously, or a promise for the GPU path's calls. */
   run(method, args) {
     if (FUNCTIONS.includes(method)) return this.api[method](...args);
+    if (this.gpu && method === 'maps' && ['hifi', 'error'].includes(args[1])) return this.gpuMaps(...args);
+    if (this.gpu && method === 'gpuStatus') return this.gpu.open().then(() => this.gpu.status());
     if (SESSION_METHODS.includes(method)) {
       const [state, ...rest] = args;
       return this.at(state)[method](...rest);
     }
     if (ADAPTIVE_METHODS.includes(method)) return this[method](...args);
     throw { message: `no method ${method}`, field: '' };
+  }
+
+  /**
+   * The HiFi or error map of `state` on `nx` x `ny` cells, its HiFi values from the GPU
+   * when it is open (computed once per scenario and grid, then kept by the session like
+   * its own), else the session's CPU values. A GPU failure leaves that scenario to the
+   * CPU and says so in the result's `gpu.failure`.
+   */
+  async gpuMaps(state, model, nx, ny) {
+    const key = `${scenarioKey(state)}|${nx}x${ny}`;
+    if (this.at(state).hifiPath(nx, ny) !== 'gpu' && this.gpuFailedKey !== key) {
+      const maps = await this.gpu.open();
+      if (maps) {
+        try {
+          const values = await this.gpu.map(maps, state, nx, ny);
+          // Other calls may have moved the session while the GPU ran: back to `state`.
+          this.at(state).keepHifiMap(nx, ny, values);
+        } catch {
+          this.gpuFailedKey = key;
+        }
+      }
+    }
+    const out = this.at(state).maps(model, nx, ny);
+    out.gpu = { ...this.gpu.status(), failure: this.gpuFailedKey === key ? this.gpu.failure : null };
+    return out;
   }
 
   /**
@@ -163,7 +204,8 @@ class MainEngine {
   }
   call(method, ...args) {
     try {
-      return Promise.resolve(this.host.run(method, args));
+      const value = this.host.run(method, args);
+      return value instanceof Promise ? value.catch((e) => Promise.reject(toFailure(e))) : Promise.resolve(value);
     } catch (e) {
       return Promise.reject(toFailure(e));
     }
@@ -198,10 +240,14 @@ class WorkerEngine {
   }
 }
 
-/** An engine of the given kind ("main" or "worker"); the worker answers a ping first. */
-export async function createEngine(api, kind = 'main') {
+/**
+ * An engine of the given kind ("main" or "worker"); the worker answers a ping first.
+ * `gpu` ("auto", "gpu" or "cpu", js/gpupath.js `computeMode`): the worker draws the HiFi
+ * maps on the GPU path where its mode finds an adapter (`GPU_METHODS`).
+ */
+export async function createEngine(api, kind = 'main', { gpu = null } = {}) {
   if (kind !== 'worker') return new MainEngine(api);
-  const worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+  const worker = new Worker(new URL(gpu ? `./worker.js?gpu=${gpu}` : './worker.js', import.meta.url), { type: 'module' });
   const engine = new WorkerEngine(worker);
   await engine.call('version');
   return engine;

@@ -11,8 +11,15 @@ import { adaptivePlane, adaptiveSpec } from './chartspecs.js';
 import { MODEL_NAMES, datumStateOf, fitKeyOf, keyOf } from './store.js';
 import { GRID } from './compute.js';
 import { fmt, fmtInput, fmtPct } from './format.js';
+import { pathText } from './gpupath.js';
 
 const $ = (id) => document.getElementById(id);
+
+/** ", on the GPU (name)" or ", on the CPU (why)" for a HiFi or error map with a `compute` path. */
+function pathNote(maps) {
+  if (!maps.compute) return '';
+  return maps.compute === 'gpu' ? `, on the ${pathText('gpu', maps.gpu)}` : `, on the ${pathText('cpu', maps.gpu)}`;
+}
 
 /**
  * "x % break the SWS limit, y % break the body-bounce frequency band" from a map mask;
@@ -169,6 +176,11 @@ export class Render {
     el.classList.toggle('bad', kind === 'bad');
   }
 
+  /** The footer's line: which path drew the HiFi maps (`compute`: "gpu" or "cpu"; `gpu`: the GPU path's status). */
+  computePath(compute, gpu) {
+    $('compute-path').textContent = `HiFi maps: ${pathText(compute, gpu)}.`;
+  }
+
   /** The line under the maps: how much of the box is feasible, what breaks where. */
   mapStatusOf(shown) {
     const st = this.store;
@@ -178,7 +190,7 @@ export class Render {
     const maps = shown.maps;
     const n = maps.nx * maps.ny;
     const who = `(${MODEL_NAMES[model === 'error' ? 'hifi' : model]}${maps.nx !== GRID.nx ? `, ${maps.nx} × ${maps.ny} grid` : ''})`;
-    const timing = st.modelMaps && shown.maps === st.modelMaps.maps ? ` Computed in ${fmt(st.modelMaps.ms, 3)} ms in the worker.` : '';
+    const timing = st.modelMaps && shown.maps === st.modelMaps.maps ? ` Computed in ${fmt(st.modelMaps.ms, 3)} ms in the worker${pathNote(maps)}.` : '';
     const errorNote = model === 'error' ? ' Error maps are in % of the HiFi whatever the colour setting.' : '';
     if (maps.feasibleCount === n) {
       this.mapStatus(`Every design in the box meets the design objectives on ${road} ${who}.${timing}${errorNote}`, 'good');

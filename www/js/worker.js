@@ -3,15 +3,17 @@
 import init, * as api from '../ridelab.js';
 import { Host, toFailure } from './engine.js';
 
-// This thread's session: the worker's maps, fits and fronts are kept between calls.
-const host = new Host(api);
+// This thread's session: the worker's maps, fits and fronts are kept between calls. The
+// GPU path (js/gpupath.js) is asked for on the worker that draws the HiFi maps only: the
+// page starts that one with `?gpu=MODE` in its URL (the page's `?compute=`).
+const host = new Host(api, { gpu: new URL(self.location.href).searchParams.get('gpu') });
 const ready = init({ module_or_path: new URL('../ridelab_bg.wasm', import.meta.url) });
 
 self.onmessage = async ({ data }) => {
   const { id, method, args } = data;
   try {
     await ready;
-    const value = host.run(method, args);
+    const value = await host.run(method, args);
     const transfer = [];
     if (value && typeof value === 'object') {
       for (const v of Object.values(value)) if (ArrayBuffer.isView(v)) transfer.push(v.buffer);

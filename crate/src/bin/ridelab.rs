@@ -15,10 +15,10 @@ use ridelab::design::DesignBox;
 use ridelab::doe::doe_report;
 use ridelab::dos::DesignObjectives;
 use ridelab::error::{Result, RideError};
-use ridelab::gpu::Compute;
+use ridelab::gpu::{Compute, ComputePath};
 use ridelab::maps::{map_csv, map_report_on, Axis, Grid, MapSettings, Scale};
 use ridelab::optimize::{
-    optimize_report_with, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, PickRule, StmParams,
+    optimize_report_on, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, PickRule, StmParams,
 };
 use ridelab::report::{build, ReportInputs, SECTIONS};
 use ridelab::road::{Road, RoadClass, Tracks};
@@ -133,6 +133,11 @@ struct OptimizeArgs {
     /// STM grid points per variable, 2..2001.
     #[arg(long, default_value_t = StmParams::default().grid, value_parser = count, allow_negative_numbers = true)]
     grid: usize,
+    /// Where STM's grid on the full car is evaluated: gpu, cpu, or auto (a hardware GPU
+    /// when there is one, else the CPU) [default: auto]; given, the JSON's `compute` says
+    /// which ran.
+    #[arg(long)]
+    compute: Option<Compute>,
     /// NSGA-II population, an even number 4..10000.
     #[arg(long, default_value_t = Nsga2Params::default().population, value_parser = count, allow_negative_numbers = true)]
     population: usize,
@@ -692,7 +697,7 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
     let design_box = DesignBox::default();
     let (mut out, looped) = match a.adaptive.options() {
         None => (
-            optimize_report_with(
+            optimize_report_on(
                 &car,
                 &road,
                 &design_box,
@@ -701,9 +706,16 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
                 &method,
                 objectives,
                 a.comfort,
+                a.compute,
             )?,
             None,
         ),
+        Some(_) if a.compute == Some(Compute::Gpu) => {
+            return Err(RideError::field(
+                "compute",
+                "gpu: the adaptive loop's HiFi runs are single designs on the CPU; use --compute cpu or auto",
+            ))
+        }
         Some(_) if a.comfort == Comfort::Wk => {
             return Err(RideError::field(
                 "comfort",
@@ -721,7 +733,9 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
                 objectives,
                 options,
             )?;
-            (r.optimize, Some(r.adaptive))
+            let mut out = r.optimize;
+            out.compute = a.compute.map(|_| ComputePath::Cpu);
+            (out, Some(r.adaptive))
         }
     };
     if a.pick != PickRule::MinMax {
@@ -773,7 +787,7 @@ fn optimize_text(out: &OptimizeReport) -> String {
     let (study, check) = (&out.study, &out.hifi_recheck);
     let p = &study.pick;
     let bacc = out.comfort.label();
-    format!(
+    let mut text = format!(
         "front: {} points on {} ({} evaluations), hypervolume {:.4} (m/s^2) N against [{:.4}, {:.2}]\n\
          {} pick: Ks {:.1} N/m, Cs {:.1} N s/m (pseudo-weights comfort {:.2}, road holding {:.2})\n  {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} % against the datum\n\
          HiFi re-check: {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} % (prediction error {:.3} / {:.3} / {:.3} %)\n",
@@ -797,7 +811,14 @@ fn optimize_text(out: &OptimizeReport) -> String {
         check.error_percent[0],
         check.error_percent[1],
         check.error_percent[2],
-    )
+    );
+    match (out.compute, &out.adapter) {
+        (Some(ComputePath::Gpu), Some(a)) => text += &format!("compute: gpu ({a})\n"),
+        (Some(ComputePath::Gpu), None) => text += "compute: gpu\n",
+        (Some(ComputePath::Cpu), _) => text += "compute: cpu\n",
+        (None, _) => {}
+    }
+    text
 }
 
 /// The front damper law of `--bump --rebound [--knee --bump-high --rebound-high]`

@@ -8,7 +8,10 @@
 //! - the fitted surrogate and each model's map values: until the car, road, design box
 //!   or surrogate change ([`FitKey`]). The design objectives only judge a map's values,
 //!   so an objective edit (the SWS limit dragged) re-judges the kept values instead of
-//!   recomputing them: a 160 x 120 LoFi map then costs its mask.
+//!   recomputing them: a 160 x 120 LoFi map then costs its mask;
+//! - HiFi values computed elsewhere (the page's GPU path, `web::GpuMaps`), handed in by
+//!   [`Session::keep_hifi_planes`]: kept like the session's own, with the path that made
+//!   them ([`Session::hifi_path`]), and used by the HiFi and surrogate-error maps.
 //!
 //! A setter that fails leaves the session as it was (the last good state).
 
@@ -19,7 +22,9 @@ use super::surrogate::{fit, fit_report, FitKey, FittedSurrogate};
 use crate::analysis::{readout, report, ModelKind, Readout, Report};
 use crate::dos::DosContext;
 use crate::error::Result;
+use crate::error::RideError;
 use crate::evaluate::{Criteria, Evaluator};
+use crate::gpu::{ComputePath, HiFiGrid};
 use crate::maps::{Dcs, DosMap, Grid, Scale};
 use crate::report::{build as build_report, MethodReport, ReportInputs};
 use crate::surrogate::SurrogateReport;
@@ -35,7 +40,15 @@ pub struct Session {
     state: State,
     scenario: Scenario,
     fit: Option<Rc<FittedSurrogate>>,
-    kept: Vec<(MapModel, Grid, Rc<Dcs>)>,
+    kept: Vec<Kept>,
+}
+
+/// One model's map values on one grid, and the path that computed them.
+struct Kept {
+    model: MapModel,
+    grid: Grid,
+    values: Rc<Dcs>,
+    path: ComputePath,
 }
 
 impl Session {
@@ -144,8 +157,12 @@ impl Session {
 
     /// A model's values on `grid`, kept or computed.
     fn values(&mut self, model: MapModel, grid: &Grid) -> Result<Rc<Dcs>> {
-        if let Some((_, _, v)) = self.kept.iter().find(|(m, g, _)| *m == model && g == grid) {
-            return Ok(Rc::clone(v));
+        if let Some(k) = self
+            .kept
+            .iter()
+            .find(|k| k.model == model && k.grid == *grid)
+        {
+            return Ok(Rc::clone(&k.values));
         }
         let datum = &self.scenario.datum;
         let at = (datum.front.spring, datum.front.damper);
@@ -157,11 +174,72 @@ impl Session {
                 Dcs::compute(&*fit.model, grid, at, Scale::Absolute)?
             }
         });
+        self.keep(model, *grid, Rc::clone(&v), ComputePath::Cpu);
+        Ok(v)
+    }
+
+    /// Keeps `values` of `model` on `grid`, replacing any kept there, the oldest going
+    /// past [`KEPT_MAPS`].
+    fn keep(&mut self, model: MapModel, grid: Grid, values: Rc<Dcs>, path: ComputePath) {
+        self.kept.retain(|k| !(k.model == model && k.grid == grid));
         if self.kept.len() >= KEPT_MAPS {
             self.kept.remove(0);
         }
-        self.kept.push((model, *grid, Rc::clone(&v)));
-        Ok(v)
+        self.kept.push(Kept {
+            model,
+            grid,
+            values,
+            path,
+        });
+    }
+
+    /// Keeps HiFi criteria computed on the GPU path for the current scenario on the
+    /// `nx` x `ny` cell-centre grid of its design box: `planes` as a map's `values`
+    /// (BAcc m/s^2, DTL N, SWS m planes, each row-major with Cs rows; `3 nx ny` finite
+    /// positive numbers, else an error naming `values`). The HiFi and surrogate-error maps
+    /// on that grid then show them (the datum's criteria stay the CPU HiFi's) until the
+    /// car, road, box or surrogate change.
+    pub fn keep_hifi_planes(&mut self, nx: usize, ny: usize, planes: &[f64]) -> Result<()> {
+        let grid = Grid::cells(&self.scenario.dbox, nx, ny)?;
+        let n = grid.len();
+        if planes.len() != 3 * n {
+            return Err(RideError::field(
+                "values",
+                format!(
+                    "must hold 3 x {nx} x {ny} = {} numbers (got {})",
+                    3 * n,
+                    planes.len()
+                ),
+            ));
+        }
+        if let Some(k) = planes.iter().position(|v| !(v.is_finite() && *v > 0.0)) {
+            return Err(RideError::field(
+                "values",
+                format!(
+                    "value {k} is {}, not a finite positive criterion",
+                    planes[k]
+                ),
+            ));
+        }
+        let values = (0..n)
+            .map(|k| Criteria::from_array([planes[k], planes[n + k], planes[2 * n + k]]))
+            .collect();
+        let given = HiFiGrid::from_values(self.scenario.hifi()?, grid, values, ComputePath::Gpu);
+        let datum = &self.scenario.datum;
+        let at = (datum.front.spring, datum.front.damper);
+        let dcs = Dcs::compute_with_threads(&given, &grid, at, Scale::Absolute, 1)?;
+        self.keep(MapModel::HiFi, grid, Rc::new(dcs), ComputePath::Gpu);
+        Ok(())
+    }
+
+    /// The path that computed the kept HiFi values on the `nx` x `ny` cell-centre grid,
+    /// `None` when none are kept there.
+    pub fn hifi_path(&self, nx: usize, ny: usize) -> Option<ComputePath> {
+        let grid = Grid::cells(&self.scenario.dbox, nx, ny).ok()?;
+        self.kept
+            .iter()
+            .find(|k| k.model == MapModel::HiFi && k.grid == grid)
+            .map(|k| k.path)
     }
 
     /// The Pareto front of BAcc and DTL on `model` by `method` ("stm" or "nsga2"), its

@@ -504,3 +504,81 @@ fn the_key_field_lists_are_what_fits_and_reports_depend_on() {
         "every state field is tried (carJson goes with car)"
     );
 }
+
+/// HiFi values from the GPU path (here the kernel's f32 arithmetic run on the CPU,
+/// `MapInput::map_cpu::<f32>`) kept in the session: the HiFi map shows them exactly,
+/// the error map is `100 (S / HiFi - 1)` of them, both say `Gpu`; they are within 1e-4 of
+/// the session's own CPU map; bad planes are refused naming `values`, and a road change
+/// drops them (the CPU computes again).
+#[test]
+fn hifi_values_from_the_gpu_path_are_kept_and_shown() {
+    use crate::gpu::{ComputePath, MapInput};
+    use crate::maps::Grid;
+    let (nx, ny) = (8, 6);
+    let mut x = session(|_| {});
+    let s = x.scenario().clone();
+    let cpu = x.map(MapModel::HiFi, nx, ny).unwrap();
+    assert_eq!(x.hifi_path(nx, ny), Some(ComputePath::Cpu));
+    let grid = Grid::cells(&s.dbox, nx, ny).unwrap();
+    let cells = MapInput::new(&s.datum, &s.road, &grid)
+        .unwrap()
+        .map_cpu::<f32>()
+        .unwrap();
+    let n = cells.len();
+    let mut planes = vec![0.0; 3 * n];
+    for (k, c) in cells.iter().enumerate() {
+        planes[k] = c.bacc;
+        planes[n + k] = c.dtl;
+        planes[2 * n + k] = c.sws;
+    }
+    let field_of = |e: crate::error::RideError| match e {
+        crate::error::RideError::Field { field, .. } => field,
+        other => panic!("{other}"),
+    };
+    assert_eq!(
+        field_of(x.keep_hifi_planes(nx, ny, &planes[1..]).unwrap_err()),
+        "values"
+    );
+    let mut bad = planes.clone();
+    bad[5] = f64::NAN;
+    assert_eq!(
+        field_of(x.keep_hifi_planes(nx, ny, &bad).unwrap_err()),
+        "values"
+    );
+    assert_eq!(
+        x.hifi_path(nx, ny),
+        Some(ComputePath::Cpu),
+        "a refused hand-in keeps the CPU values"
+    );
+    x.keep_hifi_planes(nx, ny, &planes).unwrap();
+    assert_eq!(x.hifi_path(nx, ny), Some(ComputePath::Gpu));
+    let gpu = x.map(MapModel::HiFi, nx, ny).unwrap();
+    assert_eq!(gpu.planes(), planes);
+    assert_eq!(
+        gpu.values.datum, cpu.values.datum,
+        "the datum stays the CPU HiFi's"
+    );
+    let worst = gpu
+        .planes()
+        .iter()
+        .zip(cpu.planes())
+        .map(|(g, c)| (g / c - 1.0).abs())
+        .fold(0.0, f64::max);
+    assert!(worst <= 1e-4, "GPU route vs CPU HiFi: {worst:e}");
+    let sur = x.map(MapModel::Surrogate, nx, ny).unwrap().planes();
+    let err = x.map(MapModel::SurrogateError, nx, ny).unwrap().planes();
+    for k in 0..3 * n {
+        assert!(
+            (err[k] - 100.0 * (sur[k] / planes[k] - 1.0)).abs() < 1e-9,
+            "cell {k}"
+        );
+    }
+    let faster = State {
+        speed: 25.0,
+        ..x.state().clone()
+    };
+    x.set_state(faster).unwrap();
+    assert_eq!(x.hifi_path(nx, ny), None);
+    x.map(MapModel::HiFi, nx, ny).unwrap();
+    assert_eq!(x.hifi_path(nx, ny), Some(ComputePath::Cpu));
+}

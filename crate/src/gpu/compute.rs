@@ -93,21 +93,39 @@ impl HiFiGrid {
         compute: Compute,
         threads: usize,
     ) -> Result<HiFiGrid> {
+        if let Some(g) = HiFiGrid::on_gpu(car, road, grid, compute)? {
+            return Ok(g);
+        }
         let hifi = HiFi::new(car, road)?;
+        let values = crate::maps::evaluate_grid(&hifi, grid, threads)?;
+        Ok(HiFiGrid::from_values(hifi, *grid, values, ComputePath::Cpu))
+    }
+
+    /// The grid on the GPU when `compute` takes it there: `None` for `Cpu`, and for
+    /// `Auto` without a hardware adapter or where the route cannot run (a mode damped
+    /// too weakly for its rule, a device failure), so the caller's CPU path runs;
+    /// `Gpu` without an adapter, or failing, is an error (naming `compute` when there is
+    /// no adapter or no GPU path in this build).
+    pub fn on_gpu(
+        car: &crate::car::Car,
+        road: &crate::road::Road,
+        grid: &Grid,
+        compute: Compute,
+    ) -> Result<Option<HiFiGrid>> {
+        // The car, road and grid are checked first, whatever the path.
+        HiFi::new(car, road)?;
         grid.validate()?;
         #[cfg(all(feature = "gpu", not(target_arch = "wasm32")))]
         if let Some(m) = gpu_mapper(compute)? {
-            // `Auto` falls back to the CPU where the route cannot run (a mode damped too
-            // weakly for its rule, a device failure); `Gpu` reports why.
             match super::MapInput::new(car, road, grid).and_then(|input| m.map(&input)) {
                 Ok(values) => {
-                    return Ok(HiFiGrid {
-                        hifi,
+                    return Ok(Some(HiFiGrid {
+                        hifi: HiFi::new(car, road)?,
                         grid: *grid,
                         values,
                         path: ComputePath::Gpu,
                         adapter: Some(m.adapter_name().to_string()),
-                    })
+                    }))
                 }
                 Err(e) if compute == Compute::Gpu => return Err(e),
                 Err(_) => {}
@@ -122,8 +140,7 @@ impl HiFiGrid {
                  use --compute cpu or auto",
             ));
         }
-        let values = crate::maps::evaluate_grid(&hifi, grid, threads)?;
-        Ok(HiFiGrid::from_values(hifi, *grid, values, ComputePath::Cpu))
+        Ok(None)
     }
 
     /// Wraps values already computed on `grid` (row-major, Cs rows) by `path`.

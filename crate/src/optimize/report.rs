@@ -16,6 +16,8 @@ use crate::design::DesignBox;
 use crate::dos::{DesignObjectives, DosContext};
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
+use crate::gpu::{Compute, ComputePath, HiFiGrid};
+use crate::maps::Grid;
 use crate::road::Road;
 use crate::surrogate::{sample_plan, LmOptions, PlanSpec, Setting, SurrogateSpec};
 use serde::Serialize;
@@ -88,6 +90,14 @@ pub struct OptimizeReport {
     /// the unweighted BAcc.
     #[serde(skip_serializing_if = "Comfort::is_bacc")]
     pub comfort: Comfort,
+    /// The path that evaluated the HiFi designs, `"gpu"` or `"cpu"` (the GPU evaluates
+    /// STM's grid on the full car, [`optimize_report_on`]): there when a path was asked
+    /// for or the GPU ran, so the default output stays as it was on the CPU.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub compute: Option<ComputePath>,
+    /// The GPU adapter's name when the GPU ran.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub adapter: Option<String>,
 }
 
 impl OptimizeReport {
@@ -200,5 +210,69 @@ pub fn optimize_model_with(
         datum,
         hifi_recheck,
         comfort,
+        compute: None,
+        adapter: None,
     })
+}
+
+/// [`optimize_report_with`] with the HiFi on the path `compute` asks for (`None`: auto,
+/// unreported). STM on the full car with the unweighted BAcc evaluates its
+/// `grid x grid` starting grid on the GPU when `compute` takes it there
+/// ([`HiFiGrid::on_gpu`]: `Auto` only on a hardware adapter); the refinements, the
+/// datum and the re-check stay on the CPU HiFi. Anything else runs on the CPU, and
+/// `Compute::Gpu` there is an error naming `compute`. The report's `compute` is set when
+/// `compute` is given or the GPU ran.
+#[allow(clippy::too_many_arguments)]
+pub fn optimize_report_on(
+    car: &Car,
+    road: &Road,
+    design_box: &DesignBox,
+    evaluator: EvaluatorSpec,
+    plan: PlanSpec,
+    method: &Method,
+    objectives: DesignObjectives,
+    comfort: Comfort,
+    compute: Option<Compute>,
+) -> Result<OptimizeReport> {
+    let asked = compute.unwrap_or_default();
+    let stm_grid = match (evaluator, method, comfort) {
+        (EvaluatorSpec::Model(ModelKind::Full), Method::Stm(p), Comfort::Bacc) => Some(p.grid),
+        _ => None,
+    };
+    let gpu = match stm_grid {
+        Some(n) if asked != Compute::Cpu => {
+            if let Method::Stm(p) = method {
+                p.validate()?;
+            }
+            HiFiGrid::on_gpu(car, road, &Grid::over_box(design_box, n, n)?, asked)?
+        }
+        None if asked == Compute::Gpu => {
+            return Err(RideError::field(
+                "compute",
+                "gpu: the GPU path evaluates STM's grid on the full car with the unweighted \
+                 BAcc (--evaluator full --method stm --comfort bacc); use --compute cpu or auto",
+            ))
+        }
+        _ => None,
+    };
+    let Some(grid) = gpu else {
+        let mut r = optimize_report_with(
+            car, road, design_box, evaluator, plan, method, objectives, comfort,
+        )?;
+        r.compute = compute.map(|_| ComputePath::Cpu);
+        return Ok(r);
+    };
+    let adapter = grid.adapter().map(str::to_string);
+    let mut r = optimize_model_with(
+        car,
+        road,
+        design_box,
+        Box::new(grid),
+        method,
+        objectives,
+        comfort,
+    )?;
+    r.compute = Some(ComputePath::Gpu);
+    r.adapter = adapter;
+    Ok(r)
 }

@@ -8,6 +8,7 @@ use super::{js_error, parse_state, state_error, to_js};
 use crate::analysis::ModelKind;
 use crate::car::Car;
 use crate::explorer::{EvaluatorKind, FrontModel, MapModel, ModelMap, Session};
+use crate::gpu::ComputePath;
 use js_sys::{Float64Array, Object, Reflect, Uint8Array};
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
@@ -123,9 +124,35 @@ impl Explorer {
     /// `map_js` for the layout): `model` "lofi", "hifi", "surrogate" or "error" (the
     /// surrogate's signed relative error against the HiFi, `100 (S / HiFi - 1)` %, with the
     /// HiFi's objectives). A HiFi map costs about 3 us a cell: the page asks its worker.
+    /// HiFi and error maps also carry `compute`, `"gpu"` or `"cpu"`: the path that made
+    /// their HiFi values.
     pub fn maps(&mut self, model: &str, nx: usize, ny: usize) -> Result<JsValue, JsValue> {
         let m = MapModel::parse(model).map_err(js_error)?;
-        map_js(&self.0.map(m, nx, ny).map_err(js_error)?)
+        let out = map_js(&self.0.map(m, nx, ny).map_err(js_error)?)?;
+        if matches!(m, MapModel::HiFi | MapModel::SurrogateError) {
+            if let Some(path) = self.hifi_path(nx, ny) {
+                Reflect::set(&out, &"compute".into(), &JsValue::from_str(&path))?;
+            }
+        }
+        Ok(out)
+    }
+
+    /// Keeps HiFi values computed on the GPU (`GpuMaps.hifiMap`'s `values`, the map
+    /// layout) for the `nx` x `ny` HiFi and error maps of the current scenario; errors
+    /// name `values`, `nx` or `ny`.
+    #[wasm_bindgen(js_name = keepHifiMap)]
+    pub fn keep_hifi_map(&mut self, nx: usize, ny: usize, values: &[f64]) -> Result<(), JsValue> {
+        self.0.keep_hifi_planes(nx, ny, values).map_err(js_error)
+    }
+
+    /// `"gpu"` or `"cpu"`: the path that made the kept HiFi values on the `nx` x `ny`
+    /// grid; undefined when none are kept.
+    #[wasm_bindgen(js_name = hifiPath)]
+    pub fn hifi_path(&self, nx: usize, ny: usize) -> Option<String> {
+        self.0.hifi_path(nx, ny).map(|p| match p {
+            ComputePath::Gpu => "gpu".to_string(),
+            ComputePath::Cpu => "cpu".to_string(),
+        })
     }
 
     /// The Pareto front of BAcc and DTL on `model` ("lofi", the default, or "surrogate")
