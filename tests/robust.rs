@@ -56,7 +56,14 @@ fn zero_extra_mass_is_the_base_car_bit_for_bit() {
             tracks,
             ..Road::default()
         };
-        let set = CaseSet::new(&car, &road, &[zero.clone()], &[], Combine::Worst).unwrap();
+        let set = CaseSet::new(
+            &car,
+            &road,
+            std::slice::from_ref(&zero),
+            &[],
+            Combine::Worst,
+        )
+        .unwrap();
         let case = &set.cases[0].car;
         let (lo_case, lo_base) = (LoFi::new(case, &road), LoFi::new(&car, &road));
         let (hi_case, hi_base) = (
@@ -247,7 +254,14 @@ fn robust_optimize_of_one_case_and_feasibility_in_every_case() {
         ..DesignObjectives::default()
     };
     let laden = load("laden", 350.0, -0.3);
-    let one = CaseSet::new(&car, &road, &[laden.clone()], &[], Combine::Worst).unwrap();
+    let one = CaseSet::new(
+        &car,
+        &road,
+        std::slice::from_ref(&laden),
+        &[],
+        Combine::Worst,
+    )
+    .unwrap();
     let spec = EvaluatorSpec::Model(ModelKind::Quarter);
     let plan = PlanSpec::parse("ae:10").unwrap();
     let r = robust_optimize_report(

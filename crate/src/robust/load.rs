@@ -102,7 +102,7 @@ impl LoadCase {
         }
         let (m, big_m) = (self.mass, car.sprung_mass);
         let total = big_m + m;
-        if !(total > 0.0) {
+        if total <= 0.0 {
             return Err(RideError::field(
                 field("mass"),
                 format!(
@@ -124,7 +124,7 @@ impl LoadCase {
         let pitch = car.pitch_inertia + reduced * (self.x * self.x + self.z * self.z);
         let roll = car.roll_inertia + reduced * self.z * self.z + m * self.y * self.y;
         for (f, v) in [("pitch_inertia", pitch), ("roll_inertia", roll)] {
-            if !(v > 0.0) {
+            if v <= 0.0 {
                 return Err(RideError::field(
                     field("mass"),
                     format!("leaves a {f} of {v} kg m^2; it must stay > 0"),

@@ -33,7 +33,15 @@ pub struct RobustProblem<E> {
     objectives: DesignObjectives,
     ctxs: Vec<DosContext>,
     runs: Cell<usize>,
-    least: RefCell<Option<(f64, f64, f64, Vec<Objective>)>>,
+    least: RefCell<Option<Least>>,
+}
+
+/// The design with the least total violation so far and what it breaks.
+struct Least {
+    violation: f64,
+    ks: f64,
+    cs: f64,
+    broken: Vec<Objective>,
 }
 
 impl<E: Evaluator> RobustProblem<E> {
@@ -85,13 +93,18 @@ impl<E: Evaluator> Problem for RobustProblem<E> {
         let g = robust_constraints(&self.objectives, &self.ctxs, ks, cs, &per);
         let violation: f64 = g.iter().map(|(_, gj)| gj.max(0.0)).sum();
         let mut least = self.least.borrow_mut();
-        if least.as_ref().is_none_or(|l| violation < l.0) {
+        if least.as_ref().is_none_or(|l| violation < l.violation) {
             let broken = g
                 .iter()
                 .filter(|(_, v)| *v > 0.0)
                 .map(|(o, _)| *o)
                 .collect();
-            *least = Some((violation, ks, cs, broken));
+            *least = Some(Least {
+                violation,
+                ks,
+                cs,
+                broken,
+            });
         }
         Ok(Eval {
             f: [c.bacc, c.dtl],
@@ -103,7 +116,7 @@ impl<E: Evaluator> Problem for RobustProblem<E> {
     /// Names what the least-violating design breaks in some case.
     fn infeasible(&self) -> RideError {
         match self.least.borrow().as_ref() {
-            Some((_, ks, cs, broken)) => {
+            Some(Least { ks, cs, broken, .. }) => {
                 let labels: Vec<&str> = broken.iter().map(|o| o.label()).collect();
                 RideError::Infeasible {
                     field: "cases".into(),
