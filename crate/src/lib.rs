@@ -20,6 +20,7 @@ pub mod model;
 pub mod optimize;
 pub mod report;
 pub mod road;
+pub mod robust;
 pub mod surrogate;
 pub mod time_domain;
 #[cfg(target_arch = "wasm32")]

@@ -22,6 +22,10 @@ use ridelab::optimize::{
 };
 use ridelab::report::{build, ReportInputs, SECTIONS};
 use ridelab::road::{Road, RoadClass, Tracks};
+use ridelab::robust::{
+    case_map_report, robust_map_report, robust_optimize_report, CarFile, CaseSet, Combine,
+    LoadCase, RobustOptimizeReport,
+};
 use ridelab::surrogate::adaptive::{
     self, adaptive_study, AdaptiveOptions, StudyOptions, DEFAULT_CANDIDATES, DEFAULT_MIN_DISTANCE,
 };
@@ -151,6 +155,8 @@ struct OptimizeArgs {
     adaptive: AdaptiveArgs,
     #[command(flatten)]
     car: CarRoad,
+    #[command(flatten)]
+    cases: CasesArgs,
     #[arg(long)]
     json: bool,
     /// Also write the front in the BAcc-DTL plane as an SVG file.
@@ -182,6 +188,12 @@ struct MapArgs {
     compute: Compute,
     #[command(flatten)]
     car: CarRoad,
+    #[command(flatten)]
+    cases: CasesArgs,
+    /// The map of case K alone (its loaded car on its road, its own datum) instead of
+    /// the robust map; cases are numbered load-case-major from 0.
+    #[arg(long, value_name = "K", value_parser = count)]
+    case: Option<usize>,
     #[arg(long)]
     json: bool,
     /// One row per grid point instead of JSON.
@@ -192,6 +204,32 @@ struct MapArgs {
     svg: Option<String>,
     #[command(flatten)]
     objectives: ObjectiveArgs,
+}
+
+/// The cases of a robust design (issue #16), map and optimize.
+#[derive(Args)]
+struct CasesArgs {
+    /// A cases file (JSON): load cases, operating points (class, speed, weight) and
+    /// combine (worst or mean); the design is then robust over every case. A car file
+    /// that lists load_cases makes it robust over them too.
+    #[arg(long, value_name = "FILE")]
+    cases: Option<String>,
+}
+
+impl CasesArgs {
+    /// The case set when there is more than the car as given: `--cases`, or the car
+    /// file's load cases at `--class`/`--speed`.
+    fn set(&self, car: &Car, loads: &[LoadCase], road: &Road) -> Result<Option<CaseSet>> {
+        match self.cases.as_deref() {
+            Some(path) => {
+                let text = std::fs::read_to_string(path)
+                    .map_err(|e| RideError::field("cases", format!("cannot read '{path}': {e}")))?;
+                CaseSet::from_json(&text, car, loads, road).map(Some)
+            }
+            None if loads.is_empty() => Ok(None),
+            None => CaseSet::new(car, road, loads, &[], Combine::Worst).map(Some),
+        }
+    }
 }
 
 /// Design objectives beyond the defaults (optimize, report, map).
@@ -537,15 +575,24 @@ fn run(command: Command) -> Result<String> {
     }
 }
 
-/// Car (with `--ks/--cs` applied to the front) and road from the options.
+/// Car (with `--ks/--cs` applied to the front) and road from the options; a car file's
+/// load cases are read and checked but only map and optimize use them.
 fn car_and_road(o: &CarRoad) -> Result<(Car, Road)> {
-    let car = match o.car.as_deref() {
-        None => Car::datum(),
-        Some(name) if ridelab::car::PRESETS.iter().any(|(n, _)| *n == name) => Car::preset(name)?,
+    car_loads_road(o).map(|(car, _, road)| (car, road))
+}
+
+/// Car (with `--ks/--cs` applied to the front), the car file's load cases and road.
+fn car_loads_road(o: &CarRoad) -> Result<(Car, Vec<LoadCase>, Road)> {
+    let (car, loads) = match o.car.as_deref() {
+        None => (Car::datum(), Vec::new()),
+        Some(name) if ridelab::car::PRESETS.iter().any(|(n, _)| *n == name) => {
+            (Car::preset(name)?, Vec::new())
+        }
         Some(path) => {
             let text = std::fs::read_to_string(path)
                 .map_err(|e| RideError::field("car", format!("cannot read '{path}': {e}")))?;
-            Car::from_json(&text)?
+            let file = CarFile::from_json(&text)?;
+            (file.car, file.load_cases)
         }
     };
     let ks = o.ks.unwrap_or(car.front.spring);
@@ -563,7 +610,11 @@ fn car_and_road(o: &CarRoad) -> Result<(Car, Road)> {
         road.tracks = t;
     }
     road.validate()?;
-    Ok((car, road))
+    if !loads.is_empty() {
+        // The load cases apply to the car with --ks/--cs; checked before any work.
+        CaseSet::new(&car, &road, &loads, &[], Combine::Worst)?;
+    }
+    Ok((car, loads, road))
 }
 
 fn json<T: serde::Serialize>(v: &T) -> Result<String> {
@@ -679,7 +730,8 @@ fn doe(a: DoeArgs) -> Result<String> {
 
 fn optimize(a: OptimizeArgs) -> Result<String> {
     let svg = svg_target(a.svg.as_deref())?;
-    let (car, road) = car_and_road(&a.car)?;
+    let (car, loads, road) = car_loads_road(&a.car)?;
+    let set = a.cases.set(&car, &loads, &road)?;
     let objectives = a.objectives.objectives()?;
     let method = if a.method == "stm" {
         Method::Stm(StmParams {
@@ -695,6 +747,44 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
         })
     };
     let design_box = DesignBox::default();
+    if let Some(set) = set {
+        if a.compute == Some(Compute::Gpu) {
+            return Err(RideError::field(
+                "compute",
+                "gpu: the robust design's cases are evaluated on the CPU; use --compute cpu or auto",
+            ));
+        }
+        if a.adaptive.adaptive.is_some() {
+            return Err(RideError::field(
+                "adaptive",
+                "the adaptive loop runs on one case: leave out --cases (and the car file's load_cases)",
+            ));
+        }
+        let out = robust_optimize_report(
+            &set,
+            &design_box,
+            a.evaluator,
+            a.plan,
+            &method,
+            objectives,
+            a.comfort,
+            a.pick,
+        )?;
+        if let Some(path) = &svg {
+            let mut chart = front_chart(&out.study, &out.datum, Some(&out.hifi_recheck));
+            chart.title = format!("Robust {}", chart.title);
+            if out.comfort == Comfort::Wk {
+                chart.title = chart.title.replacen("BAcc", out.comfort.label(), 1);
+                chart.x_label = format!("{} [m/s^2]", out.comfort.label());
+            }
+            write_svg(path, &line_chart_svg(&chart)?)?;
+        }
+        return if a.json {
+            json(&out)
+        } else {
+            Ok(robust_optimize_text(&out))
+        };
+    }
     let (mut out, looped) = match a.adaptive.options() {
         None => (
             optimize_report_on(
@@ -821,6 +911,47 @@ fn optimize_text(out: &OptimizeReport) -> String {
     text
 }
 
+/// The robust optimisation: the front and pick as [`optimize_text`], then each case.
+fn robust_optimize_text(out: &RobustOptimizeReport) -> String {
+    let single = OptimizeReport {
+        study: out.study.clone(),
+        datum: out.datum,
+        hifi_recheck: out.hifi_recheck.clone(),
+        comfort: out.comfort,
+    };
+    let bacc = out.comfort.label();
+    let mut s = format!(
+        "robust over {} cases ({:?}; each case against its own datum, scaled to case 0's)\n",
+        out.cases.len(),
+        out.combine
+    );
+    s += &optimize_text(&single);
+    for c in &out.cases {
+        let (p, h) = (
+            &c.hifi_recheck.predicted_change_percent,
+            &c.hifi_recheck.rechecked_change_percent,
+        );
+        s += &format!(
+            "  case {} {}: {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} %; HiFi {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} %{}\n",
+            c.case.index,
+            c.case.name,
+            p[0],
+            p[1],
+            p[2],
+            h[0],
+            h[1],
+            h[2],
+            if c.broken.is_empty() {
+                String::new()
+            } else {
+                let b: Vec<&str> = c.broken.iter().map(|o| o.label()).collect();
+                format!(" (HiFi breaks {})", b.join(", "))
+            }
+        );
+    }
+    s
+}
+
 /// The front damper law of `--bump --rebound [--knee --bump-high --rebound-high]`
 /// (clap makes sure they come together); the core's field names become the options'.
 fn damper_law(a: &SimulateArgs) -> Result<Option<Damper>> {
@@ -929,7 +1060,8 @@ fn presets(a: PresetsArgs) -> Result<String> {
 
 fn map_cmd(a: MapArgs) -> Result<String> {
     let svg = svg_target(a.svg.as_deref())?;
-    let (car, road) = car_and_road(&a.car)?;
+    let (car, loads, road) = car_loads_road(&a.car)?;
+    let set = a.cases.set(&car, &loads, &road)?;
     let settings = MapSettings {
         grid: Grid::new(a.ks_range, a.cs_range)?,
         scale: if a.relative {
@@ -941,7 +1073,33 @@ fn map_cmd(a: MapArgs) -> Result<String> {
         comfort: a.comfort,
         ..MapSettings::default()
     };
-    let r = map_report_on(a.model, &car, &road, &settings, a.compute)?;
+    if set.is_some() && a.compute == Compute::Gpu {
+        return Err(RideError::field(
+            "compute",
+            "gpu: the robust maps' cases are evaluated on the CPU; use --compute cpu or auto",
+        ));
+    }
+    let (r, json_text) = match (set, a.case) {
+        (None, None) => {
+            let r = map_report_on(a.model, &car, &road, &settings, a.compute)?;
+            let text = if a.csv { String::new() } else { json(&r)? };
+            (r, text)
+        }
+        (set, Some(k)) => {
+            let set = match set {
+                Some(s) => s,
+                None => CaseSet::new(&car, &road, &[], &[], Combine::Worst)?,
+            };
+            let r = case_map_report(a.model, &set, k, &settings, a.compute)?;
+            let text = if a.csv { String::new() } else { json(&r)? };
+            (r.map, text)
+        }
+        (Some(set), None) => {
+            let r = robust_map_report(a.model, &car, &road, &set, &settings, a.compute)?;
+            let text = if a.csv { String::new() } else { json(&r)? };
+            (r.map, text)
+        }
+    };
     if let Some(prefix) = svg {
         let prefix = prefix.to_string_lossy();
         let prefix = prefix.strip_suffix(".svg").unwrap_or(&prefix);
@@ -955,7 +1113,7 @@ fn map_cmd(a: MapArgs) -> Result<String> {
     if a.csv {
         Ok(map_csv(&r))
     } else {
-        json(&r)
+        Ok(json_text)
     }
 }
 

@@ -177,6 +177,26 @@ impl DosMap {
         })
     }
 
+    /// A mask made elsewhere (the robust DOS of issue #16: the OR of every case's
+    /// mask) with its counts; `feasible_set` lists the points where `mask` is 0.
+    pub fn from_mask(
+        grid: Grid,
+        objectives: &DesignObjectives,
+        active: Vec<Objective>,
+        mask: Vec<u8>,
+        feasible_set: Vec<FeasiblePoint>,
+    ) -> DosMap {
+        let summary = summarize(&mask, &active);
+        DosMap {
+            grid,
+            objectives: objectives.clone(),
+            active,
+            mask,
+            summary,
+            feasible_set,
+        }
+    }
+
     /// The objectives broken at Ks column `i`, Cs row `j` (empty when feasible).
     pub fn broken_at(&self, i: usize, j: usize) -> Vec<Objective> {
         objectives_in(self.mask[self.grid.index(i, j)])

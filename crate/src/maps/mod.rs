@@ -41,6 +41,6 @@ pub use dos_mask::{
 };
 pub use grid::{Axis, Grid};
 pub use report::{
-    map_csv, map_report, map_report_on, map_report_with, CriteriaContours, Feasibility, MapReport,
-    MapSettings, MaskBit, Units, LAYOUT,
+    map_csv, map_report, map_report_from, map_report_on, map_report_with, CriteriaContours,
+    Feasibility, MapReport, MapSettings, MaskBit, Units, LAYOUT,
 };

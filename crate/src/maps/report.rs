@@ -210,6 +210,21 @@ pub fn map_report_with<E: Evaluator + Sync + ?Sized>(
     )?;
     let ctx = DosContext::new(car, abs.datum.criteria);
     let dos = DosMap::new(&abs, &settings.objectives, &ctx)?;
+    map_report_from(&abs, dos, car, road, settings)
+}
+
+/// The map report of absolute criteria `abs` with the feasibility mask `dos` (both over
+/// `settings.grid`): the fields in `settings.scale`, contours and the feasible outline;
+/// `car` names the car, `road` is recorded (the robust map of issue #16 builds its own
+/// fields and mask and reports them through this).
+pub fn map_report_from(
+    abs: &Dcs,
+    dos: DosMap,
+    car: &Car,
+    road: &Road,
+    settings: &MapSettings,
+) -> Result<MapReport> {
+    let grid = settings.grid;
     let map = abs.to_scale(settings.scale);
     let lines = |k: usize| -> Result<Vec<Contour>> {
         let f = map.field(k);

@@ -107,7 +107,7 @@ fn check_datum(datum: &Criteria) -> Result<()> {
 }
 
 /// `100 (f / f_datum - 1)` for `[bacc, dtl, sws]`, %.
-fn change_percent(c: &Criteria, datum: &Criteria) -> [f64; 3] {
+pub(crate) fn change_percent(c: &Criteria, datum: &Criteria) -> [f64; 3] {
     let (v, d) = (c.to_array(), datum.to_array());
     [0, 1, 2].map(|i| 100.0 * (v[i] / d[i] - 1.0))
 }

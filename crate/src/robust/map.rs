@@ -1,0 +1,239 @@
+//! The robust map (`ridelab map --cases FILE`): every case's criteria over the grid, the
+//! robust criteria ([`super::objective`]) as the map's fields and the robust DOS (the OR
+//! of every case's feasibility mask, each case with its own datum) as its mask; or one
+//! case's own map (`--case K`).
+
+use super::cases::{Case, CaseSet, Combine};
+use super::objective::Combination;
+use crate::analysis::ModelKind;
+use crate::car::Car;
+use crate::error::{Result, RideError};
+use crate::evaluate::Criteria;
+use crate::gpu::Compute;
+use crate::maps::{
+    map_report_from, map_report_on, DatumPoint, Dcs, DosMap, FeasiblePoint, MapReport, MapSettings,
+    Scale,
+};
+use crate::road::Road;
+use serde::Serialize;
+
+/// One case as a report lists it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CaseInfo {
+    /// Index of the case (load-case-major).
+    pub index: usize,
+    /// `"<load case> / <class> at <speed> m/s"`.
+    pub name: String,
+    /// The case's road.
+    pub road: Road,
+    /// Its weight `w_load w_op`, and `p = w / sum w`.
+    pub weight: f64,
+    /// Normalised weight, -.
+    pub probability: f64,
+    /// The loaded car's sprung mass, kg.
+    pub sprung_mass: f64,
+    /// CG to front axle, m.
+    pub a: f64,
+    /// CG to rear axle, m.
+    pub b: f64,
+    /// Pitch inertia, kg m^2.
+    pub pitch_inertia: f64,
+    /// Roll inertia, kg m^2.
+    pub roll_inertia: f64,
+    /// Quarter-car sprung mass `M b / (2 L)`, kg.
+    pub quarter_mass: f64,
+    /// Static front wheel load, N.
+    pub static_wheel_load: f64,
+    /// The case's datum criteria (the datum design in this case).
+    pub datum: Criteria,
+}
+
+impl CaseInfo {
+    /// The description of case `index` of `set` with datum criteria `datum`.
+    pub fn new(set: &CaseSet, index: usize, datum: Criteria) -> CaseInfo {
+        let c: &Case = &set.cases[index];
+        CaseInfo {
+            index,
+            name: c.name.clone(),
+            road: c.road,
+            weight: c.weight,
+            probability: set.probabilities()[index],
+            sprung_mass: c.car.sprung_mass,
+            a: c.car.a,
+            b: c.car.b,
+            pitch_inertia: c.car.pitch_inertia,
+            roll_inertia: c.car.roll_inertia,
+            quarter_mass: c.car.quarter().ms,
+            static_wheel_load: c.car.front_wheel_load(),
+            datum,
+        }
+    }
+}
+
+/// What the robust map adds to a map report.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RobustInfo {
+    /// Worst case or weighted mean.
+    pub combine: Combine,
+    /// How the fields are normalised, in words.
+    pub normalisation: &'static str,
+    /// The cases.
+    pub cases: Vec<CaseInfo>,
+    /// Per case, the grid points feasible in that case.
+    pub feasible_per_case: Vec<usize>,
+}
+
+/// The normalisation sentence of robust reports.
+pub const NORMALISATION: &str = "each case scaled to case 0's datum: worst R = max_k (d_0 / d_k) c_k, mean R = sum_k p_k (d_0 / d_k) c_k; feasible only where every case meets every objective against its own datum";
+
+/// A robust map: the map report (robust fields and mask) and the cases.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RobustMapReport {
+    /// The map, its fields the robust criteria in case 0's units.
+    #[serde(flatten)]
+    pub map: MapReport,
+    /// The cases and the rule.
+    pub robust: RobustInfo,
+}
+
+/// One case's own map, with the case it is.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CaseMapReport {
+    /// The case's map (its loaded car on its road, its own datum).
+    #[serde(flatten)]
+    pub map: MapReport,
+    /// The case.
+    pub case: CaseInfo,
+}
+
+/// The map of case `index` of `set` alone (as `ridelab map` on that loaded car and
+/// road); an index past the cases is an error naming `case`.
+pub fn case_map_report(
+    model: ModelKind,
+    set: &CaseSet,
+    index: usize,
+    settings: &MapSettings,
+    compute: Compute,
+) -> Result<CaseMapReport> {
+    let case = set.cases.get(index).ok_or_else(|| {
+        RideError::field(
+            "case",
+            format!(
+                "{index} is not a case: there are {} (0..{})",
+                set.cases.len(),
+                set.cases.len() - 1
+            ),
+        )
+    })?;
+    let map = map_report_on(model, &case.car, &case.road, settings, compute)?;
+    let info = CaseInfo::new(set, index, map.datum.criteria);
+    Ok(CaseMapReport { map, case: info })
+}
+
+/// The robust map of `set` by `model` (each case's map on `compute`, as
+/// [`map_report_on`]); `car` names the report and gives the datum design (the front
+/// spring and damper every case shares), `road` is recorded.
+pub fn robust_map_report(
+    model: ModelKind,
+    car: &Car,
+    road: &Road,
+    set: &CaseSet,
+    settings: &MapSettings,
+    compute: Compute,
+) -> Result<RobustMapReport> {
+    settings.validate()?;
+    // Each case's absolute fields and mask, without its own contours.
+    let per_case = MapSettings {
+        scale: Scale::Absolute,
+        contour_levels: 0,
+        ..settings.clone()
+    };
+    let maps: Vec<MapReport> = set
+        .cases
+        .iter()
+        .map(|c| map_report_on(model, &c.car, &c.road, &per_case, compute))
+        .collect::<Result<_>>()?;
+    let datums: Vec<Criteria> = maps.iter().map(|m| m.datum.criteria).collect();
+    let combination = Combination::new(set.combine, &datums, &set.probabilities())?;
+    let grid = settings.grid;
+    let n = grid.len();
+    let mut fields = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+    let mut mask = vec![0u8; n];
+    let mut per = vec![Criteria::from_array([0.0; 3]); maps.len()];
+    for k in 0..n {
+        for (c, m) in per.iter_mut().zip(&maps) {
+            *c = Criteria {
+                bacc: m.bacc[k],
+                dtl: m.dtl[k],
+                sws: m.sws[k],
+            };
+            mask[k] |= m.feasibility.mask[k];
+        }
+        let r = combination.apply(&per).to_array();
+        for j in 0..3 {
+            fields[j][k] = r[j];
+        }
+    }
+    let [bacc, dtl, sws] = fields;
+    let feasible_set = (0..n)
+        .filter(|&k| mask[k] == 0)
+        .map(|k| {
+            let (i, j) = grid.indices(k);
+            let (ks, cs) = grid.point(i, j);
+            FeasiblePoint {
+                ks,
+                cs,
+                bacc: bacc[k],
+                dtl: dtl[k],
+                sws: sws[k],
+            }
+        })
+        .collect();
+    let first = &maps[0];
+    let dos = DosMap::from_mask(
+        grid,
+        &settings.objectives,
+        first
+            .feasibility
+            .legend
+            .iter()
+            .map(|b| b.objective)
+            .collect(),
+        mask,
+        feasible_set,
+    );
+    let abs = Dcs {
+        evaluator: if maps.len() == 1 {
+            first.evaluator.clone()
+        } else {
+            format!("{} x {} cases", first.evaluator, maps.len())
+        },
+        grid,
+        scale: Scale::Absolute,
+        datum: DatumPoint {
+            ks: first.datum.ks,
+            cs: first.datum.cs,
+            criteria: combination.datum,
+        },
+        bacc,
+        dtl,
+        sws,
+    };
+    let mut map = map_report_from(&abs, dos, car, road, settings)?;
+    map.compute = first.compute;
+    map.adapter = first.adapter.clone();
+    let robust = RobustInfo {
+        combine: set.combine,
+        normalisation: NORMALISATION,
+        cases: datums
+            .iter()
+            .enumerate()
+            .map(|(k, d)| CaseInfo::new(set, k, *d))
+            .collect(),
+        feasible_per_case: maps
+            .iter()
+            .map(|m| m.feasibility.summary.feasible)
+            .collect(),
+    };
+    Ok(RobustMapReport { map, robust })
+}

@@ -1,0 +1,272 @@
+//! The robust optimisation (`ridelab optimize --cases FILE`): minimise the robust
+//! `[BAcc, DTL]` ([`super::objective`]) over the design box, feasible only where the
+//! design objectives hold in every case; the pick on the robust front, its numbers in
+//! each case, and each case re-checked on that case's HiFi.
+//!
+//! As in [`crate::optimize::optimize_report_with`], every case's datum is the datum
+//! design's **HiFi** criteria in that case (with the chosen comfort measure), whatever the
+//! evaluator the front is found on.
+
+use super::cases::CaseSet;
+use super::map::{CaseInfo, NORMALISATION};
+use super::objective::{robust_constraints, Combination, RobustEvaluator};
+use crate::analysis::ModelKind;
+use crate::car::Car;
+use crate::comfort::Comfort;
+use crate::design::DesignBox;
+use crate::dos::{DesignObjectives, DosContext, Objective};
+use crate::error::{Result, RideError};
+use crate::evaluate::{Criteria, Evaluator};
+use crate::optimize::hypervolume::{hypervolume, reference_point};
+use crate::optimize::minmax::{change_percent, pick, recheck, PickRule, Recheck};
+use crate::optimize::problem::{Eval, Problem};
+use crate::optimize::study::REFERENCE_MARGIN;
+use crate::optimize::{nsga2, stm, EvaluatorSpec, FrontPoint, Method, Study};
+use crate::surrogate::PlanSpec;
+use serde::Serialize;
+use std::cell::{Cell, RefCell};
+
+/// The robust problem: robust objectives, robust constraints, counting model runs.
+pub struct RobustProblem<E> {
+    evaluator: RobustEvaluator<E>,
+    design: DesignBox,
+    objectives: DesignObjectives,
+    ctxs: Vec<DosContext>,
+    runs: Cell<usize>,
+    least: RefCell<Option<Least>>,
+}
+
+/// The design with the least total violation so far and what it breaks.
+struct Least {
+    violation: f64,
+    ks: f64,
+    cs: f64,
+    broken: Vec<Objective>,
+}
+
+impl<E: Evaluator> RobustProblem<E> {
+    /// The problem over `design` with one evaluator and one context per case.
+    pub fn new(
+        evaluator: RobustEvaluator<E>,
+        design: DesignBox,
+        objectives: DesignObjectives,
+        ctxs: Vec<DosContext>,
+    ) -> Result<Self> {
+        design.validate()?;
+        objectives.validate()?;
+        Ok(RobustProblem {
+            evaluator,
+            design,
+            objectives,
+            ctxs,
+            runs: Cell::new(0),
+            least: RefCell::new(None),
+        })
+    }
+
+    /// Model runs so far (designs x cases).
+    pub fn runs(&self) -> usize {
+        self.runs.get()
+    }
+}
+
+impl<E: Evaluator> Problem for RobustProblem<E> {
+    type Info = Criteria;
+
+    fn bounds(&self) -> Vec<(f64, f64)> {
+        let b = &self.design;
+        vec![(b.ks_min, b.ks_max), (b.cs_min, b.cs_max)]
+    }
+
+    /// `f` = the robust `[BAcc, DTL]`, violation `sum_j max(0, max_k g_kj)`.
+    fn evaluate(&self, x: &[f64]) -> Result<Eval<Criteria>> {
+        let (ks, cs) = (x[0], x[1]);
+        self.runs.set(self.runs.get() + self.evaluator.cases.len());
+        let per = self.evaluator.evaluate_cases(ks, cs)?;
+        let c = self.evaluator.combination.apply(&per);
+        if !c.to_array().iter().all(|v| v.is_finite()) {
+            return Err(RideError::Numerical(format!(
+                "{} gave non-finite criteria at Ks = {ks} N/m, Cs = {cs} N s/m",
+                self.evaluator.name()
+            )));
+        }
+        let g = robust_constraints(&self.objectives, &self.ctxs, ks, cs, &per);
+        let violation: f64 = g.iter().map(|(_, gj)| gj.max(0.0)).sum();
+        let mut least = self.least.borrow_mut();
+        if least.as_ref().is_none_or(|l| violation < l.violation) {
+            let broken = g
+                .iter()
+                .filter(|(_, v)| *v > 0.0)
+                .map(|(o, _)| *o)
+                .collect();
+            *least = Some(Least {
+                violation,
+                ks,
+                cs,
+                broken,
+            });
+        }
+        Ok(Eval {
+            f: [c.bacc, c.dtl],
+            violation,
+            info: c,
+        })
+    }
+
+    /// Names what the least-violating design breaks in some case.
+    fn infeasible(&self) -> RideError {
+        match self.least.borrow().as_ref() {
+            Some(Least { ks, cs, broken, .. }) => {
+                let labels: Vec<&str> = broken.iter().map(|o| o.label()).collect();
+                RideError::Infeasible {
+                    field: "cases".into(),
+                    reason: format!(
+                        "no design meets the objectives in every case; the closest (Ks = {ks:.0} N/m, Cs = {cs:.0} N s/m) breaks {} in at least one case",
+                        labels.join(" and ")
+                    ),
+                }
+            }
+            None => RideError::Numerical("no feasible design: nothing was evaluated".into()),
+        }
+    }
+}
+
+/// One case at the pick: the front evaluator's prediction and the case's HiFi re-check.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CasePick {
+    /// The case.
+    pub case: CaseInfo,
+    /// The pick in this case on the front's evaluator, its change against the case's
+    /// datum, and the case's HiFi re-check.
+    pub hifi_recheck: Recheck,
+    /// Objectives the HiFi re-check breaks in this case (empty when met).
+    pub broken: Vec<Objective>,
+}
+
+/// Everything `ridelab optimize --cases` prints.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RobustOptimizeReport {
+    /// The robust front (criteria in case 0's units), its hypervolume, the pick and the
+    /// model runs (designs x cases).
+    #[serde(flatten)]
+    pub study: Study,
+    /// The robust datum: case 0's HiFi datum.
+    pub datum: Criteria,
+    /// The pick's robust criteria re-checked on every case's HiFi.
+    pub hifi_recheck: Recheck,
+    /// The comfort measure (left out for the unweighted BAcc).
+    #[serde(skip_serializing_if = "Comfort::is_bacc")]
+    pub comfort: Comfort,
+    /// Worst case or weighted mean, and the normalisation.
+    pub combine: super::cases::Combine,
+    /// The normalisation sentence.
+    pub normalisation: &'static str,
+    /// The pick in each case.
+    pub cases: Vec<CasePick>,
+}
+
+/// The robust optimisation of `set` over `design_box` by `method` on `evaluator` (a
+/// surrogate per case, fitted to that case's HiFi at `plan`), picked by `rule`.
+#[allow(clippy::too_many_arguments)]
+pub fn robust_optimize_report(
+    set: &CaseSet,
+    design_box: &DesignBox,
+    evaluator: EvaluatorSpec,
+    plan: PlanSpec,
+    method: &Method,
+    objectives: DesignObjectives,
+    comfort: Comfort,
+    rule: PickRule,
+) -> Result<RobustOptimizeReport> {
+    objectives.validate()?;
+    let mut models = Vec::with_capacity(set.cases.len());
+    let mut hifis = Vec::with_capacity(set.cases.len());
+    for c in &set.cases {
+        models.push(match (comfort, evaluator) {
+            (Comfort::Bacc, _) => evaluator.build(&c.car, &c.road, design_box, plan)?,
+            (Comfort::Wk, EvaluatorSpec::Model(kind)) => comfort.evaluator(kind, &c.car, &c.road)?,
+            (Comfort::Wk, EvaluatorSpec::Surrogate(_)) => {
+                return Err(RideError::field(
+                    "comfort",
+                    "wk needs --evaluator quarter or full: the surrogates are fitted to the unweighted BAcc",
+                ))
+            }
+        });
+        hifis.push(comfort.evaluator(ModelKind::Full, &c.car, &c.road)?);
+    }
+    let datum_design = |c: &Car| (c.front.spring, c.front.damper);
+    let datums: Vec<Criteria> = set
+        .cases
+        .iter()
+        .zip(&hifis)
+        .map(|(c, h)| {
+            let (ks, cs) = datum_design(&c.car);
+            h.evaluate(ks, cs)
+        })
+        .collect::<Result<_>>()?;
+    let combination = Combination::new(set.combine, &datums, &set.probabilities())?;
+    let ctxs: Vec<DosContext> = set
+        .cases
+        .iter()
+        .zip(&datums)
+        .map(|(c, d)| DosContext::new(&c.car, *d))
+        .collect();
+    let problem = RobustProblem::new(
+        RobustEvaluator {
+            cases: models,
+            combination: combination.clone(),
+        },
+        *design_box,
+        objectives.clone(),
+        ctxs.clone(),
+    )?;
+    let solutions = match method {
+        Method::Stm(p) => stm(&problem, p)?,
+        Method::Nsga2(p) => nsga2(&problem, p)?,
+    };
+    let front = FrontPoint::from_solutions(&solutions);
+    let f: Vec<[f64; 2]> = front.iter().map(|p| [p.bacc, p.dtl]).collect();
+    let reference = reference_point(&f, REFERENCE_MARGIN);
+    let datum = combination.datum;
+    let picked = pick(&front, &datum, rule)?;
+    let study = Study {
+        method: method.clone(),
+        evaluator: problem.evaluator.name(),
+        front,
+        reference_point: reference,
+        reference_rule: format!("nadir + {REFERENCE_MARGIN} (nadir - ideal) of this front"),
+        hypervolume: hypervolume(&f, reference),
+        pick: picked.clone(),
+        evaluations: problem.runs(),
+    };
+    let robust_hifi = RobustEvaluator {
+        cases: hifis,
+        combination,
+    };
+    let hifi_recheck = recheck(&picked, &robust_hifi, &datum)?;
+    let predicted = problem.evaluator.evaluate_cases(picked.ks, picked.cs)?;
+    let mut cases = Vec::with_capacity(set.cases.len());
+    for (k, (hifi, c)) in robust_hifi.cases.iter().zip(&predicted).enumerate() {
+        let case_pick = crate::optimize::Pick {
+            criteria: *c,
+            change_percent: change_percent(c, &datums[k]),
+            ..picked.clone()
+        };
+        let check = recheck(&case_pick, &**hifi, &datums[k])?;
+        let broken = objectives.broken(&ctxs[k], picked.ks, picked.cs, &check.rechecked);
+        cases.push(CasePick {
+            case: CaseInfo::new(set, k, datums[k]),
+            hifi_recheck: check,
+            broken,
+        });
+    }
+    Ok(RobustOptimizeReport {
+        study,
+        datum,
+        hifi_recheck,
+        comfort,
+        combine: set.combine,
+        normalisation: NORMALISATION,
+        cases,
+    })
+}
