@@ -161,12 +161,8 @@ fn the_table_of_picks_is_each_rules_pick_rechecked_on_the_hifi() {
             100.0 * (c.bacc / datum.bacc - 1.0),
             100.0 * (c.dtl / datum.dtl - 1.0),
         ];
-        for k in 0..2 {
-            assert!(
-                (row.rechecked_change_percent[k] - change[k]).abs() < 1e-10,
-                "{}",
-                row.rule
-            );
+        for (got, want) in row.rechecked_change_percent.iter().zip(change) {
+            assert!((got - want).abs() < 1e-10, "{}", row.rule);
         }
         let err = 100.0 * (want.criteria.bacc / c.bacc - 1.0);
         assert!((row.error_percent[0] - err).abs() < 1e-10, "{}", row.rule);
