@@ -128,6 +128,66 @@ fn pick_table_rows_are_hifi_evaluations_against_the_datum() {
     assert!(own.bacc_percent < 0.0, "{own:?}");
 }
 
+/// Section 5's table of picks (issue #16): each rule's pick is `minmax::pick` of that rule
+/// on the surrogate's STM front, exactly, with its pseudo-weights; each re-check is the
+/// HiFi at the pick against the datum's HiFi criteria (1e-10); W = 0.5 gives the min-max
+/// design (the achievement function's tie term is 1e-6); the table is in both documents.
+#[test]
+fn the_table_of_picks_is_each_rules_pick_rechecked_on_the_hifi() {
+    use ridelab::optimize::{pick, PickRule};
+    let r = sedan();
+    let stm = r.optimisation.stm.as_ref().expect("a front");
+    let car = Car::datum();
+    let hifi = HiFi::new(&car, &Road::default()).unwrap();
+    let datum = hifi.evaluate(car.front.spring, car.front.damper).unwrap();
+    let picks = &r.optimisation.picks;
+    let names: Vec<&str> = picks.iter().map(|p| p.rule.as_str()).collect();
+    assert_eq!(names, ["minmax", "knee", "asf:0.5"]);
+    for (row, rule) in picks
+        .iter()
+        .zip([PickRule::MinMax, PickRule::Knee, PickRule::Asf(0.5)])
+    {
+        let want = pick(&stm.study.front, &stm.datum, rule).unwrap();
+        assert_eq!(
+            (row.ks, row.cs, row.pseudo_weights),
+            (want.ks, want.cs, want.pseudo_weights)
+        );
+        assert_eq!(
+            row.predicted_change_percent,
+            [want.change_percent[0], want.change_percent[1]]
+        );
+        let c = hifi.evaluate(row.ks, row.cs).unwrap();
+        let change = [
+            100.0 * (c.bacc / datum.bacc - 1.0),
+            100.0 * (c.dtl / datum.dtl - 1.0),
+        ];
+        for (got, want) in row.rechecked_change_percent.iter().zip(change) {
+            assert!((got - want).abs() < 1e-10, "{}", row.rule);
+        }
+        let err = 100.0 * (want.criteria.bacc / c.bacc - 1.0);
+        assert!((row.error_percent[0] - err).abs() < 1e-10, "{}", row.rule);
+    }
+    assert_eq!(
+        (picks[0].ks, picks[0].cs),
+        (stm.study.pick.ks, stm.study.pick.cs)
+    );
+    assert_eq!(
+        (picks[2].ks, picks[2].cs),
+        (picks[0].ks, picks[0].cs),
+        "W = 0.5 is min-max"
+    );
+    assert_ne!(
+        (picks[1].ks, picks[1].cs),
+        (picks[0].ks, picks[0].cs),
+        "the knee is another design here"
+    );
+    let docs = r.documents().unwrap();
+    for text in [&docs.html, &docs.markdown] {
+        assert!(text.contains("pseudo-weights (comfort, road holding)"));
+        assert!(text.contains("asf:0.5"));
+    }
+}
+
 /// Every figure is an SVG with drawing in it, each key once, each inlined in the HTML and
 /// linked from the Markdown; the HTML loads nothing from anywhere.
 #[test]

@@ -305,6 +305,8 @@ test('URL round trip: every key at a non-default value reopens the same state, v
     tr: '0.02,3',
     sur: 'vba-qts',
     plan: 'grid:4',
+    comfort: 'wk',
+    pick: 'asf:0.3',
     model: 'surrogate',
     samples: '0',
     scale: 'rel',
@@ -318,7 +320,7 @@ test('URL round trip: every key at a non-default value reopens the same state, v
   const read = (page) => page.evaluate(() => {
     const r = window.__ridelab;
     const ids = ['ks-num', 'cs-num', 'class', 'speed', 'tracks', 'sws-limit', 'ks-min', 'ks-max', 'cs-min', 'cs-max', 'bb-lo', 'bb-hi', 'db-lo', 'db-hi',
-      'sur-approach', 'sur-plan', 'map-model', 'map-scale', 'map-palette', 'op-scale', 'car'];
+      'sur-approach', 'sur-plan', 'map-model', 'map-scale', 'map-palette', 'op-scale', 'car', 'comfort', 'pick-rule', 'pick-weight'];
     const controls = Object.fromEntries(ids.map((id) => [id, document.getElementById(id).value]));
     for (const id of ['nw-bacc', 'nw-dtl', 'nw-sws', 'show-plan', 'projector']) controls[id] = document.getElementById(id).checked;
     const { nsga, ...view } = r.view;
@@ -330,12 +332,14 @@ test('URL round trip: every key at a non-default value reopens the same state, v
     car: 'custom', carJson: keys.carjson, ks: 31000, cs: 2100, class: 'A', speed: 25, tracks: 'independent',
     ksMin: 12000, ksMax: 38000, csMin: 600, csMax: 3800, swsLimit: 0.009, bounceBand: [0.9, 1.6], dampingBand: [0.15, 0.6],
     noWorse: [false, true, false], dtlMargin: 14, travel: [0.02, 3], surrogate: 'vba-qts', plan: 'grid:4',
+    comfort: 'wk', pick: 'asf:0.3',
   });
   assert.deepEqual(first.view, { scale: 'rel', projector: true, model: 'surrogate', plan: false, ratio: true, palette: 'cividis' });
   assert.equal(first.controls['cs-min'], '0.6');
   assert.equal(first.controls['cs-max'], '3.8');
   assert.equal(first.controls['db-lo'], '0.15');
   assert.equal(first.controls['sur-plan'], 'grid:4');
+  assert.deepEqual([first.controls.comfort, first.controls['pick-rule'], first.controls['pick-weight']], ['wk', 'asf', '0.3']);
   assert.equal(first.controls['map-model'], 'surrogate');
   assert.equal(first.controls['show-plan'], false);
   // The page writes every key back, and the written link reopens the same page.

@@ -15,7 +15,7 @@ import { Controller } from './controller.js';
 import { Render } from './render.js';
 import { Controls, plainWords } from './controls.js';
 import { MapView, CRITERIA } from './mapview.js';
-import { ObjectivePlane } from './plane.js';
+import { ObjectivePlane, frontPointText } from './plane.js';
 import { Plot } from './plot.js';
 import { SpectraPanel } from './spectra.js';
 import { TimePanel, DamperChart, DAMPER_V_MAX } from './timepanel.js';
@@ -294,6 +294,17 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
     $(lo).addEventListener('change', edit);
     $(hi).addEventListener('change', edit);
   }
+  // The comfort measure and the pick rule (issue #16): the core validates both.
+  $('comfort').addEventListener('change', (ev) => ctl.changeScenario({ comfort: ev.target.value }, 'comfort'));
+  const pickEdit = () => {
+    const rule = $('pick-rule').value;
+    $('pick-weight').disabled = rule !== 'asf';
+    $('pick-weight-out').textContent = `W = ${Number($('pick-weight').value).toFixed(2)}`;
+    ctl.changeScenario({ pick: rule === 'asf' ? `asf:${Number($('pick-weight').value)}` : rule }, 'pick');
+  };
+  $('pick-rule').addEventListener('change', pickEdit);
+  $('pick-weight').addEventListener('change', pickEdit);
+  $('pick-weight').addEventListener('input', () => ($('pick-weight-out').textContent = `W = ${Number($('pick-weight').value).toFixed(2)}`));
   for (const id of ['nw-bacc', 'nw-dtl', 'nw-sws']) {
     $(id).addEventListener('change', () => {
       const nw = ['nw-bacc', 'nw-dtl', 'nw-sws'].map((x) => $(x).checked);
@@ -430,7 +441,7 @@ function exportDataOf(store, ui) {
     front: st.front,
     nsga: st.nsga,
     cloud: st.cloud,
-    design: st.surrogate.design,
+    design: st.plane.design,
     ratio: st.view.ratio,
     adaptive: adaptivePlane(st.adaptive),
     spectra: st.spectra,
@@ -581,7 +592,10 @@ async function main() {
       contours: (field, nx, ny, levels) => compute.contours(field, nx, ny, levels),
       objectives: store.objectives,
     })),
-    plane: new ObjectivePlane({ base: $('op-base'), overlay: $('op-overlay'), wrap: $('op-wrap'), msg: $('op-msg') }, (p) => controller.changeDesign(p.ks, p.cs, 'ks')),
+    plane: new ObjectivePlane({ base: $('op-base'), overlay: $('op-overlay'), wrap: $('op-wrap'), msg: $('op-msg') }, (p, sel) => {
+      controller.changeDesign(p.ks, p.cs, 'ks');
+      $('op-status').textContent = frontPointText(store.front, sel.index);
+    }),
     spectra: new SpectraPanel((which, key) => $(`sp-${which}-${key}`), $('panel-spectra'), $('sp-key-route')),
     time: new TimePanel({
       car: $('tp-car'),

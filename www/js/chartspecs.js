@@ -112,7 +112,8 @@ export const PLANE_KEY = [
 ];
 
 /**
- * The objective plane (BAcc against DTL, on the surrogate) of `{front, nsga, cloud,
+ * The objective plane (BAcc against DTL, on the surrogate; with Wk comfort, `front.comfort`
+ * "wk", the Wk-weighted BAcc on the LoFi) of `{front, nsga, cloud,
  * design, adaptive}` (`design`: the surrogate's criteria of the current design, or null;
  * `adaptive`: the adaptive loop's `{front, pick, was}` when one runs, `was` the front and
  * pick before its latest run or null): the feasible designs, the STM Pareto front, the
@@ -155,7 +156,9 @@ export function objectiveSpec({ front: fr, nsga, cloud, design, adaptive = null 
   const hp = ratio ? [rc.bacc / dh.bacc, rc.dtl / dh.dtl] : [rc.bacc, rc.dtl];
   // The re-check larger and underneath: a close one rings the pick.
   series.push(marker('pick re-checked (HiFi)', '#ffffff', COL.hifi, 'diamond', [hp], 9));
-  series.push(marker(`min-max pick (${fr.study.evaluator})`, COL.pick, '#000000', 'diamond', [pk]));
+  const rule = fr.study.pick.rule === 'minmax' ? 'min-max' : fr.study.pick.rule;
+  const w = fr.study.pick.pseudo_weights;
+  series.push(marker(`${rule} pick (${fr.study.evaluator}; pseudo-weights ${w[0].toFixed(2)} / ${w[1].toFixed(2)})`, COL.pick, '#000000', 'diamond', [pk]));
   series.push(marker('datum', '#ffffff', '#000000', 'square', [datum], 6));
   // The adaptive loop's picks over the min-max pick, so they show where they move.
   if (was) series.push(marker('adaptive loop\'s pick before its latest run', COL.adaptiveWas, '#ffffff', 'triangle', [xy(was.pick.criteria.bacc, was.pick.criteria.dtl)], 6));
@@ -163,7 +166,9 @@ export function objectiveSpec({ front: fr, nsga, cloud, design, adaptive = null 
   if (!live && design) series.push(marker('current design', '#000000', '#ffffff', 'circle', [xy(design.bacc, design.dtl)], 4.5));
   return {
     title,
-    xLabel: ratio ? 'BAcc / datum BAcc (surrogate) [–]' : 'BAcc [m/s²]',
+    xLabel: fr.comfort === 'wk'
+      ? (ratio ? 'Wk-weighted BAcc / datum (LoFi) [–]' : 'Wk-weighted RMS body acceleration [m/s²]')
+      : (ratio ? 'BAcc / datum BAcc (surrogate) [–]' : 'BAcc [m/s²]'),
     yLabel: ratio ? 'DTL / datum DTL [–]' : 'DTL [N]',
     xRange,
     yRange,

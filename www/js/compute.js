@@ -23,6 +23,15 @@ export const NFREQ = 240;
 /** The time panel's run: 10 s at 1 ms, every 10th sample kept (the seed and damper are the user's). */
 export const TIME_RUN = { duration: 10, dt: 0.001, f_min: 0.1, f_max: 200, decimate: 10 };
 
+/**
+ * The model of the objective plane (its feasible set, front, pick and design marker) for
+ * state `s`: the surrogate, or with Wk comfort the LoFi (the surrogates are fitted to the
+ * unweighted BAcc; the core refuses a Wk front on them, as `ridelab optimize` does).
+ */
+export function planeModel(s) {
+  return s.comfort === 'wk' ? 'lofi' : 'surrogate';
+}
+
 export class Compute {
   /**
    * `api`: the wasm module (synchronous calls that need no engine: colour tables);
@@ -83,23 +92,26 @@ export class Compute {
   /**
    * Everything on the main thread that depends on car, road, objectives, box and
    * surrogate, plus the design, except the maps: LoFi reports, the surrogate (fitted
-   * once, then kept by the core), its feasible set and the STM front on it (`{error}`
-   * when none is feasible). Rejects with `{message, field}` on a bad state.
+   * once, then kept by the core), the objective plane's feasible set, STM front (`{error}`
+   * when none is feasible) and the design's criteria (`plane: {model, design}`), on the
+   * plane's model (`planeModel`). Rejects with `{message, field}` on a bad state.
    */
   async scenario(s) {
     const main = this.main;
     const desc = await main.call('describe', s);
     const ds = { ...s, ks: desc.datumKs, cs: desc.datumCs };
-    const [datum, design, sDatum, sDesign, cloud] = await Promise.all([
+    const plane = planeModel(s);
+    const [datum, design, sDatum, sDesign, cloud, pDesign] = await Promise.all([
       main.call('analyse', ds, 'lofi'),
       main.call('analyse', s, 'lofi'),
       main.call('criteria', ds, 'surrogate'),
       main.call('criteria', s, 'surrogate'),
-      main.call('maps', s, 'surrogate', CLOUD_GRID.nx, CLOUD_GRID.ny),
+      main.call('maps', s, plane, CLOUD_GRID.nx, CLOUD_GRID.ny),
+      plane === 'surrogate' ? null : main.call('criteria', s, plane),
     ]);
     let front;
     try {
-      front = await main.call('front', s, 'stm', 'surrogate');
+      front = await main.call('front', s, 'stm', plane);
     } catch (e) {
       // Not a bad input (the state passed describe): no feasible design, or a numerical failure.
       front = { error: e.message || String(e) };
@@ -111,21 +123,24 @@ export class Compute {
       surrogate: { datum: row(sDatum), design: row(sDesign) },
       cloud,
       front,
+      plane: { model: plane, design: pDesign || sDesign },
     };
   }
 
   /**
-   * A new design point of the same scenario: its LoFi report and surrogate criteria, and
-   * with `withHifi` its HiFi readout too (the report without its frequency-route check,
-   * about 0.1 ms, on the main thread so every view follows the slider in one frame; null
-   * when it fails). The full HiFi report follows from the HiFi worker (`hifiReport`).
+   * A new design point of the same scenario: its LoFi report, surrogate criteria and
+   * criteria by the objective plane's model (`plane`), and with `withHifi` its HiFi
+   * readout too (the report without its frequency-route check, about 0.1 ms, on the main
+   * thread so every view follows the slider in one frame; null when it fails). The full
+   * HiFi report follows from the HiFi worker (`hifiReport`).
    */
   async design(s, desc, withHifi) {
     const lofi = await this.main.call('analyse', s, 'lofi');
     const sur = await this.main.call('criteria', s, 'surrogate');
+    const plane = planeModel(s) === 'surrogate' ? sur : await this.main.call('criteria', s, planeModel(s));
     let hifi = null;
     if (withHifi) hifi = await this.main.call('readout', s, 'hifi').catch(() => null);
-    return { lofi, surrogate: { ...sur, dtl_relative: sur.dtl / desc.staticWheelLoad }, hifi };
+    return { lofi, surrogate: { ...sur, dtl_relative: sur.dtl / desc.staticWheelLoad }, plane, hifi };
   }
 
   /** A HiFi report on the HiFi worker (`s`: a design or the datum state). */
@@ -166,9 +181,9 @@ export class Compute {
     return this.heavy.call('surrogateFit', s, VALIDATION_LEVELS);
   }
 
-  /** The seeded NSGA-II front on the surrogate (heavy worker; `{error}` when none is feasible). */
+  /** The seeded NSGA-II front on the plane's model (heavy worker; `{error}` when none is feasible). */
   nsga(s) {
-    return this.heavy.call('front', s, 'nsga2', 'surrogate').catch((e) => ({ error: e.message || String(e) }));
+    return this.heavy.call('front', s, 'nsga2', planeModel(s)).catch((e) => ({ error: e.message || String(e) }));
   }
 
   /** The study report of the view, `{title, html, markdown}`, as `ridelab report` writes it (heavy worker; seconds). */

@@ -165,6 +165,7 @@ export class Controller {
     st.surrogate = r.surrogate;
     st.cloud = r.cloud;
     st.front = r.front;
+    st.plane = r.plane;
     if (st.nsga && st.nsga.key !== scenarioKey(s)) st.nsga = null;
     if (st.adaptive && st.adaptive.key !== scenarioKey(s)) {
       st.adaptive = null;
@@ -243,6 +244,7 @@ export class Controller {
       st.state = s;
       st.lofi = { ...st.lofi, design: r.lofi };
       st.surrogate = { ...st.surrogate, design: r.surrogate };
+      st.plane = { ...st.plane, design: r.plane };
       if (r.hifi) {
         st.hifi.design = r.hifi;
         st.hifi.key = keyOf(s);
@@ -561,6 +563,9 @@ export class Controller {
     const kept = d.kept;
     const s = { ...st.defaults, ...d.state };
     if (s.car !== 'custom') s.carJson = null;
+    // A bad comfort measure or pick rule keeps its default, the rest of the link applies.
+    const kept = await this.criteriaDefaults(s);
+    if (kept.length) this.controls.banner(`This link's ${kept.join('; ')}: kept the default.`);
     try {
       // A link without ks or cs means the car's own (datum) front spring or damper.
       if (d.state.ks === undefined || d.state.cs === undefined) {
@@ -573,6 +578,25 @@ export class Controller {
       return fallback(explain(e, e.field));
     }
     return { state: s, view: d.view, kept };
+  }
+
+  /**
+   * Puts the defaults into `s`'s `comfort` and `pick` where the core refuses them: the
+   * core's messages of those refused, in the page's words.
+   */
+  async criteriaDefaults(s) {
+    const said = [];
+    for (let tries = 0; tries < 2; tries++) {
+      try {
+        await this.compute.checkState(s);
+        break;
+      } catch (e) {
+        if (e.field !== 'comfort' && e.field !== 'pick') break;
+        said.push(explain(e, e.field));
+        s[e.field] = this.store.defaults[e.field];
+      }
+    }
+    return said;
   }
 
   /**

@@ -12,10 +12,11 @@ export const FIELD_INPUT = {
   carFile: 'car-file', carEditor: 'car-apply',
   tpSeed: 'tp-seed', tpBump: 'tp-bump', tpRebound: 'tp-rebound', tpKnee: 'tp-knee', tpBumpHigh: 'tp-bump-high', tpReboundHigh: 'tp-rebound-high', session: 'session-load',
   box: 'ks-min', bounceBand: 'bb-lo', dampingBand: 'db-lo', surrogate: 'sur-approach', plan: 'sur-plan',
+  comfort: 'comfort', pick: 'pick-rule',
 };
 
 /** Fields whose control is a menu: a refused choice goes back to the state's value. */
-const MENUS = new Set(['class', 'tracks', 'car', 'surrogate', 'plan']);
+const MENUS = new Set(['class', 'tracks', 'car', 'surrogate', 'plan', 'comfort', 'pick']);
 
 /**
  * A core or parser message in the page's words: serde's wording and positions made
@@ -52,6 +53,8 @@ export function explain(failure, field) {
   if (field === 'dampingBand') return msg.replace(/^damping_band: /, 'Damping band: ');
   if (field === 'surrogate') return msg.replace(/^(approach|scheme): /, 'Surrogate: ');
   if (field === 'plan') return msg.replace(/^plan: /, 'Sample plan: ');
+  if (field === 'comfort') return msg.replace(/^comfort: /, 'Comfort objective: ');
+  if (field === 'pick') return msg.replace(/^pick: /, 'Pick: ');
   if (field === 'box') {
     return msg
       .replace(/^(ks|cs)-range: minimum ([-\d.e+]+) must be below maximum ([-\d.e+]+)/, (m, v, lo, hi) =>
@@ -174,6 +177,12 @@ export class Controls {
     ensureOption($('sur-plan'), s.plan);
     setValue($('sur-approach'), s.surrogate);
     setValue($('sur-plan'), s.plan);
+    setValue($('comfort'), s.comfort === 'wk' ? 'wk' : 'bacc');
+    const rule = pickParts(s.pick);
+    setValue($('pick-rule'), rule.rule);
+    $('pick-weight').disabled = rule.rule !== 'asf';
+    if (rule.rule === 'asf') $('pick-weight').value = String(rule.weight);
+    $('pick-weight-out').textContent = `W = ${Number($('pick-weight').value).toFixed(2)}`;
     const car = $('car');
     let opt = car.querySelector('option[value="custom"]');
     if (customLabel) {
@@ -206,6 +215,16 @@ function setValue(el, value) {
 /** Sets an attribute only when it differs. */
 function setAttr(el, name, value) {
   if (el.getAttribute(name) !== value) el.setAttribute(name, value);
+}
+
+/**
+ * The state's pick rule as the Objectives tab shows it: `{rule: 'minmax' | 'knee' | 'asf',
+ * weight}` (`weight`: the comfort weight W of `asf:W`, else null).
+ */
+export function pickParts(pick) {
+  const m = /^asf:(.*)$/.exec(pick || '');
+  if (m) return { rule: 'asf', weight: Number(m[1]) };
+  return { rule: pick === 'knee' ? 'knee' : 'minmax', weight: null };
 }
 
 /** Adds `value` to a select's options when a link or session names one not listed. */

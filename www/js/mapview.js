@@ -27,6 +27,12 @@ export const CRITERIA = [
   },
 ];
 
+/** The BAcc map with ISO 2631-1 Wk comfort (the LoFi's and HiFi's maps then carry it). */
+export const WK_CRITERION = {
+  ...CRITERIA[0], title: 'BAcc (Wk)', long: 'Wk-weighted RMS body acceleration',
+  teach: 'Comfort by ISO 2631-1: the body acceleration weighted by the Wk curve (most felt from 4 to 12.5 Hz), m/s²; grows with a stiffer spring and a harder damper.',
+};
+
 /** The caption of an error map. */
 const ERROR_TEACH = 'Surrogate minus HiFi in % of the HiFi: blue where the surrogate is lower, red where higher.';
 /** The caption of an uncertainty map. */
@@ -81,19 +87,8 @@ export class MapView {
     const cap = document.createElement('figcaption');
     const title = document.createElement('span');
     title.className = 'map-title';
-    // "RMS ", "design: " and then the long name give way when the panel is narrow
-    // (style.css, container queries on .map-panel), so the caption is never cut.
-    const span = (cls, text) => {
-      const el = document.createElement('span');
-      el.className = cls;
-      el.textContent = text;
-      return el;
-    };
-    const rms = crit.long.startsWith('RMS ');
-    const name = rms ? crit.long.slice(4) : crit.long;
-    const named = span('named', ': ');
-    named.append(span('rms', rms ? 'RMS ' : ''), span('name-long', name), span('name-short', crit.short || name));
-    title.append(crit.title, named);
+    this.titleEl = title;
+    this.captionTitle();
     this.atEl = document.createElement('span');
     this.atEl.className = 'at';
     cap.append(title, this.atEl);
@@ -270,6 +265,38 @@ export class MapView {
         `values ${fmt(lo)} to ${fmt(hi)} ${this.data.unit}.`,
     );
     if (draw) this.drawBase();
+  }
+
+  /** The caption's title of `this.crit`: "BAcc: RMS body acceleration". */
+  captionTitle() {
+    const crit = this.crit;
+    // "RMS ", "design: " and then the long name give way when the panel is narrow
+    // (style.css, container queries on .map-panel), so the caption is never cut.
+    const span = (cls, text) => {
+      const el = document.createElement('span');
+      el.className = cls;
+      el.textContent = text;
+      return el;
+    };
+    const rms = crit.long.startsWith('RMS ');
+    const name = rms ? crit.long.slice(4) : crit.long;
+    const named = span('named', ': ');
+    named.append(span('rms', rms ? 'RMS ' : ''), span('name-long', name), span('name-short', crit.short || name));
+    this.titleEl.replaceChildren(crit.title, named);
+  }
+
+  /**
+   * The BAcc map's comfort measure: ISO 2631-1 Wk-weighted (`wk` true) or unweighted;
+   * its caption, teaching line and colour-bar label follow (the next `setData` draws them).
+   */
+  setComfort(wk) {
+    if (this.crit.key !== 'bacc') return;
+    const crit = wk ? WK_CRITERION : CRITERIA[0];
+    if (crit === this.crit) return;
+    this.crit = crit;
+    this.captionTitle();
+    this.teachEl.textContent = crit.teach;
+    this.capEl.title = crit.teach;
   }
 
   /**

@@ -1,9 +1,11 @@
-// The objective plane: DTL against BAcc on the surrogate, with its feasible designs (the
-// page's dots), the Pareto fronts, the min-max pick and its HiFi re-check, the datum
+// The objective plane: DTL against BAcc on the surrogate (with ISO 2631-1 Wk comfort, the
+// Wk-weighted BAcc on the LoFi), with its feasible designs (the page's dots), the Pareto
+// fronts, the pick (min-max, knee or weighted) and its HiFi re-check, the datum
 // (plotters, js/chartspecs.js), and the current design on an overlay canvas (it moves
 // with the sliders). A design beyond the axes stays in view: pinned to the edge with an
-// arrow towards it. A click selects the nearest front point. After an adaptive HiFi run
-// the loop's front and pick move to their new place (`move`). Handed plain data.
+// arrow towards it. A click selects the nearest front point (and says its pseudo-weights);
+// the tooltip names the pick's rule. After an adaptive HiFi run the loop's front and pick
+// move to their new place (`move`). Handed plain data.
 
 import { Plot } from './plot.js';
 import { CLOUD_OPACITY, cloudPoints, objectiveSpec, planeXY } from './chartspecs.js';
@@ -56,8 +58,8 @@ function spans(...fronts) {
 
 export class ObjectivePlane {
   /**
-   * `els`: `{base, overlay, wrap, msg}` elements; `onSelect(point)` gets the front point
-   * (`{ks, cs, bacc, dtl, sws}`) nearest a click.
+   * `els`: `{base, overlay, wrap, msg}` elements; `onSelect(point, selected)` gets the
+   * front point (`{ks, cs, bacc, dtl, sws}`) nearest a click and `this.selected`.
    */
   constructor({ base, overlay, wrap, msg }, onSelect) {
     this.base = new Plot(base, { fill: true });
@@ -74,9 +76,21 @@ export class ObjectivePlane {
     this.moved = null;
     this.raf = null;
     this.moveTimer = null;
+    /** The front point last clicked: `{index, point, weights}` (pseudo-weights `[comfort, road holding]`), or null. */
+    this.selected = null;
+    this.title = overlay.title;
     overlay.addEventListener('click', (ev) => {
-      const p = this.nearest(ev);
-      if (p) onSelect(p);
+      const hit = this.nearest(ev);
+      if (!hit) return;
+      this.selected = { index: hit.index, point: hit.point, weights: this.data.front.pseudoWeights[hit.index] };
+      onSelect(hit.point, this.selected);
+    });
+    // The tooltip: the pick's rule and pseudo-weights over the pick, a front point's
+    // pseudo-weights over it, else how to use the plane.
+    overlay.addEventListener('mousemove', (ev) => {
+      const hit = this.nearest(ev);
+      const fr = this.data && this.data.front;
+      overlay.title = hit && hit.dist < 10 ? (hit.index === fr.study.pick.index ? pickText(fr) : frontPointText(fr, hit.index)) : this.title;
     });
   }
 
@@ -170,7 +184,7 @@ export class ObjectivePlane {
     this.animating = false;
   }
 
-  /** The current design's marker (`design`: its surrogate criteria `{bacc, dtl}`). */
+  /** The current design's marker (`design`: its criteria `{bacc, dtl}` by the plane's model). */
   drawDesign(design) {
     this.design = design;
     const b = this.base;
@@ -231,7 +245,7 @@ export class ObjectivePlane {
     g.stroke();
   }
 
-  /** The front point nearest a click (CSS px on the plot), or null away from the plot. */
+  /** The front point nearest a click (CSS px on the plot) as `{point, index, dist}` (dist in CSS px), or null away from the plot. */
   nearest(ev) {
     const d = this.data;
     if (!d || !d.front || d.front.error || !this.base.placed) return null;
@@ -243,16 +257,46 @@ export class ObjectivePlane {
     const xy = planeXY(d.front, d.ratio);
     let best = null;
     let bestD = Infinity;
-    for (const p of d.front.study.front) {
+    d.front.study.front.forEach((p, index) => {
       const [px, py] = this.base.px(...xy(p.bacc, p.dtl));
       const dist = Math.hypot(px - x, py - y);
-      if (dist < bestD) [best, bestD] = [p, dist];
-    }
+      if (dist < bestD) [best, bestD] = [{ point: p, index, dist }, dist];
+    });
     return best;
   }
 }
 
-/** The min-max pick's table: Ks, Cs, surrogate and HiFi criteria, % vs datum, their difference. */
+/** The pick rule's name (`minmax`, `knee`, `asf:W`) on the page: "Min-max pick", "Knee pick", "Weighted pick (W = 0.3)". */
+export function ruleLabel(rule) {
+  if (rule === 'knee') return 'Knee pick';
+  const m = /^asf:(.*)$/.exec(rule || '');
+  return m ? `Weighted pick (W = ${m[1]})` : 'Min-max pick';
+}
+
+/** The comfort axis of a front (`fr.comfort`): its short name. */
+export function comfortName(fr) {
+  return fr.comfort === 'wk' ? 'BAcc (Wk)' : 'BAcc';
+}
+
+/** "pseudo-weights comfort 0.62, road holding 0.38" of `[w_comfort, w_dtl]`. */
+export function weightsText(w) {
+  return `pseudo-weights comfort ${w[0].toFixed(2)}, road holding ${w[1].toFixed(2)}`;
+}
+
+/** One front point `k` of `fr` in words: place, design, criteria and pseudo-weights. */
+export function frontPointText(fr, k) {
+  const p = fr.study.front[k];
+  return `Front point ${k + 1} of ${fr.study.front.length}: Ks ${fmt(p.ks / 1000, 4)} kN/m, Cs ${fmt(p.cs / 1000, 4)} kNs/m, ` +
+    `${comfortName(fr)} ${fmt(p.bacc, 4)} m/s², DTL ${fmt(p.dtl, 4)} N; ${weightsText(fr.pseudoWeights[k])}.`;
+}
+
+/** The pick of `fr` in words: its rule, design and pseudo-weights. */
+export function pickText(fr) {
+  const p = fr.study.pick;
+  return `${ruleLabel(p.rule)}: Ks ${fmt(p.ks / 1000, 4)} kN/m, Cs ${fmt(p.cs / 1000, 4)} kNs/m; ${weightsText(p.pseudo_weights)}.`;
+}
+
+/** The pick's table: its rule, Ks, Cs, pseudo-weights, the plane model's and HiFi criteria, % vs datum, their difference. */
 export function renderPick(table, fr) {
   if (!fr || fr.error) {
     table.replaceChildren();
@@ -269,12 +313,15 @@ export function renderPick(table, fr) {
       <td class="num delta">${fmtPct(r.rechecked_change_percent[i] / 100)}</td>
       <td class="num">${fmtPct(r.error_percent[i] / 100, 2)}</td></tr>`;
   };
+  const on = fr.comfort === 'wk' ? 'LoFi' : 'Surrogate';
+  const w = p.pseudo_weights;
   table.innerHTML = `
-    <caption>Min-max pick: Ks = <b data-value="${p.ks}">${fmt(p.ks / 1000, 4)} kN/m</b>,
+    <caption>${ruleLabel(p.rule)}: Ks = <b data-value="${p.ks}">${fmt(p.ks / 1000, 4)} kN/m</b>,
       Cs = <b data-value="${p.cs}">${fmt(p.cs / 1000, 4)} kNs/m</b>;
+      <span class="pick-weights" data-rule="${p.rule}" data-weights="${w.join(',')}">${weightsText(w)}</span>;
       hypervolume ${fmt(fr.study.hypervolume, 4)} (m/s²)·N, ${fr.study.evaluations} runs of ${fr.study.evaluator}</caption>
-    <thead><tr><th scope="col">Criterion</th><th scope="col" class="num">Surrogate</th><th scope="col" class="num">vs datum</th>
+    <thead><tr><th scope="col">Criterion</th><th scope="col" class="num">${on}</th><th scope="col" class="num">vs datum</th>
       <th scope="col" class="num">HiFi re-check</th><th scope="col" class="num">vs datum</th>
-      <th scope="col" class="num">Surrogate − HiFi</th></tr></thead>
-    <tbody>${row('BAcc', 'm/s²', 'bacc', 1, 4)}${row('DTL', 'N', 'dtl', 1, 4)}${row('SWS', 'mm', 'sws', 1000, 4)}</tbody>`;
+      <th scope="col" class="num">${on} − HiFi</th></tr></thead>
+    <tbody>${row(comfortName(fr), 'm/s²', 'bacc', 1, 4)}${row('DTL', 'N', 'dtl', 1, 4)}${row('SWS', 'mm', 'sws', 1000, 4)}</tbody>`;
 }

@@ -6,6 +6,8 @@ import { fmt, fmtInput, fmtPct, fmtSmall } from './format.js';
 
 const ROWS = [
   { crit: 'bacc', get: (r) => r.bacc, show: (v) => fmt(v, 4) },
+  // ISO 2631-1 Wk-weighted (the reports' `bacc_wk`); the surrogate has none.
+  { crit: 'wk', get: (r) => r.bacc_wk, show: (v) => fmt(v, 4) },
   { crit: 'dtl', get: (r) => r.dtl, show: (v) => fmt(v, 4) },
   { crit: 'dtlrel', get: (r) => r.dtl_relative, show: (v) => fmt(v * 100, 3) },
   { crit: 'sws', get: (r) => r.sws, show: (v) => fmt(v * 1000, 4) },
@@ -34,6 +36,13 @@ export function renderCriteria(table, model, design, datum, swsLimit, pending = 
     }
     const v = row.get(design);
     const d = row.get(datum);
+    if (v === undefined) {
+      c.textContent = '—';
+      dc.textContent = '';
+      delete c.dataset.value;
+      delete dc.dataset.value;
+      continue;
+    }
     c.textContent = row.show(v);
     c.dataset.value = String(v);
     c.classList.toggle('over', row.crit === 'sws' && swsLimit != null && v > swsLimit);
@@ -47,6 +56,19 @@ export function renderCriteria(table, model, design, datum, swsLimit, pending = 
     dc.title = tiny ? 'same as the datum' : frac < 0 ? 'better than the datum (lower)' : 'worse than the datum (higher)';
   }
   table.querySelector(`thead th[data-model="${model}"]`)?.classList.toggle('pending', pending);
+}
+
+/**
+ * The readout's line on ISO 2631-1 comfort (`lofi`, `hifi`: the design's reports, `hifi`
+ * null while computing): each model's Wk-weighted RMS body acceleration and the
+ * standard's Annex C label (the reports' `comfort`).
+ */
+export function comfortNote(el, lofi, hifi) {
+  const part = (name, r) => `${name} ${fmt(r.bacc_wk, 3)} m/s², ${r.comfort}`;
+  el.textContent = `ISO 2631-1 Annex C: ${[hifi ? part('HiFi', hifi) : null, part('LoFi', lofi)].filter(Boolean).join('; ')}. The surrogate is unweighted.`;
+  el.title = el.textContent;
+  el.dataset.label = hifi ? hifi.comfort : lofi.comfort;
+  el.dataset.model = hifi ? 'hifi' : 'lofi';
 }
 
 /** The design's SWS against the limit, in words (`hifi` may be null while computing). */

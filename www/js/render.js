@@ -4,8 +4,8 @@
 // see the store.
 
 import { MapView } from './mapview.js';
-import { renderPick } from './plane.js';
-import { renderCriteria, feasibilityText, routeNote, renderProps, renderModes } from './readout.js';
+import { renderPick, ruleLabel, weightsText } from './plane.js';
+import { renderCriteria, feasibilityText, routeNote, renderProps, renderModes, comfortNote } from './readout.js';
 import { renderMetrics, tuningText, renderAdaptive, proposalText } from './surrogatepanel.js';
 import { adaptivePlane, adaptiveSpec } from './chartspecs.js';
 import { MODEL_NAMES, datumStateOf, fitKeyOf, keyOf } from './store.js';
@@ -72,21 +72,31 @@ export class Render {
     // edits in progress survive changes of road, box or objectives.
     const ed = this.ui.carEditor;
     if (JSON.stringify(ed.car) !== JSON.stringify(st.desc.car)) ed.show(st.desc.car);
+    this.criteriaLabels();
     this.plane();
     renderPick($('op-pick'), st.front);
     this.pickSummary();
     this.controls();
   }
 
+  /** What says which comfort measure is in use: the plane's heading, the readout's Wk row. */
+  criteriaLabels() {
+    const wk = this.store.state.comfort === 'wk';
+    $('h-objective').querySelector('.th-sub').textContent = wk ? '(LoFi, Wk comfort)' : '(surrogate)';
+    $('criteria').querySelector('tr[data-crit="wk"]').hidden = !wk;
+    $('comfort-note').hidden = !wk;
+  }
+
   /** The objective plane from the store (`animate`: the adaptive loop's front and pick move to where they are now). */
   plane(animate = false) {
     const st = this.store;
-    const adaptive = adaptivePlane(st.adaptive);
+    // The adaptive loop's surrogate front is unweighted: not drawn on a Wk plane.
+    const adaptive = st.plane.model === 'surrogate' ? adaptivePlane(st.adaptive) : null;
     const data = { front: st.front, nsga: st.nsga, cloud: st.cloud, ratio: st.view.ratio, adaptive };
     if (animate) this.ui.plane.move(data);
     else this.ui.plane.draw(data);
     $('op-key-adaptive').hidden = !adaptive;
-    this.ui.plane.drawDesign(st.surrogate.design);
+    this.ui.plane.drawDesign(st.plane.design);
   }
 
   /** The readout's line on the pick (the Pick tab has the table). */
@@ -94,13 +104,14 @@ export class Render {
     const fr = this.store.front;
     const el = $('pick-summary');
     if (!fr || fr.error) {
-      el.textContent = fr ? 'No min-max pick: no design meets the objectives.' : '';
+      el.textContent = fr ? `No ${ruleLabel(this.store.state.pick).toLowerCase()}: no design meets the objectives.` : '';
       return;
     }
     const p = fr.study.pick;
     const worst = Math.max(...fr.recheck.error_percent.map(Math.abs));
-    el.textContent = `Min-max pick: Ks ${fmt(p.ks / 1000, 4)} kN/m, Cs ${fmt(p.cs / 1000, 4)} kNs/m; ` +
-      `BAcc ${fmtPct(p.change_percent[0] / 100)}, DTL ${fmtPct(p.change_percent[1] / 100)} vs datum; the HiFi agrees within ${fmt(worst, 2)} %.`;
+    el.textContent = `${ruleLabel(p.rule)}: Ks ${fmt(p.ks / 1000, 4)} kN/m, Cs ${fmt(p.cs / 1000, 4)} kNs/m; ` +
+      `${fr.comfort === 'wk' ? 'BAcc (Wk)' : 'BAcc'} ${fmtPct(p.change_percent[0] / 100)}, DTL ${fmtPct(p.change_percent[1] / 100)} vs datum; the HiFi agrees within ${fmt(worst, 2)} %.`;
+    el.title = weightsText(p.pseudo_weights);
   }
 
   /** What a new design changes: LoFi and surrogate readout, ride properties, markers, plane marker, controls. */
@@ -111,8 +122,9 @@ export class Render {
     renderCriteria($('criteria'), 'sur', st.surrogate.design, st.surrogate.datum, desc.swsLimit);
     renderProps($('ride-props'), lofi.design);
     renderModes($('modes-lofi'), lofi.design.modes);
+    if (st.state.comfort === 'wk') comfortNote($('comfort-note'), lofi.design, st.hifiCurrent() ? st.hifi.design : null);
     this.markers();
-    this.ui.plane.drawDesign(st.surrogate.design);
+    this.ui.plane.drawDesign(st.plane.design);
     // The linear damper's force-velocity line follows Cs while the time panel is open.
     if (this.ui.damper.linear && this.ui.damper.visible()) this.ui.damper.refresh();
     this.timeStale();
@@ -127,6 +139,7 @@ export class Render {
     const datumOk = hifi.datumKey === keyOf(datumStateOf(st.state, desc));
     renderCriteria($('criteria'), 'hifi', hifi.design, datumOk ? hifi.datum : null, desc.swsLimit, !current);
     if (hifi.design) renderModes($('modes-hifi'), hifi.design.modes, !current);
+    if (st.state.comfort === 'wk') comfortNote($('comfort-note'), lofi.design, current ? hifi.design : null);
     const f = feasibilityText(lofi.design, current ? hifi.design : null, desc.swsLimit);
     const fe = $('feasibility');
     fe.textContent = f.text;
@@ -138,6 +151,8 @@ export class Render {
   mapData(k, shown, draw = false) {
     const st = this.store;
     const { desc } = st;
+    // The LoFi's and HiFi's BAcc map is Wk-weighted with Wk comfort; the surrogate's is not.
+    this.ui.maps[k].setComfort(st.state.comfort === 'wk' && (st.view.model === 'lofi' || st.view.model === 'hifi'));
     this.ui.maps[k].setData({
       maps: shown.maps, box: desc.designBox, swsLimit: desc.swsLimit, scale: st.view.scale, datum: shown.datum,
       kind: shown.kind, palette: st.view.palette, tables: this.ui.tables,
@@ -216,8 +231,10 @@ export class Render {
     const a = st.adaptive;
     const adaptive = a ? { added: a.report.added.map((x) => x.sample), next: a.proposal.error ? null : a.proposal.candidate } : null;
     const sur = st.view.model === 'surrogate';
-    const value = sur ? st.surrogate.design : lofi.design;
-    const ref = sur ? st.surrogate.datum : lofi.datum;
+    // The LoFi maps' BAcc is the Wk-weighted one with Wk comfort (the reports' `bacc_wk`).
+    const wk = (r) => (st.state.comfort === 'wk' ? { ...r, bacc: r.bacc_wk } : r);
+    const value = sur ? st.surrogate.design : wk(lofi.design);
+    const ref = sur ? st.surrogate.datum : wk(lofi.datum);
     for (const v of this.ui.maps) {
       const k = v.crit.key;
       const caption = shown && (st.view.model === 'lofi' || sur) ? MapView.caption(v.crit, value[k], ref[k], st.view.scale) : '';

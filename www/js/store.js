@@ -87,8 +87,10 @@ export class Store {
     this.surMaps = null;
     /** The map shown when it is the HiFi's or the error's: `{model, key, maps, datum, ms}`. */
     this.modelMaps = null;
-    /** The surrogate's feasible set on the objective plane. */
+    /** The objective plane's feasible set (on the plane's model, js/compute.js `planeModel`). */
     this.cloud = null;
+    /** The objective plane's model and the design's criteria by it (`{model, design}`). */
+    this.plane = { model: 'surrogate', design: null };
     /** The STM front study of the current scenario (`{error}` when none is feasible). */
     this.front = null;
     /** The NSGA-II study when asked for, with the scenario key it is for. */
@@ -138,7 +140,9 @@ export class Store {
   shownMaps() {
     const m = this.view.model;
     const key = scenarioKey(this.state);
-    if (m === 'lofi' && this.maps && this.maps.key === key) return { maps: this.maps, datum: this.lofi.datum, kind: 'value' };
+    // With Wk comfort the LoFi map's BAcc is Wk-weighted, and so is its datum's.
+    const lofiDatum = this.state.comfort === 'wk' ? { ...this.lofi.datum, bacc: this.lofi.datum.bacc_wk } : this.lofi.datum;
+    if (m === 'lofi' && this.maps && this.maps.key === key) return { maps: this.maps, datum: lofiDatum, kind: 'value' };
     if (m === 'surrogate' && this.surMaps && this.surMaps.key === key) return { maps: this.surMaps, datum: this.surrogate.datum, kind: 'value' };
     const mm = this.modelMaps;
     if (mm && mm.model === m && mm.key === key) return { maps: mm.maps, datum: mm.datum, kind: m === 'error' ? 'error' : 'value' };

@@ -1,10 +1,12 @@
 // The view state in the URL hash, so that a link reproduces the view:
 //   #car=sedan&ks=19960&cs=1290&class=B&speed=20&tracks=correlated&sws=7
 //    &box=10000,40000,500,4000&bb=0.8,1.5&db=0.2,0.5&nw=0,1,0&sur=rba-mul-rbf-mq&plan=ae:10
+//    &comfort=wk&pick=asf:0.3
 //    &model=hifi&samples=0&scale=rel&axes=ratio&pal=cividis&proj=1
 // ks in N/m, cs in N s/m, speed in m/s (SI, as the CLI), sws (the SWS limit) in mm,
 // box (Ks from, to, Cs from, to) in N/m and N s/m, bb (bounce band) in Hz, db (damping
-// band) dimensionless, nw (no worse than datum: BAcc, DTL, SWS) as 0/1; the view: the
+// band) dimensionless, nw (no worse than datum: BAcc, DTL, SWS) as 0/1, comfort (bacc or
+// wk) and pick (minmax, knee or asf:W) only when not the default; the view: the
 // maps' model, their sample plan (samples=0 hides it), colour scale and palette, the
 // objective plane's axes and projector mode (`large=1`, from earlier links, means proj=1).
 // A custom car travels as its JSON text: car=custom&carjson=...
@@ -37,6 +39,8 @@ export function encodeHash(state, view, kept = []) {
   if (state.travel) p.set('tr', state.travel.join(','));
   if (state.surrogate) p.set('sur', state.surrogate);
   if (state.plan) p.set('plan', state.plan);
+  if (state.comfort && state.comfort !== 'bacc') p.set('comfort', state.comfort);
+  if (state.pick && state.pick !== 'minmax') p.set('pick', state.pick);
   if (view.model && view.model !== 'lofi') p.set('model', view.model);
   if (view.plan === false) p.set('samples', '0');
   if (view.scale && view.scale !== 'abs') p.set('scale', view.scale);
@@ -96,6 +100,9 @@ export function decodeHash(hash) {
       out.state.surrogate = v.toLowerCase();
     } else if (key === 'plan') {
       out.state.plan = v.toLowerCase();
+    } else if (key === 'comfort' || key === 'pick') {
+      // The core validates both (js/controller.js `fromHash` keeps the default for a bad one).
+      out.state[key] = v.toLowerCase();
     } else if (key === 'model') {
       if (['lofi', 'hifi', 'surrogate', 'error'].includes(v)) out.view.model = v;
       else out.problems.push(`model: '${raw}' is not lofi, hifi, surrogate or error`);

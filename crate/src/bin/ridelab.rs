@@ -142,6 +142,9 @@ struct OptimizeArgs {
     /// which ran.
     #[arg(long)]
     compute: Option<Compute>,
+    /// STM refinement levels, 0..10 (the page's objective plane: --grid 61 --levels 2).
+    #[arg(long, default_value_t = StmParams::default().levels, value_parser = count, allow_negative_numbers = true)]
+    levels: usize,
     /// NSGA-II population, an even number 4..10000.
     #[arg(long, default_value_t = Nsga2Params::default().population, value_parser = count, allow_negative_numbers = true)]
     population: usize,
@@ -736,7 +739,7 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
     let method = if a.method == "stm" {
         Method::Stm(StmParams {
             grid: a.grid,
-            ..StmParams::default()
+            levels: a.levels,
         })
     } else {
         Method::Nsga2(Nsga2Params {

@@ -13,6 +13,8 @@ pub mod studies;
 pub mod surrogate;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_criteria;
 
 pub use adaptive::{PageLoop, PageStep, PageUncertainty, MAX_CHECK_LEVELS};
 pub use fields::ui_field;

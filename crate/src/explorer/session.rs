@@ -20,9 +20,9 @@ use super::state::{Scenario, State};
 use super::studies::{self, FrontModel, FrontResult, Spectra, TimeResult};
 use super::surrogate::{fit, fit_report, FitKey, FittedSurrogate};
 use crate::analysis::{readout, report, ModelKind, Readout, Report};
+use crate::comfort::Comfort;
 use crate::dos::DosContext;
-use crate::error::Result;
-use crate::error::RideError;
+use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::gpu::{ComputePath, HiFiGrid};
 use crate::maps::{Dcs, DosMap, Grid, Scale};
@@ -43,10 +43,12 @@ pub struct Session {
     kept: Vec<Kept>,
 }
 
-/// One model's map values on one grid, and the path that computed them.
+/// One model's map values on one grid with one comfort measure, and the path that
+/// computed them.
 struct Kept {
     model: MapModel,
     grid: Grid,
+    comfort: Comfort,
     values: Rc<Dcs>,
     path: ComputePath,
 }
@@ -110,12 +112,17 @@ impl Session {
         Ok(f)
     }
 
-    /// The criteria of the design by the fast evaluators the maps and optimisers use.
+    /// The criteria of the design by the fast evaluators the maps and optimisers use; the
+    /// LoFi's and HiFi's BAcc is the scenario's comfort measure, the surrogate's the
+    /// unweighted BAcc it was fitted to.
     pub fn criteria(&mut self, model: EvaluatorKind) -> Result<Criteria> {
         let (ks, cs) = self.design();
         match model {
-            EvaluatorKind::LoFi => self.scenario.lofi().evaluate(ks, cs),
-            EvaluatorKind::HiFi => self.scenario.hifi()?.evaluate(ks, cs),
+            EvaluatorKind::LoFi => self
+                .scenario
+                .evaluator(ModelKind::Quarter)?
+                .evaluate(ks, cs),
+            EvaluatorKind::HiFi => self.scenario.evaluator(ModelKind::Full)?.evaluate(ks, cs),
             EvaluatorKind::Surrogate => self.surrogate()?.model.evaluate(ks, cs),
         }
     }
@@ -132,11 +139,14 @@ impl Session {
     }
 
     /// The map of `model` on the `nx` x `ny` cell-centre grid of the design box, its
-    /// objectives judged against the model's own datum (errors name `nx` or `ny`).
+    /// objectives judged against the model's own datum (errors name `nx` or `ny`). The
+    /// LoFi's and HiFi's BAcc plane is the scenario's comfort measure; the surrogate's and
+    /// the error map's are the unweighted BAcc.
     pub fn map(&mut self, model: MapModel, nx: usize, ny: usize) -> Result<ModelMap> {
         let grid = Grid::cells(&self.scenario.dbox, nx, ny)?;
         if model == MapModel::SurrogateError {
-            let hifi = self.values(MapModel::HiFi, &grid)?;
+            // The surrogate is fitted to the unweighted BAcc: it is compared with the HiFi's.
+            let hifi = self.values_with(MapModel::HiFi, &grid, Comfort::Bacc)?;
             let sur = self.values(MapModel::Surrogate, &grid)?;
             let dos = self.judge(&hifi)?;
             return Ok(ModelMap {
@@ -155,39 +165,56 @@ impl Session {
         DosMap::new(values, &self.scenario.objectives, &ctx)
     }
 
-    /// A model's values on `grid`, kept or computed.
+    /// A model's values on `grid` with the scenario's comfort measure, kept or computed.
     fn values(&mut self, model: MapModel, grid: &Grid) -> Result<Rc<Dcs>> {
+        self.values_with(model, grid, self.scenario.comfort)
+    }
+
+    /// A model's values on `grid` with `comfort` in the LoFi's or HiFi's BAcc plane (the
+    /// surrogate's is always the unweighted BAcc), kept or computed.
+    fn values_with(&mut self, model: MapModel, grid: &Grid, comfort: Comfort) -> Result<Rc<Dcs>> {
+        let comfort = match model {
+            MapModel::LoFi | MapModel::HiFi => comfort,
+            MapModel::Surrogate | MapModel::SurrogateError => Comfort::Bacc,
+        };
         if let Some(k) = self
             .kept
             .iter()
-            .find(|k| k.model == model && k.grid == *grid)
+            .find(|k| k.model == model && k.grid == *grid && k.comfort == comfort)
         {
             return Ok(Rc::clone(&k.values));
         }
-        let datum = &self.scenario.datum;
-        let at = (datum.front.spring, datum.front.damper);
+        let s = &self.scenario;
+        let at = (s.datum.front.spring, s.datum.front.damper);
         let v = Rc::new(match model {
-            MapModel::LoFi => Dcs::compute(&self.scenario.lofi(), grid, at, Scale::Absolute)?,
-            MapModel::HiFi => Dcs::compute(&self.scenario.hifi()?, grid, at, Scale::Absolute)?,
+            MapModel::LoFi => {
+                let e = comfort.evaluator(ModelKind::Quarter, &s.datum, &s.road)?;
+                Dcs::compute(&*e, grid, at, Scale::Absolute)?
+            }
+            MapModel::HiFi => {
+                let e = comfort.evaluator(ModelKind::Full, &s.datum, &s.road)?;
+                Dcs::compute(&*e, grid, at, Scale::Absolute)?
+            }
             MapModel::Surrogate | MapModel::SurrogateError => {
                 let fit = self.surrogate()?;
                 Dcs::compute(&*fit.model, grid, at, Scale::Absolute)?
             }
         });
-        self.keep(model, *grid, Rc::clone(&v), ComputePath::Cpu);
+        self.keep(model, *grid, comfort, Rc::clone(&v), ComputePath::Cpu);
         Ok(v)
     }
 
     /// Keeps `values` of `model` on `grid`, replacing any kept there, the oldest going
     /// past [`KEPT_MAPS`].
-    fn keep(&mut self, model: MapModel, grid: Grid, values: Rc<Dcs>, path: ComputePath) {
-        self.kept.retain(|k| !(k.model == model && k.grid == grid));
+    fn keep(&mut self, model: MapModel, grid: Grid, comfort: Comfort, values: Rc<Dcs>, path: ComputePath) {
+        self.kept.retain(|k| !(k.model == model && k.grid == grid && k.comfort == comfort));
         if self.kept.len() >= KEPT_MAPS {
             self.kept.remove(0);
         }
         self.kept.push(Kept {
             model,
             grid,
+            comfort,
             values,
             path,
         });
@@ -228,7 +255,8 @@ impl Session {
         let datum = &self.scenario.datum;
         let at = (datum.front.spring, datum.front.damper);
         let dcs = Dcs::compute_with_threads(&given, &grid, at, Scale::Absolute, 1)?;
-        self.keep(MapModel::HiFi, grid, Rc::new(dcs), ComputePath::Gpu);
+        // The GPU kernel computes the unweighted BAcc.
+        self.keep(MapModel::HiFi, grid, Comfort::Bacc, Rc::new(dcs), ComputePath::Gpu);
         Ok(())
     }
 
@@ -238,15 +266,24 @@ impl Session {
         let grid = Grid::cells(&self.scenario.dbox, nx, ny).ok()?;
         self.kept
             .iter()
-            .find(|k| k.model == MapModel::HiFi && k.grid == grid)
+            .find(|k| k.model == MapModel::HiFi && k.grid == grid && k.comfort == self.scenario.comfort)
             .map(|k| k.path)
     }
 
-    /// The Pareto front of BAcc and DTL on `model` by `method` ("stm" or "nsga2"), its
-    /// min-max pick re-checked on the HiFi.
+    /// The Pareto front of comfort and DTL on `model` by `method` ("stm" or "nsga2"), the
+    /// scenario's pick on it re-checked on the HiFi (both with the scenario's comfort
+    /// measure). The surrogate is fitted to the unweighted BAcc: with Wk comfort its front
+    /// is refused (an error naming `comfort`), as `ridelab optimize --comfort wk` refuses it.
     pub fn front(&mut self, method: &str, model: FrontModel) -> Result<FrontResult> {
         match model {
-            FrontModel::LoFi => studies::front(&self.scenario, method, &self.scenario.lofi()),
+            FrontModel::LoFi => {
+                let lofi = self.scenario.evaluator(ModelKind::Quarter)?;
+                studies::front(&self.scenario, method, &*lofi)
+            }
+            FrontModel::Surrogate if self.scenario.comfort == Comfort::Wk => Err(RideError::field(
+                "comfort",
+                "wk: the surrogates are fitted to the unweighted BAcc; the Wk front is the LoFi's",
+            )),
             FrontModel::Surrogate => {
                 let fit = self.surrogate()?;
                 studies::front(&self.scenario, method, &*fit.model)

@@ -4,19 +4,24 @@
 //! Units follow the core (SI): `ks` N/m, `cs` N s/m, `speed` m/s, `swsLimit` m,
 //! `bounceBand` Hz. The UI converts to kN/m, kNs/m and mm for display only.
 
+use crate::analysis::ModelKind;
 use crate::car::Car;
+use crate::comfort::Comfort;
 use crate::design::DesignBox;
 use crate::dos::DesignObjectives;
 use crate::error::{Result, RideError};
+use crate::evaluate::Evaluator;
+use crate::optimize::PickRule;
 use crate::road::{Road, RoadClass, Tracks};
 use crate::surrogate::{PlanSpec, SurrogateSpec};
 use crate::LoFi;
 use serde::{Deserialize, Serialize};
 
 /// The state fields a surrogate's fit and every map's values depend on (those of
-/// [`super::FitKey`]; the objectives only judge a map): two states equal in these fields
-/// have the same fit (tested). The page keys its fits and maps by them.
-pub const FIT_FIELDS: [&str; 11] = [
+/// [`super::FitKey`]; the objectives only judge a map; the comfort measure fills the
+/// LoFi and HiFi maps' BAcc plane): two states equal in these fields have the same fit
+/// and maps (tested). The page keys its fits and maps by them.
+pub const FIT_FIELDS: [&str; 12] = [
     "car",
     "carJson",
     "class",
@@ -28,6 +33,7 @@ pub const FIT_FIELDS: [&str; 11] = [
     "csMax",
     "surrogate",
     "plan",
+    "comfort",
 ];
 
 /// The state fields a design's LoFi and HiFi reports depend on: the car, the design and
@@ -35,7 +41,7 @@ pub const FIT_FIELDS: [&str; 11] = [
 pub const REPORT_FIELDS: [&str; 7] = ["car", "carJson", "ks", "cs", "class", "speed", "tracks"];
 
 /// The JS names of the [`State`] fields.
-pub const STATE_FIELDS: [&str; 19] = [
+pub const STATE_FIELDS: [&str; 21] = [
     "car",
     "carJson",
     "ks",
@@ -55,6 +61,8 @@ pub const STATE_FIELDS: [&str; 19] = [
     "travel",
     "surrogate",
     "plan",
+    "comfort",
+    "pick",
 ];
 
 /// The explorer's surrogate unless the state names one: the best of the fidelity study
@@ -121,6 +129,16 @@ pub struct State {
     /// Its sampling plan, `ae:N` or `grid:n` (default [`DEFAULT_PLAN`]).
     #[serde(default)]
     pub plan: Option<String>,
+    /// The comfort objective of the LoFi and HiFi maps, the design objectives, the front
+    /// and the pick: "bacc" (unweighted RMS body acceleration, the default) or "wk"
+    /// (ISO 2631-1 Wk-weighted RMS body acceleration), m/s^2 ([`Comfort`]). The
+    /// surrogates are fitted to the unweighted BAcc: their maps stay BAcc.
+    #[serde(default)]
+    pub comfort: Option<String>,
+    /// The pick on the front: "minmax" (the thesis's, the default), "knee" or "asf:W"
+    /// with comfort weight `0 <= W <= 1` ([`PickRule`]).
+    #[serde(default)]
+    pub pick: Option<String>,
 }
 
 impl Default for State {
@@ -149,6 +167,8 @@ impl Default for State {
             travel: None,
             surrogate: Some(DEFAULT_SURROGATE.into()),
             plan: Some(DEFAULT_PLAN.into()),
+            comfort: Some("bacc".into()),
+            pick: Some("minmax".into()),
         }
     }
 }
@@ -170,6 +190,10 @@ pub struct Scenario {
     pub surrogate: SurrogateSpec,
     /// Its sampling plan.
     pub plan: PlanSpec,
+    /// The comfort measure in the LoFi's and HiFi's BAcc slot.
+    pub comfort: Comfort,
+    /// The pick rule on the front.
+    pub pick: PickRule,
 }
 
 impl State {
@@ -250,6 +274,17 @@ impl State {
         Ok((spec, plan))
     }
 
+    /// The comfort measure and the pick rule, validated (errors name `comfort` or `pick`).
+    pub fn criteria_choice(&self) -> Result<(Comfort, PickRule)> {
+        let comfort = Comfort::parse(self.comfort.as_deref().unwrap_or("bacc"))?;
+        let pick = self
+            .pick
+            .as_deref()
+            .unwrap_or("minmax")
+            .parse::<PickRule>()?;
+        Ok((comfort, pick))
+    }
+
     /// Everything at once; the first error names its field.
     pub fn scenario(&self) -> Result<Scenario> {
         self.scenario_after(None)
@@ -278,6 +313,7 @@ impl State {
             }
             _ => self.surrogate()?,
         };
+        let (comfort, pick) = self.criteria_choice()?;
         Ok(Scenario {
             datum,
             design,
@@ -286,6 +322,8 @@ impl State {
             objectives: self.objectives()?,
             surrogate,
             plan,
+            comfort,
+            pick,
         })
     }
 }
@@ -299,5 +337,12 @@ impl Scenario {
     /// The HiFi evaluator of the datum car on the road.
     pub fn hifi(&self) -> Result<crate::HiFi> {
         crate::HiFi::new(&self.datum, &self.road)
+    }
+
+    /// The LoFi (`quarter`) or HiFi (`full`) evaluator of the datum car on the road with
+    /// the scenario's comfort measure in the BAcc slot ([`Comfort::evaluator`]: with Wk,
+    /// the exact Wk-weighted RMS body acceleration, m/s^2, as `ridelab map --comfort wk`).
+    pub fn evaluator(&self, model: ModelKind) -> Result<Box<dyn Evaluator + Sync>> {
+        self.comfort.evaluator(model, &self.datum, &self.road)
     }
 }

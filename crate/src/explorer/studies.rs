@@ -4,11 +4,12 @@
 use super::state::Scenario;
 use super::surrogate::FittedSurrogate;
 use crate::analysis::ModelKind;
+use crate::comfort::Comfort;
 use crate::dos::DosContext;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::optimize::{
-    minmax::{recheck, Recheck},
+    minmax::{normalised_distances, pick, pseudo_weights, recheck, PickRule, Recheck},
     nsga2::Nsga2Params,
     stm::StmParams,
     study::{run_study, Method, Study},
@@ -69,7 +70,8 @@ impl FrontModel {
 #[derive(Debug, Clone, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct FrontResult {
-    /// The study on the front's model.
+    /// The study on the front's model; its pick is the scenario's rule's
+    /// ([`crate::optimize::PickRule`]: min-max, knee or weighted).
     pub study: Study,
     /// The datum car's criteria by the front's model (the normalisation of the ratios).
     pub datum: Criteria,
@@ -77,10 +79,16 @@ pub struct FrontResult {
     pub datum_hifi: Criteria,
     /// The pick re-evaluated on the HiFi model.
     pub recheck: Recheck,
+    /// The comfort measure of the front's, the datum's and the re-check's BAcc.
+    pub comfort: Comfort,
+    /// Each front point's pseudo-weights `[w_bacc, w_dtl]`,
+    /// `w_i = (1 - d_i) / sum_j (1 - d_j)` of its normalised distances `d`, -.
+    pub pseudo_weights: Vec<[f64; 2]>,
 }
 
-/// Runs the front method `method_name` on `model` for scenario `s` and re-checks the
-/// pick on the HiFi model.
+/// Runs the front method `method_name` on `model` for scenario `s` (`model` gives the
+/// scenario's comfort measure in its BAcc slot), picks on it by the scenario's rule and
+/// re-checks the pick on the HiFi model with the same comfort measure.
 pub fn front<E: Evaluator + ?Sized>(
     s: &Scenario,
     method_name: &str,
@@ -90,15 +98,24 @@ pub fn front<E: Evaluator + ?Sized>(
     let ctx = DosContext::of_model(&s.datum, model)?;
     let datum = ctx.datum;
     let problem = SuspensionProblem::new(model, s.dbox, s.objectives.clone(), ctx)?;
-    let study = run_study(&problem, &m, None)?;
-    let hifi = s.hifi()?;
+    let mut study = run_study(&problem, &m, None)?;
+    if s.pick != PickRule::MinMax {
+        study.pick = pick(&study.front, &datum, s.pick)?;
+    }
+    let weights = normalised_distances(&study.front, &datum)
+        .into_iter()
+        .map(pseudo_weights)
+        .collect();
+    let hifi = s.evaluator(ModelKind::Full)?;
     let datum_hifi = hifi.evaluate(s.datum.front.spring, s.datum.front.damper)?;
-    let recheck = recheck(&study.pick, &hifi, &datum_hifi)?;
+    let recheck = recheck(&study.pick, &*hifi, &datum_hifi)?;
     Ok(FrontResult {
         study,
         datum,
         datum_hifi,
         recheck,
+        comfort: s.comfort,
+        pseudo_weights: weights,
     })
 }
 

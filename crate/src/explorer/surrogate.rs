@@ -8,6 +8,7 @@
 
 use super::state::Scenario;
 use crate::car::Car;
+use crate::comfort::Comfort;
 use crate::design::DesignBox;
 use crate::error::Result;
 use crate::road::Road;
@@ -26,7 +27,9 @@ pub struct FittedSurrogate {
     pub samples: Vec<Sample>,
 }
 
-/// Everything a fit depends on (and a map's values: the objectives only judge them).
+/// Everything a fit depends on, and a map's values: the objectives only judge them; the
+/// comfort measure fills the LoFi and HiFi maps' BAcc plane (a fit does not depend on it,
+/// but a session keeps its fit and maps together).
 #[derive(Debug, Clone, PartialEq)]
 pub struct FitKey {
     car: Car,
@@ -34,6 +37,7 @@ pub struct FitKey {
     dbox: DesignBox,
     spec: SurrogateSpec,
     plan: PlanSpec,
+    comfort: Comfort,
 }
 
 impl FitKey {
@@ -45,6 +49,7 @@ impl FitKey {
             dbox: s.dbox,
             spec: s.surrogate,
             plan: s.plan,
+            comfort: s.comfort,
         }
     }
 }

@@ -454,7 +454,7 @@ fn state_fields_are_the_serialised_keys() {
 #[test]
 fn the_key_field_lists_are_what_fits_and_reports_depend_on() {
     use crate::analysis::{report, ModelKind};
-    let others: [(&str, serde_json::Value); 18] = [
+    let others: [(&str, serde_json::Value); 20] = [
         ("car", "compact".into()),
         ("ks", 21_000.0.into()),
         ("cs", 1_500.0.into()),
@@ -473,6 +473,8 @@ fn the_key_field_lists_are_what_fits_and_reports_depend_on() {
         ("travel", serde_json::json!([0.08, 3.0])),
         ("surrogate", "vba-qts".into()),
         ("plan", "ae:8".into()),
+        ("comfort", "wk".into()),
+        ("pick", "knee".into()),
     ];
     let base = State::default();
     let base_s = base.scenario().unwrap();

@@ -421,6 +421,55 @@ pub fn blocks(r: &MethodReport, figures: Vec<(usize, Vec<Figure>)>) -> Vec<Block
                     })
                     .collect(),
             ));
+            out.push(Block::Paragraph(
+                "Picks beyond min-max on the surrogate's STM front: the knee (least sum of the \
+                 normalised distances from the ideal point) and the weighted pick (achievement \
+                 scalarising function, comfort weight W), each with its pseudo-weights and re-checked \
+                 on the HiFi."
+                    .into(),
+            ));
+            out.push(Block::Table(
+                [
+                    "pick",
+                    "Ks [N/m]",
+                    "Cs [Ns/m]",
+                    "pseudo-weights (comfort, road holding)",
+                    "BAcc vs datum [%], surrogate (HiFi)",
+                    "DTL vs datum [%], surrogate (HiFi)",
+                    "largest prediction error [%]",
+                ]
+                .map(String::from)
+                .to_vec(),
+                o.picks
+                    .iter()
+                    .map(|p| {
+                        vec![
+                            p.rule.clone(),
+                            num(p.ks, 1),
+                            num(p.cs, 1),
+                            format!(
+                                "{}, {}",
+                                num(p.pseudo_weights[0], 2),
+                                num(p.pseudo_weights[1], 2)
+                            ),
+                            format!(
+                                "{} ({})",
+                                signed(p.predicted_change_percent[0], 2),
+                                signed(p.rechecked_change_percent[0], 2)
+                            ),
+                            format!(
+                                "{} ({})",
+                                signed(p.predicted_change_percent[1], 2),
+                                signed(p.rechecked_change_percent[1], 2)
+                            ),
+                            num(
+                                p.error_percent.iter().fold(0.0f64, |m, e| m.max(e.abs())),
+                                3,
+                            ),
+                        ]
+                    })
+                    .collect(),
+            ));
         }
     }
     out.extend(figs[5].drain(..).map(Block::Figure));

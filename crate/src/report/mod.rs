@@ -12,7 +12,8 @@
 //! 4. the fidelity study and the chosen surrogate's error maps;
 //! 5. STM and NSGA-II fronts on the surrogate, a brute-force HiFi front, hypervolumes,
 //!    the min-max pick against the datum re-checked on the HiFi, beside the seed thesis's
-//!    own result. An infeasible scenario says why instead;
+//!    own result; the min-max, knee and weighted (W = 0.5) picks with their pseudo-weights,
+//!    each re-checked on the HiFi. An infeasible scenario says why instead;
 //! 6. adaptive sampling: the same surrogate on half the plan's HiFi runs as an
 //!    Audze-Eglais plan and the other half chosen one by one where the expected
 //!    hypervolume improvement of the feasible front is largest, against the plan itself.
@@ -39,7 +40,7 @@ use crate::maps::{map_report, Grid, MapReport, MapSettings};
 use crate::model::Mode;
 use crate::optimize::{
     front_distance, optimize_report, EvaluatorSpec, FrontDistance, Method, Nsga2Params,
-    OptimizeReport, StmParams,
+    OptimizeReport, PickRule, StmParams,
 };
 use crate::road::Road;
 use crate::surrogate::adaptive::{
@@ -249,6 +250,31 @@ pub struct Optimisation {
     pub stm_to_hifi: Option<FrontDistance>,
     /// The before/after table (the datum, each pick predicted and re-checked).
     pub table: Vec<PickRow>,
+    /// The picks of [`PICK_RULES`] on the surrogate's STM front, each re-checked on the HiFi.
+    pub picks: Vec<RulePick>,
+}
+
+/// The pick rules of section 5's table of picks: the thesis's min-max, the knee, and the
+/// weighted pick with equal weights.
+pub const PICK_RULES: [PickRule; 3] = [PickRule::MinMax, PickRule::Knee, PickRule::Asf(0.5)];
+
+/// One rule's pick on the surrogate's STM front and its HiFi re-check.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RulePick {
+    /// The rule (`minmax`, `knee`, `asf:W`).
+    pub rule: String,
+    /// The pick's front spring, N/m.
+    pub ks: f64,
+    /// Its front damper, N s/m.
+    pub cs: f64,
+    /// Its pseudo-weights `[comfort, road holding]`, -.
+    pub pseudo_weights: [f64; 2],
+    /// BAcc and DTL change against the datum, predicted by the surrogate, %.
+    pub predicted_change_percent: [f64; 2],
+    /// BAcc and DTL change against the datum, re-checked on the HiFi, %.
+    pub rechecked_change_percent: [f64; 2],
+    /// The prediction error at the pick against the HiFi `[bacc, dtl, sws]`, %.
+    pub error_percent: [f64; 3],
 }
 
 /// Section 6: the adaptive loop on the section's surrogate (STM front, min-max pick), with
@@ -758,6 +784,7 @@ fn optimise(inputs: &ReportInputs, spec: SurrogateSpec, plan: PlanSpec) -> Resul
                 hifi: None,
                 stm_to_hifi: None,
                 table: Vec::new(),
+                picks: Vec::new(),
             })
         }
         Err(e) => return Err(e),
@@ -804,8 +831,29 @@ fn optimise(inputs: &ReportInputs, spec: SurrogateSpec, plan: PlanSpec) -> Resul
             });
         }
     }
+    let picks = PICK_RULES
+        .iter()
+        .map(|&rule| {
+            let mut r = stm_front.clone();
+            r.repick(rule, &inputs.car, &inputs.road)?;
+            let (p, c) = (&r.study.pick, &r.hifi_recheck);
+            Ok(RulePick {
+                rule: p.rule.clone(),
+                ks: p.ks,
+                cs: p.cs,
+                pseudo_weights: p.pseudo_weights,
+                predicted_change_percent: [p.change_percent[0], p.change_percent[1]],
+                rechecked_change_percent: [
+                    c.rechecked_change_percent[0],
+                    c.rechecked_change_percent[1],
+                ],
+                error_percent: c.error_percent,
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
     Ok(Optimisation {
         infeasible: None,
+        picks,
         stm: Some(stm_front),
         nsga2: Some(nsga2_front),
         hifi: Some(hifi_front),

@@ -114,7 +114,8 @@ impl Explorer {
     }
 
     /// The criteria `{bacc, dtl, sws}` (m/s^2, N, m) of the design by the fast
-    /// evaluators the maps and optimisers use: `model` "lofi", "hifi" or "surrogate".
+    /// evaluators the maps and optimisers use: `model` "lofi", "hifi" or "surrogate" (with
+    /// Wk comfort the LoFi's and HiFi's `bacc` is Wk-weighted; the surrogate's never is).
     pub fn criteria(&mut self, model: &str) -> Result<JsValue, JsValue> {
         let kind = EvaluatorKind::parse(model).map_err(js_error)?;
         to_js(&self.0.criteria(kind).map_err(js_error)?)
@@ -155,11 +156,14 @@ impl Explorer {
         })
     }
 
-    /// The Pareto front of BAcc and DTL on `model` ("lofi", the default, or "surrogate")
-    /// by `method` ("stm", a 61 x 61 grid refined twice, or "nsga2", seeded, 60 x 60), its
-    /// hypervolume, the min-max pick and the pick re-checked on the HiFi model:
-    /// `{study: {front, hypervolume, referencePoint, pick, evaluations, ..}, datum,
-    /// datumHifi, recheck}`. With no feasible design the error names the binding objective.
+    /// The Pareto front of comfort (the state's `comfort`: BAcc or Wk-weighted BAcc) and
+    /// DTL on `model` ("lofi", the default, or "surrogate", which Wk comfort refuses naming
+    /// `comfort`) by `method` ("stm", a 61 x 61 grid refined twice, or "nsga2", seeded,
+    /// 60 x 60), its hypervolume, the pick of the state's `pick` rule and the pick re-checked
+    /// on the HiFi model: `{study: {front, hypervolume, referencePoint, pick, evaluations,
+    /// ..}, datum, datumHifi, recheck, comfort, pseudoWeights}` (`pseudoWeights[k]`: front
+    /// point k's `[comfort, road holding]`). With no feasible design the error names the
+    /// binding objective.
     pub fn front(&mut self, method: &str, model: Option<String>) -> Result<JsValue, JsValue> {
         let on = FrontModel::parse(model.as_deref().unwrap_or("lofi")).map_err(js_error)?;
         to_js(&self.0.front(method, on).map_err(js_error)?)
