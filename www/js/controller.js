@@ -564,8 +564,8 @@ export class Controller {
     const s = { ...st.defaults, ...d.state };
     if (s.car !== 'custom') s.carJson = null;
     // A bad comfort measure or pick rule keeps its default, the rest of the link applies.
-    const kept = await this.criteriaDefaults(s);
-    if (kept.length) this.controls.banner(`This link's ${kept.join('; ')}: kept the default.`);
+    const defaulted = await this.criteriaDefaults(s);
+    if (defaulted.length) this.controls.banner(`This link's ${defaulted.join('; ')}: kept the default.`);
     try {
       // A link without ks or cs means the car's own (datum) front spring or damper.
       if (d.state.ks === undefined || d.state.cs === undefined) {
