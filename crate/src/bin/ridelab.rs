@@ -921,6 +921,8 @@ fn robust_optimize_text(out: &RobustOptimizeReport) -> String {
         datum: out.datum,
         hifi_recheck: out.hifi_recheck.clone(),
         comfort: out.comfort,
+        compute: None,
+        adapter: None,
     };
     let bacc = out.comfort.label();
     let mut s = format!(
