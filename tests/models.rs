@@ -530,14 +530,21 @@ fn readout_is_the_report_without_its_second_route() {
     let mut warp = Car::datum();
     warp.track_front = 1.522;
     warp.track_rear = 1.510;
-    let mut cars: Vec<Car> = PRESETS.iter().map(|(n, _)| Car::preset(n).unwrap()).collect();
+    let mut cars: Vec<Car> = PRESETS
+        .iter()
+        .map(|(n, _)| Car::preset(n).unwrap())
+        .collect();
     cars.push(warp);
     let mut spectral_seen = false;
     let mut worst_wk = 0.0f64;
     for car in &cars {
         for tracks in [Tracks::Correlated, Tracks::Independent] {
             for class in [RoadClass::B, RoadClass::D] {
-                let road = Road { class, speed: 20.0, tracks };
+                let road = Road {
+                    class,
+                    speed: 20.0,
+                    tracks,
+                };
                 for kind in [ModelKind::Quarter, ModelKind::Full] {
                     let full = report(kind, car, &road).unwrap();
                     let light = readout(kind, car, &road).unwrap();
@@ -551,13 +558,32 @@ fn readout_is_the_report_without_its_second_route() {
                     assert_eq!(light.low_cutoff_hz, full.low_cutoff_hz, "{what}");
                     assert_eq!(light.modes, full.modes, "{what}");
                     assert_eq!(
-                        [light.ks, light.cs, light.body_bounce_hz, light.damping_ratio, light.wheel_rate, light.static_wheel_load],
-                        [full.ks, full.cs, full.body_bounce_hz, full.damping_ratio, full.wheel_rate, full.static_wheel_load],
+                        [
+                            light.ks,
+                            light.cs,
+                            light.body_bounce_hz,
+                            light.damping_ratio,
+                            light.wheel_rate,
+                            light.static_wheel_load
+                        ],
+                        [
+                            full.ks,
+                            full.cs,
+                            full.body_bounce_hz,
+                            full.damping_ratio,
+                            full.wheel_rate,
+                            full.static_wheel_load
+                        ],
                         "{what}"
                     );
                     let wk = (light.bacc_wk / full.bacc_wk - 1.0).abs();
                     worst_wk = worst_wk.max(wk);
-                    assert!(wk < 1e-8, "{what}: Wk {} vs {} ({wk:e})", light.bacc_wk, full.bacc_wk);
+                    assert!(
+                        wk < 1e-8,
+                        "{what}: Wk {} vs {} ({wk:e})",
+                        light.bacc_wk,
+                        full.bacc_wk
+                    );
                     assert_eq!(light.comfort, full.comfort, "{what}");
                     spectral_seen |= light.route == "spectral";
                 }

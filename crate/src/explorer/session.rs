@@ -206,8 +206,16 @@ impl Session {
 
     /// Keeps `values` of `model` on `grid`, replacing any kept there, the oldest going
     /// past [`KEPT_MAPS`].
-    fn keep(&mut self, model: MapModel, grid: Grid, comfort: Comfort, values: Rc<Dcs>, path: ComputePath) {
-        self.kept.retain(|k| !(k.model == model && k.grid == grid && k.comfort == comfort));
+    fn keep(
+        &mut self,
+        model: MapModel,
+        grid: Grid,
+        comfort: Comfort,
+        values: Rc<Dcs>,
+        path: ComputePath,
+    ) {
+        self.kept
+            .retain(|k| !(k.model == model && k.grid == grid && k.comfort == comfort));
         if self.kept.len() >= KEPT_MAPS {
             self.kept.remove(0);
         }
@@ -256,7 +264,13 @@ impl Session {
         let at = (datum.front.spring, datum.front.damper);
         let dcs = Dcs::compute_with_threads(&given, &grid, at, Scale::Absolute, 1)?;
         // The GPU kernel computes the unweighted BAcc.
-        self.keep(MapModel::HiFi, grid, Comfort::Bacc, Rc::new(dcs), ComputePath::Gpu);
+        self.keep(
+            MapModel::HiFi,
+            grid,
+            Comfort::Bacc,
+            Rc::new(dcs),
+            ComputePath::Gpu,
+        );
         Ok(())
     }
 
@@ -266,7 +280,9 @@ impl Session {
         let grid = Grid::cells(&self.scenario.dbox, nx, ny).ok()?;
         self.kept
             .iter()
-            .find(|k| k.model == MapModel::HiFi && k.grid == grid && k.comfort == self.scenario.comfort)
+            .find(|k| {
+                k.model == MapModel::HiFi && k.grid == grid && k.comfort == self.scenario.comfort
+            })
             .map(|k| k.path)
     }
 

@@ -404,7 +404,10 @@ fn the_pages_adaptive_loop_is_the_clis() {
         );
         // The grid's points are scaled from the plan's unit levels: equal to 1e-12.
         for (got, want) in u.check.map_percent.to_array()[k].iter().zip(&sigma[k]) {
-            assert!((got - want).abs() <= 1e-12 * want.abs(), "{k}: {got} vs {want}");
+            assert!(
+                (got - want).abs() <= 1e-12 * want.abs(),
+                "{k}: {got} vs {want}"
+            );
         }
     }
     assert_eq!(u.levels, levels);
