@@ -91,13 +91,41 @@ struct Closest {
     criteria: Criteria,
 }
 
-/// The design evaluated so far with the least total violation, and what it breaks.
+/// The design evaluated so far with the least total violation, and what it breaks
+/// (the single-case problem's and the robust problem's explanation of an empty feasible set).
 #[derive(Debug, Clone)]
-struct LeastViolation {
-    violation: f64,
-    ks: f64,
-    cs: f64,
-    broken: Vec<Objective>,
+pub(crate) struct LeastViolation {
+    pub(crate) violation: f64,
+    pub(crate) ks: f64,
+    pub(crate) cs: f64,
+    pub(crate) broken: Vec<Objective>,
+}
+
+impl LeastViolation {
+    /// Keeps design `(ks, cs)` in `least` when its total `violation` is smaller than the
+    /// kept one's; `g` are its constraint values (`> 0`: broken).
+    pub(crate) fn keep(
+        least: &RefCell<Option<Self>>,
+        ks: f64,
+        cs: f64,
+        g: &[(Objective, f64)],
+        violation: f64,
+    ) {
+        let mut least = least.borrow_mut();
+        if least.as_ref().is_none_or(|l| violation < l.violation) {
+            let broken = g
+                .iter()
+                .filter(|(_, gj)| *gj > 0.0)
+                .map(|(o, _)| *o)
+                .collect();
+            *least = Some(LeastViolation {
+                violation,
+                ks,
+                cs,
+                broken,
+            });
+        }
+    }
 }
 
 /// Bi-objective suspension problem on an evaluator `E`; remembers, per design
@@ -164,20 +192,7 @@ impl<E: Evaluator> SuspensionProblem<E> {
                 None => closest.push(entry),
             }
         }
-        let mut least = self.least.borrow_mut();
-        if least.as_ref().is_none_or(|l| violation < l.violation) {
-            let broken = g
-                .iter()
-                .filter(|(_, gj)| *gj > 0.0)
-                .map(|(o, _)| *o)
-                .collect();
-            *least = Some(LeastViolation {
-                violation,
-                ks,
-                cs,
-                broken,
-            });
-        }
+        LeastViolation::keep(&self.least, ks, cs, g, violation);
     }
 
     /// Why `c` at the closest design still breaks its objective, in words.

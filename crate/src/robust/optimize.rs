@@ -21,6 +21,7 @@ use crate::optimize::hypervolume::{hypervolume, reference_point};
 use crate::optimize::minmax::{change_percent, pick, recheck, PickRule, Recheck};
 use crate::optimize::problem::{Eval, Problem};
 use crate::optimize::study::REFERENCE_MARGIN;
+use crate::optimize::suspension::LeastViolation;
 use crate::optimize::{nsga2, stm, EvaluatorSpec, FrontPoint, Method, Study};
 use crate::surrogate::PlanSpec;
 use serde::Serialize;
@@ -33,15 +34,7 @@ pub struct RobustProblem<E> {
     objectives: DesignObjectives,
     ctxs: Vec<DosContext>,
     runs: Cell<usize>,
-    least: RefCell<Option<Least>>,
-}
-
-/// The design with the least total violation so far and what it breaks.
-struct Least {
-    violation: f64,
-    ks: f64,
-    cs: f64,
-    broken: Vec<Objective>,
+    least: RefCell<Option<LeastViolation>>,
 }
 
 impl<E: Evaluator> RobustProblem<E> {
@@ -92,20 +85,7 @@ impl<E: Evaluator> Problem for RobustProblem<E> {
         }
         let g = robust_constraints(&self.objectives, &self.ctxs, ks, cs, &per);
         let violation: f64 = g.iter().map(|(_, gj)| gj.max(0.0)).sum();
-        let mut least = self.least.borrow_mut();
-        if least.as_ref().is_none_or(|l| violation < l.violation) {
-            let broken = g
-                .iter()
-                .filter(|(_, v)| *v > 0.0)
-                .map(|(o, _)| *o)
-                .collect();
-            *least = Some(Least {
-                violation,
-                ks,
-                cs,
-                broken,
-            });
-        }
+        LeastViolation::keep(&self.least, ks, cs, &g, violation);
         Ok(Eval {
             f: [c.bacc, c.dtl],
             violation,
@@ -116,7 +96,7 @@ impl<E: Evaluator> Problem for RobustProblem<E> {
     /// Names what the least-violating design breaks in some case.
     fn infeasible(&self) -> RideError {
         match self.least.borrow().as_ref() {
-            Some(Least { ks, cs, broken, .. }) => {
+            Some(LeastViolation { ks, cs, broken, .. }) => {
                 let labels: Vec<&str> = broken.iter().map(|o| o.label()).collect();
                 RideError::Infeasible {
                     field: "cases".into(),
