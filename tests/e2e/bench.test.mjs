@@ -168,6 +168,21 @@ test('benchmark: HiFi map in the worker, wasm calls and chart redraws', { timeou
   figures.hifiMapWorkerMs = stats(times);
   figures.mainThreadLongestGapDuringHifiMapMs = +Math.max(...gaps).toFixed(1);
   t.diagnostic(`HiFi 41x41 map in the worker: p50 ${median(times).toFixed(1)} ms, p95 ${p95(times).toFixed(1)} ms; longest main-thread gap ${Math.max(...gaps).toFixed(1)} ms`);
+  // The HiFi front (STM on the full car, 61 x 61 refined twice, and the plane's front
+  // judged on it) in the heavy worker after a road edit: 5 new speeds, the surrogate's
+  // refit for each included, as after a speed edit in the page.
+  const fronts = [];
+  for (let i = 0; i < 5; i++) {
+    fronts.push(await page.evaluate(async (i) => {
+      const a = window.__ridelab;
+      const s = { ...a.state, speed: 24 + 0.5 * i };
+      const t0 = performance.now();
+      const r = await a.heavyEngine.call('hifiFront', s);
+      return { ms: performance.now() - t0, worker: r.ms, runs: r.hifiRuns };
+    }, i));
+  }
+  figures.hifiFrontWorkerMs = stats(fronts.map((f) => f.ms));
+  t.diagnostic(`HiFi front after a speed edit, heavy worker (refit included): p50 ${median(fronts.map((f) => f.ms)).toFixed(0)} ms, p95 ${p95(fronts.map((f) => f.ms)).toFixed(0)} ms (${fronts[0].runs} HiFi runs)`);
   const engine = await page.evaluate(() => {
     const a = window.__ridelab;
     const s = a.state;

@@ -131,6 +131,27 @@ test('with a SwiftShader WebGPU adapter the HiFi and error maps come from the GP
       assert.ok(err.worst <= 0.012, `GPU vs CPU error map: ${err.worst} percentage points`);
       await page.locator('.maps').screenshot({ path: path.join(OUT, 'maps-hifi-gpu.png') });
 
+      // The HiFi front's STM starting grid (61 x 61) also comes from the GPU: its front,
+      // hypervolume and pick equal the CPU's (the main thread's own session) within 1e-4.
+      await page.waitForFunction(() => {
+        const h = window.__ridelab.hifiFront;
+        return window.__ridelab.isSettled() && h && !h.error;
+      }, null, { timeout: 300_000, polling: 250 });
+      const fronts = await page.evaluate(() => {
+        const a = window.__ridelab;
+        const cpu = new a.api.Explorer(a.state);
+        const want = cpu.hifiFront();
+        cpu.free();
+        return { gpu: a.hifiFront, cpu: want };
+      });
+      const [gf, cf] = [fronts.gpu.front.study, fronts.cpu.front.study];
+      t.diagnostic(`HiFi front: GPU grid ${fronts.gpu.compute}, ${gf.front.length} points (CPU ${cf.front.length}), hypervolume ${gf.hypervolume} vs ${cf.hypervolume}, ${fronts.gpu.ms.toFixed(0)} ms`);
+      assert.equal(fronts.gpu.compute, 'gpu', `STM's grid on the GPU (${JSON.stringify(fronts.gpu.gpu)})`);
+      assert.equal(fronts.cpu.compute, 'cpu');
+      assert.ok(Math.abs(gf.hypervolume / cf.hypervolume - 1) <= TOL, 'hypervolume');
+      for (const k of ['bacc', 'dtl', 'sws']) assert.ok(Math.abs(gf.pick.criteria[k] / cf.pick.criteria[k] - 1) <= TOL, `pick ${k}`);
+      assert.equal(fronts.gpu.hifiRuns, fronts.cpu.hifiRuns);
+
       // Benchmark: the 160 x 120 HiFi map, GPU path (a GpuMaps of this thread, the kernel
       // compiled once) against the CPU path (a fresh session each time), 5 runs each.
       const bench = await page.evaluate(async () => {

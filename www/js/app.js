@@ -25,6 +25,7 @@ import { Workbench, bindShortcuts } from './workbench.js';
 import { buildPickers } from './surrogatepanel.js';
 import { UncertaintyPanel } from './uncertaintypanel.js';
 import { adaptivePlane } from './chartspecs.js';
+import { currentHifiFront } from './hififront.js';
 import { loadTables } from './colormap.js';
 import { keyStep } from './steps.js';
 import { fmt, fmtInput, parseNumber } from './format.js';
@@ -444,6 +445,7 @@ function exportDataOf(store, ui) {
     design: st.plane.design,
     ratio: st.view.ratio,
     adaptive: adaptivePlane(st.adaptive),
+    hifi: currentHifiFront(st),
     spectra: st.spectra,
     time: st.time ? st.time.result : null,
     timeLinear: st.time ? st.time.linear : null,

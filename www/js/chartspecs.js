@@ -16,6 +16,7 @@ export const COL = {
   pick: '#facc15',
   linear: '#6b7280',
   adaptive: '#7c3aed',
+  hifiFront: '#1f2937',
   adaptiveWas: '#c4b5fd',
 };
 
@@ -124,21 +125,28 @@ export const PLANE_KEY = [
  * (thousands of dots) and the design on a layer of its own (it moves with the sliders).
  * An export has every other cloud cell each way, the legend and a `title`.
  */
-export function objectiveSpec({ front: fr, nsga, cloud, design, adaptive = null }, { ratio = false, width = 720, height = 460, title = '', live = false } = {}) {
+export function objectiveSpec({ front: fr, nsga, cloud, design, adaptive = null, hifi = null }, { ratio = false, width = 720, height = 460, title = '', live = false } = {}) {
   if (!fr || fr.error) throw { message: `no front to draw${fr ? `: ${fr.error}` : ''}`, field: 'front' };
   const xy = planeXY(fr, ratio);
   const cloudPts = live || !cloud ? [] : cloudPoints(cloud, fr, ratio, 2);
   const frontPts = fr.study.front.map((p) => xy(p.bacc, p.dtl));
   const datum = xy(fr.datum.bacc, fr.datum.dtl);
-  // The range: the front and the datum, room to the upper right for the cloud.
-  const [x0, x1] = extent([...frontPts.map((p) => p[0]), datum[0]]);
-  const [y0, y1] = extent([...frontPts.map((p) => p[1]), datum[1]]);
+  // The HiFi's own front (issue #13), each point by the HiFi (ratios to the HiFi datum).
+  const hf = hifi && hifi.front && !hifi.error ? hifi.front : null;
+  const hxy = hf ? planeXY(hf, ratio) : null;
+  const hfPts = hf ? hf.study.front.map((p) => hxy(p.bacc, p.dtl)) : [];
+  // The range: the fronts and the datum, room to the upper right for the cloud.
+  const [x0, x1] = extent([...frontPts.map((p) => p[0]), ...hfPts.map((p) => p[0]), datum[0]]);
+  const [y0, y1] = extent([...frontPts.map((p) => p[1]), ...hfPts.map((p) => p[1]), datum[1]]);
   const xRange = widen([x0 - 0.05 * (x1 - x0), x1 + 0.6 * (x1 - x0)]);
   const yRange = widen([y0 - 0.05 * (y1 - y0), y1 + 0.6 * (y1 - y0)]);
   const series = [];
   if (cloudPts.length) {
     series.push({ name: 'feasible designs (surrogate)', colour: COL.cloud, points: cloudPts, style: 'dots', size: 1.4, opacity: CLOUD_OPACITY });
   }
+  // The HiFi's own front wide and dark underneath: where the plane's front is on it, it
+  // shows as a dark edge around the plane's line.
+  if (hf) series.push(line(`HiFi front, STM on the full car (${hf.study.front.length} pts, ${hifi.hifiRuns} HiFi runs)`, COL.hifiFront, hfPts, 5));
   series.push(line(`Pareto front, STM (${frontPts.length} pts)`, COL.stm, frontPts, 2.5));
   if (nsga && !nsga.error) {
     const nf = nsga.study.front.map((p) => xy(p.bacc, p.dtl));
@@ -159,6 +167,10 @@ export function objectiveSpec({ front: fr, nsga, cloud, design, adaptive = null 
   const rule = fr.study.pick.rule === 'minmax' ? 'min-max' : fr.study.pick.rule;
   const w = fr.study.pick.pseudo_weights;
   series.push(marker(`${rule} pick (${fr.study.evaluator}; pseudo-weights ${w[0].toFixed(2)} / ${w[1].toFixed(2)})`, COL.pick, '#000000', 'diamond', [pk]));
+  if (hf) {
+    const r = hf.study.pick.rule === 'minmax' ? 'min-max' : hf.study.pick.rule;
+    series.push(marker(`HiFi ${r} pick`, COL.hifiFront, COL.hifiFront, 'cross', [hxy(hf.study.pick.criteria.bacc, hf.study.pick.criteria.dtl)], 7));
+  }
   series.push(marker('datum', '#ffffff', '#000000', 'square', [datum], 6));
   // The adaptive loop's picks over the min-max pick, so they show where they move.
   if (was) series.push(marker('adaptive loop\'s pick before its latest run', COL.adaptiveWas, '#ffffff', 'triangle', [xy(was.pick.criteria.bacc, was.pick.criteria.dtl)], 6));

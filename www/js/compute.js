@@ -176,6 +176,16 @@ export class Compute {
     return this.heavy.call('gpuStatus').catch(() => ({ adapter: null, reason: 'no WebGPU adapter: the HiFi maps are drawn on the main thread', failure: null }));
   }
 
+  /**
+   * The HiFi's own front (STM on the full car, the plane's grid and levels; STM's
+   * starting grid on the GPU when the worker has one) and the plane's front judged on it:
+   * both hypervolumes against the HiFi front's reference point and the HiFi runs each
+   * took (heavy worker; `{error}` when none is feasible).
+   */
+  hifiFront(s) {
+    return this.heavy.call('hifiFront', s).catch((e) => ({ error: e.message || String(e) }));
+  }
+
   /** The surrogate's fit report, validated on the HiFi grid (heavy worker). */
   fit(s) {
     return this.heavy.call('surrogateFit', s, VALIDATION_LEVELS);

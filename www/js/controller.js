@@ -83,6 +83,7 @@ export class Controller {
       return { s, model, ...r, ms: performance.now() - t0 };
     });
     this.fitRun = latestOnly((s) => this.compute.fit(s).then((r) => ({ s, r })));
+    this.hifiFrontRun = latestOnly((s) => this.compute.hifiFront(s).then((r) => ({ s, r })));
     this.nsgaRun = latestOnly((s) => {
       this.counters.nsgaRuns++;
       return this.compute.nsga(s).then((r) => ({ s, r }));
@@ -96,9 +97,11 @@ export class Controller {
     return p ? { ks: p.ks, cs: p.cs } : { ks: this.store.state.ks, cs: this.store.state.cs };
   }
 
-  /** True when every view shows the current state (the plane's animation ended) and nothing is queued. */
+  /** True when every view shows the current state (the plane's animation ended, the HiFi front came) and nothing is queued. */
   isSettled() {
-    return this.pending === 0 && this.pendingDesign === null && this.store.hifiChecked() && !this.render.ui.plane.animating;
+    const hf = this.store.hifiFront;
+    return this.pending === 0 && this.pendingDesign === null && this.store.hifiChecked() && !this.render.ui.plane.animating &&
+      hf !== null && hf.key === scenarioKey(this.store.state);
   }
 
   /** Runs `fn` after every earlier update; each reads the state when it starts. */
@@ -167,6 +170,7 @@ export class Controller {
     st.front = r.front;
     st.plane = r.plane;
     if (st.nsga && st.nsga.key !== scenarioKey(s)) st.nsga = null;
+    if (st.hifiFront && st.hifiFront.key !== scenarioKey(s)) st.hifiFront = null;
     if (st.adaptive && st.adaptive.key !== scenarioKey(s)) {
       st.adaptive = null;
       this.counters.adaptiveDropped++;
@@ -181,6 +185,7 @@ export class Controller {
     this.counters.frontDraws++;
     this.showMaps();
     if (this.store.view.nsga) this.requestNsga();
+    this.requestHifiFront();
     this.requestFit();
     this.designChanged();
   }
@@ -415,6 +420,26 @@ export class Controller {
           this.onViewsChanged();
         })
         .catch((e) => this.render.fitStatus(`The surrogate fit failed: ${e.message || e}`)),
+    );
+  }
+
+  /**
+   * The HiFi's own front of the current scenario beside the plane's (heavy worker, about
+   * 5000 HiFi runs, its starting grid on the GPU when there is one); asked on every
+   * scenario change, an answer for an earlier scenario dropped. Until it comes the plane
+   * shows the last one only if it is for this scenario.
+   */
+  requestHifiFront() {
+    const st = this.store;
+    const key = scenarioKey(st.state);
+    if (st.hifiFront && st.hifiFront.key === key) return;
+    this.render.hifiFrontStatus('HiFi front: computing…');
+    this.track(
+      this.hifiFrontRun(st.state).then((out) => {
+        if (!out || scenarioKey(out.s) !== scenarioKey(st.state)) return;
+        st.hifiFront = { ...out.r, key: scenarioKey(out.s) };
+        this.render.hifiFront();
+      }),
     );
   }
 

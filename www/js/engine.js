@@ -35,6 +35,14 @@ export const ADAPTIVE_METHODS = ['adaptiveStart', 'adaptiveStep', 'adaptiveRepor
  */
 export const GPU_METHODS = ['gpuStatus'];
 
+/**
+ * `hifiFront(state)`: the HiFi's own front and the plane's front judged on it
+ * (`Explorer.hifiFront`), with `ms` (this thread's time, the GPU's included). On a host
+ * with the GPU path open and the unweighted BAcc, STM's starting grid comes from the GPU
+ * (`compute: "gpu"`, and `gpu` the status); a GPU failure leaves it to the CPU.
+ */
+export const FRONT_METHODS = ['hifiFront'];
+
 /** The largest |`100 (predicted / hifi - 1)`| of BAcc, DTL and SWS, %: a pick's HiFi re-check error. */
 function recheckError(predicted, hifi) {
   return Math.max(...['bacc', 'dtl', 'sws'].map((k) => Math.abs(100 * (predicted[k] / hifi[k] - 1))));
@@ -83,7 +91,7 @@ export class Host {
       const [state, ...rest] = args;
       return this.at(state)[method](...rest);
     }
-    if (ADAPTIVE_METHODS.includes(method)) return this[method](...args);
+    if (ADAPTIVE_METHODS.includes(method) || FRONT_METHODS.includes(method)) return this[method](...args);
     throw { message: `no method ${method}`, field: '' };
   }
 
@@ -109,6 +117,27 @@ export class Host {
     }
     const out = this.at(state).maps(model, nx, ny);
     out.gpu = { ...this.gpu.status(), failure: this.gpuFailedKey === key ? this.gpu.failure : null };
+    return out;
+  }
+
+  /** See FRONT_METHODS. */
+  async hifiFront(state) {
+    const t0 = performance.now();
+    let values;
+    const key = `${scenarioKey(state)}|stm`;
+    if (this.gpu && (state.comfort || 'bacc') === 'bacc' && this.gpuFailedKey !== key) {
+      const maps = await this.gpu.open();
+      if (maps) {
+        try {
+          values = await this.gpu.stmGrid(maps, state);
+        } catch {
+          this.gpuFailedKey = key;
+        }
+      }
+    }
+    const out = this.at(state).hifiFront(values);
+    out.ms = performance.now() - t0;
+    if (this.gpu) out.gpu = { ...this.gpu.status(), failure: this.gpuFailedKey === key ? this.gpu.failure : null };
     return out;
   }
 

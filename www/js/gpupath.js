@@ -95,6 +95,18 @@ export class GpuPath {
     }
   }
 
+  /** The HiFi criteria of the objective plane's STM starting grid of `state` from the GPU (`GpuMaps.stmGrid`'s values; rejects as `map`). */
+  async stmGrid(maps, state) {
+    try {
+      const m = await within(maps.stmGrid(state), GPU_MAP_MS, 'GPU grid');
+      this.failure = null;
+      return m.values;
+    } catch (e) {
+      this.failure = messageOf(e);
+      throw e;
+    }
+  }
+
   /** `{adapter, reason, failure}`: what the footer and the map status say. */
   status() {
     return { adapter: this.adapter, reason: this.reason, failure: this.failure };

@@ -12,6 +12,7 @@ import { MODEL_NAMES, datumStateOf, fitKeyOf, keyOf } from './store.js';
 import { GRID } from './compute.js';
 import { fmt, fmtInput, fmtPct } from './format.js';
 import { pathText } from './gpupath.js';
+import { currentHifiFront, hifiFrontLine, hifiFrontTitle, renderHifiFront } from './hififront.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -75,6 +76,7 @@ export class Render {
     this.criteriaLabels();
     this.plane();
     renderPick($('op-pick'), st.front);
+    renderHifiFront($('op-hifi'), currentHifiFront(st), st.front);
     this.pickSummary();
     this.controls();
   }
@@ -92,10 +94,11 @@ export class Render {
     const st = this.store;
     // The adaptive loop's surrogate front is unweighted: not drawn on a Wk plane.
     const adaptive = st.plane.model === 'surrogate' ? adaptivePlane(st.adaptive) : null;
-    const data = { front: st.front, nsga: st.nsga, cloud: st.cloud, ratio: st.view.ratio, adaptive };
+    const data = { front: st.front, nsga: st.nsga, cloud: st.cloud, ratio: st.view.ratio, adaptive, hifi: currentHifiFront(st) };
     if (animate) this.ui.plane.move(data);
     else this.ui.plane.draw(data);
     $('op-key-adaptive').hidden = !adaptive;
+    $('op-key-hifi').hidden = !data.hifi;
     this.ui.plane.drawDesign(st.plane.design);
   }
 
@@ -294,6 +297,19 @@ export class Render {
       ? `NSGA-II: ${r.error}`
       : `NSGA-II (population 60, 60 generations, seed 1): ${r.study.front.length} points, hypervolume ${fmt(r.study.hypervolume, 4)} vs STM ${stm} (each against its own reference point).`);
     this.plane();
+  }
+
+  /** The HiFi's own front arrived (or failed): the plane, its line and the Pick tab's table. */
+  hifiFront() {
+    const h = this.store.hifiFront;
+    this.hifiFrontStatus(hifiFrontLine(h, this.store.front));
+    $('op-hifi-status').title = h && !h.error ? hifiFrontTitle(h) : '';
+    renderHifiFront($('op-hifi'), h, this.store.front);
+    this.plane();
+  }
+
+  hifiFrontStatus(text) {
+    $('op-hifi-status').textContent = text;
   }
 
   nsgaStatus(text) {

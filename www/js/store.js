@@ -95,6 +95,12 @@ export class Store {
     this.front = null;
     /** The NSGA-II study when asked for, with the scenario key it is for. */
     this.nsga = null;
+    /**
+     * The HiFi's own front and the plane's front judged on it (js/compute.js
+     * `hifiFront`: `{front, hifiRuns, compute, plane, ms}` or `{error}`), with the
+     * scenario key it is for; null until it comes.
+     */
+    this.hifiFront = null;
     /** The surrogate's fit report and the key of what it was fitted to. */
     this.fit = null;
     this.fitKey = '';

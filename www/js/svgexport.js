@@ -14,11 +14,11 @@ const MAP_MODELS = { lofi: 'LoFi', hifi: 'HiFi', surrogate: 'surrogate', error: 
  * adaptive loop's front and picks, js/chartspecs.js `adaptivePlane`, when one runs), with
  * a title.
  */
-export function objectiveChart({ state, front, nsga, cloud, design, ratio, adaptive = null }, { width = 720, height = 460 } = {}) {
+export function objectiveChart({ state, front, nsga, cloud, design, ratio, adaptive = null, hifi = null }, { width = 720, height = 460 } = {}) {
   const title = front && !front.error
     ? `Objective plane (surrogate ${front.study.evaluator}): ${state.car}, class ${state.class} at ${state.speed} m/s`
     : '';
-  return objectiveSpec({ front, nsga, cloud, design, adaptive }, { ratio, width, height, title });
+  return objectiveSpec({ front, nsga, cloud, design, adaptive, hifi }, { ratio, width, height, title });
 }
 
 /** One FRF (`which` = 'frf') or PSD ('psd') chart of output `key`, with a title. */

@@ -61,6 +61,10 @@ export function installTestHooks({ store, controller, compute, ui, boot, lessons
     get nsga() {
       return store.nsga;
     },
+    /** The HiFi's own front and the plane's judged on it (js/store.js `hifiFront`) or null. */
+    get hifiFront() {
+      return store.hifiFront;
+    },
     get fit() {
       return store.fit;
     },

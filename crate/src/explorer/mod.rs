@@ -6,6 +6,7 @@
 
 pub mod adaptive;
 pub mod fields;
+pub mod hifi_front;
 pub mod maps;
 pub mod session;
 pub mod state;
@@ -15,9 +16,12 @@ pub mod surrogate;
 mod tests;
 #[cfg(test)]
 mod tests_criteria;
+#[cfg(test)]
+mod tests_hifi_front;
 
 pub use adaptive::{PageLoop, PageStep, PageUncertainty, MAX_CHECK_LEVELS};
 pub use fields::ui_field;
+pub use hifi_front::{HifiFrontView, PlaneCheck};
 pub use maps::{MapModel, ModelMap};
 pub use session::{EvaluatorKind, Session};
 pub use state::{Scenario, State, FIT_FIELDS, REPORT_FIELDS, STATE_FIELDS};

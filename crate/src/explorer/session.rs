@@ -15,6 +15,7 @@
 //!
 //! A setter that fails leaves the session as it was (the last good state).
 
+use super::hifi_front::{self, HifiFrontView};
 use super::maps::{error_values, MapModel, ModelMap};
 use super::state::{Scenario, State};
 use super::studies::{self, FrontModel, FrontResult, Spectra, TimeResult};
@@ -236,29 +237,7 @@ impl Session {
     /// car, road, box or surrogate change.
     pub fn keep_hifi_planes(&mut self, nx: usize, ny: usize, planes: &[f64]) -> Result<()> {
         let grid = Grid::cells(&self.scenario.dbox, nx, ny)?;
-        let n = grid.len();
-        if planes.len() != 3 * n {
-            return Err(RideError::field(
-                "values",
-                format!(
-                    "must hold 3 x {nx} x {ny} = {} numbers (got {})",
-                    3 * n,
-                    planes.len()
-                ),
-            ));
-        }
-        if let Some(k) = planes.iter().position(|v| !(v.is_finite() && *v > 0.0)) {
-            return Err(RideError::field(
-                "values",
-                format!(
-                    "value {k} is {}, not a finite positive criterion",
-                    planes[k]
-                ),
-            ));
-        }
-        let values = (0..n)
-            .map(|k| Criteria::from_array([planes[k], planes[n + k], planes[2 * n + k]]))
-            .collect();
+        let values = criteria_of_planes(planes, grid.len(), &format!("3 x {nx} x {ny}"))?;
         let given = HiFiGrid::from_values(self.scenario.hifi()?, grid, values, ComputePath::Gpu);
         let datum = &self.scenario.datum;
         let at = (datum.front.spring, datum.front.damper);
@@ -305,6 +284,30 @@ impl Session {
                 studies::front(&self.scenario, method, &*fit.model)
             }
         }
+    }
+
+    /// The HiFi's own front (STM on the full car, the page's settings) and the objective
+    /// plane's front (the surrogate's; with Wk comfort the LoFi's) judged on the HiFi
+    /// against it ([`hifi_front::hifi_front`]). `grid_planes`: the HiFi criteria of STM's
+    /// starting grid from the GPU (`GpuMaps.stmGrid`'s `values`: BAcc, DTL, SWS planes of
+    /// `STM_GRID^2` designs; errors name `values`), or `None` for the CPU HiFi.
+    pub fn hifi_front(&mut self, grid_planes: Option<&[f64]>) -> Result<HifiFrontView> {
+        let n = studies::STM_GRID * studies::STM_GRID;
+        let given = match grid_planes {
+            Some(p) => Some(criteria_of_planes(p, n, &format!("3 x {n}"))?),
+            None => None,
+        };
+        let (model, runs) = match self.scenario.comfort {
+            Comfort::Wk => (FrontModel::LoFi, 0),
+            Comfort::Bacc => (FrontModel::Surrogate, self.surrogate()?.samples.len()),
+        };
+        let plane = self.front("stm", model)?;
+        let name = match model {
+            FrontModel::LoFi => "lofi",
+            FrontModel::Surrogate => "surrogate",
+        };
+        // The plane's pick costs one HiFi run more: its re-check.
+        hifi_front::hifi_front(&self.scenario, &plane, name, runs + 1, given.as_deref())
     }
 
     /// FRFs and PSDs of the design by the LoFi, the HiFi and the surrogate.
@@ -368,4 +371,32 @@ impl EvaluatorKind {
             }),
         }
     }
+}
+
+/// `planes` (BAcc m/s^2, DTL N, SWS m planes of `n` designs each, a map's `values`
+/// layout) as criteria; `3 n` finite positive numbers (`size` says how many in words),
+/// else an error naming `values`.
+fn criteria_of_planes(planes: &[f64], n: usize, size: &str) -> Result<Vec<Criteria>> {
+    if planes.len() != 3 * n {
+        return Err(RideError::field(
+            "values",
+            format!(
+                "must hold {size} = {} numbers (got {})",
+                3 * n,
+                planes.len()
+            ),
+        ));
+    }
+    if let Some(k) = planes.iter().position(|v| !(v.is_finite() && *v > 0.0)) {
+        return Err(RideError::field(
+            "values",
+            format!(
+                "value {k} is {}, not a finite positive criterion",
+                planes[k]
+            ),
+        ));
+    }
+    Ok((0..n)
+        .map(|k| Criteria::from_array([planes[k], planes[n + k], planes[2 * n + k]]))
+        .collect())
 }

@@ -169,6 +169,19 @@ impl Explorer {
         to_js(&self.0.front(method, on).map_err(js_error)?)
     }
 
+    /// The HiFi's own Pareto front (STM on the full car, the plane's settings) with its
+    /// pick, and the objective plane's front judged on the HiFi against it (both
+    /// hypervolumes against the HiFi front's reference point, the HiFi runs each took):
+    /// `{front, hifiRuns, compute, plane: {model, hifiRuns, frontPoints,
+    /// hifiFeasiblePoints, hypervolume, hypervolumeOnHifi, hypervolumeRatio,
+    /// pickGapPercent}}` (`front` as `front`'s). `values`: STM's starting grid from
+    /// `GpuMaps.stmGrid` (then `compute` is "gpu"), or undefined for the CPU HiFi. About
+    /// 5000 HiFi runs: the page asks its worker.
+    #[wasm_bindgen(js_name = hifiFront)]
+    pub fn hifi_front(&mut self, values: Option<Vec<f64>>) -> Result<JsValue, JsValue> {
+        to_js(&self.0.hifi_front(values.as_deref()).map_err(js_error)?)
+    }
+
     /// |H| from road displacement and the output PSDs of the design by the LoFi, the HiFi
     /// and the surrogate at `nfreq` log-spaced frequencies from 0.1 to 100 Hz:
     /// `{f, lofi: {frf, psd}, hifi, surrogate}`, each `[bacc, dtl, sws]` (1/s^2, N/m, m/m;

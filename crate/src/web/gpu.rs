@@ -51,14 +51,35 @@ impl GpuMaps {
     /// `{nx, ny, values, adapter, path, nodes}` (see the module doc).
     #[wasm_bindgen(js_name = hifiMap)]
     pub fn hifi_map(&self, state: JsValue, nx: usize, ny: usize) -> Promise {
+        self.run(state, move |b| Grid::cells(b, nx, ny))
+    }
+
+    /// The HiFi criteria of the objective plane's STM starting grid (the design box's
+    /// `STM_GRID x STM_GRID` nodes, corners included: `Grid::over_box`), for
+    /// `Explorer.hifiFront`: a promise of `{nx, ny, values, adapter, path, nodes}` with
+    /// `values` in the map layout.
+    #[wasm_bindgen(js_name = stmGrid)]
+    pub fn stm_grid(&self, state: JsValue) -> Promise {
+        let n = crate::explorer::studies::STM_GRID;
+        self.run(state, move |b| Grid::over_box(b, n, n))
+    }
+
+    /// Runs the kernel on the grid `grid_of` makes of the state's design box.
+    fn run(
+        &self,
+        state: JsValue,
+        grid_of: impl FnOnce(&crate::design::DesignBox) -> crate::error::Result<Grid>,
+    ) -> Promise {
         let mapper = Rc::clone(&self.mapper);
         let input = parse_state(state).and_then(|s| {
             let sc = s.scenario().map_err(js_error)?;
-            let grid = Grid::cells(&sc.dbox, nx, ny).map_err(js_error)?;
-            MapInput::new(&sc.datum, &sc.road, &grid).map_err(js_error)
+            let grid = grid_of(&sc.dbox).map_err(js_error)?;
+            MapInput::new(&sc.datum, &sc.road, &grid)
+                .map(|input| (input, grid))
+                .map_err(js_error)
         });
         future_to_promise(async move {
-            let input = input?;
+            let (input, grid) = input?;
             let values = mapper.run(&input).await.map_err(js_error)?;
             let n = values.len();
             let mut planes = vec![0.0; 3 * n];
@@ -68,8 +89,8 @@ impl GpuMaps {
                 planes[2 * n + k] = c.sws;
             }
             let out = Object::new();
-            Reflect::set(&out, &"nx".into(), &(nx as f64).into())?;
-            Reflect::set(&out, &"ny".into(), &(ny as f64).into())?;
+            Reflect::set(&out, &"nx".into(), &(grid.ks.n as f64).into())?;
+            Reflect::set(&out, &"ny".into(), &(grid.cs.n as f64).into())?;
             Reflect::set(
                 &out,
                 &"values".into(),
