@@ -4,7 +4,7 @@
 use crate::car::{Car, QuarterCar};
 use crate::criteria::{
     bacc_wk, bacc_wk_spectral, comfort_label, criteria_exact, criteria_fast_exact, criteria_modal,
-    criteria_spectral, quarter_car_rms, Certified, ResidueFamily, ResidueRoute,
+    criteria_spectral, quarter_car_rms, Certified, ResidueFamily, ResidueRoads, ResidueRoute,
 };
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
@@ -258,31 +258,29 @@ impl HiFi {
     pub fn evaluate_routed(&self, ks: f64, cs: f64) -> Result<Routed> {
         // The rest of the car was checked in `new`; a valid design needs no more than
         // these comparisons, and the design check (which formats the field) names a fault.
-        if !(ks.is_finite() && cs.is_finite()) || ks <= 0.0 || cs <= 0.0 {
-            crate::car::check_design(ks, cs)?;
-        }
+        check_point(ks, cs)?;
         let routed = self.route(ks, cs)?;
         self.tally.add(routed.route);
         Ok(routed)
     }
 
     fn route(&self, ks: f64, cs: f64) -> Result<Routed> {
+        if let Some(r) = &self.residue {
+            if let Some(routed) = certified(r.criteria(ks, cs)) {
+                return Ok(routed);
+            }
+        }
+        self.exact_route(ks, cs)
+    }
+
+    /// The exact routes at `(ks, cs)`: modal, Kronecker where it declines, the frequency
+    /// route on a road warp.
+    fn exact_route(&self, ks: f64, cs: f64) -> Result<Routed> {
         let by = |criteria: Criteria, route: HiFiRoute| Routed {
             criteria,
             route,
             bound: None,
         };
-        if let Some(r) = &self.residue {
-            // Anything the residue route cannot certify (or refuses) goes to the exact
-            // routes, which give the value or the verdict.
-            if let Ok(Certified::Exact { criteria, bound }) = r.criteria(ks, cs) {
-                return Ok(Routed {
-                    criteria,
-                    route: HiFiRoute::Residue,
-                    bound: Some(bound),
-                });
-            }
-        }
         let mut m = self.base.clone();
         m.k += ks * &self.dk;
         m.c += cs * &self.dc;
@@ -300,6 +298,108 @@ impl HiFi {
             )),
             other => other,
         }
+    }
+}
+
+/// The design check of a point: a valid design needs only these comparisons, and the
+/// design check (which formats the field) names a fault.
+fn check_point(ks: f64, cs: f64) -> Result<()> {
+    if !(ks.is_finite() && cs.is_finite()) || ks <= 0.0 || cs <= 0.0 {
+        crate::car::check_design(ks, cs)?;
+    }
+    Ok(())
+}
+
+/// The residue route's value when it certified one. Anything it cannot certify (or
+/// refuses) goes to the exact routes, which give the value or the verdict.
+fn certified(residue: Result<Certified>) -> Option<Routed> {
+    match residue {
+        Ok(Certified::Exact { criteria, bound }) => Some(Routed {
+            criteria,
+            route: HiFiRoute::Residue,
+            bound: Some(bound),
+        }),
+        _ => None,
+    }
+}
+
+/// The HiFi of one car on several roads (issue #16: one loaded car at several operating
+/// points), each road's criteria equal to its own [`HiFi`]'s bit for bit.
+///
+/// What is shared: on each road the residue route's model family is the car's alone,
+/// and the road enters only through the wheel delays `L / v` and the white road
+/// velocity's intensity `W = 2 pi^2 Gd(n0) n0^2 v` (ISO 8608 class and speed). So at
+/// each design the roots of the characteristic polynomial, the residues and the
+/// static gains are computed once for all roads, the delay terms once per speed (the
+/// class only scales `W`), and each road's variances from its own `W` and delays
+/// ([`ResidueRoads`]): the same operations on the same operands as each road's own
+/// residue route, hence the same bits. Where a road's residue route does not certify a
+/// point (its error bound, or a weakly damped pair of roots), that road alone takes its
+/// own [`HiFi`]'s exact routes (modal, Kronecker, frequency). Without a residue route
+/// (a road warp), or when the roads' families are not of one model (roads with
+/// different tracks), every road is evaluated by its own [`HiFi`]. Route counts go to
+/// each road's [`HiFi::route_counts`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct HiFiRoads {
+    hifis: Vec<HiFi>,
+    shared: Option<ResidueRoads>,
+}
+
+impl HiFiRoads {
+    /// The HiFi of `car` on each of `roads` (errors as [`HiFi::new`]; at least one road,
+    /// else an error naming `roads`).
+    pub fn new(car: &Car, roads: &[Road]) -> Result<HiFiRoads> {
+        if roads.is_empty() {
+            return Err(RideError::field("roads", "needs at least one road"));
+        }
+        let hifis: Vec<HiFi> = roads
+            .iter()
+            .map(|r| HiFi::new(car, r))
+            .collect::<Result<_>>()?;
+        let routes: Option<Vec<ResidueRoute>> = hifis.iter().map(|h| h.residue.clone()).collect();
+        let shared = routes.and_then(|r| ResidueRoads::new(r).ok());
+        Ok(HiFiRoads { hifis, shared })
+    }
+
+    /// Each road's HiFi, in road order.
+    pub fn hifis(&self) -> &[HiFi] {
+        &self.hifis
+    }
+
+    /// Whether the roads share the residue route's road-independent work.
+    pub fn is_shared(&self) -> bool {
+        self.shared.is_some()
+    }
+
+    /// Per road, what its [`HiFi::evaluate_routed`] gives at `(ks, cs)` (N/m, N s/m).
+    pub fn evaluate_routed(&self, ks: f64, cs: f64) -> Vec<Result<Routed>> {
+        if let Err(e) = check_point(ks, cs) {
+            return vec![Err(e); self.hifis.len()];
+        }
+        let residue = self.shared.as_ref().map(|s| s.criteria(ks, cs));
+        let mut residue = residue.map(Vec::into_iter);
+        self.hifis
+            .iter()
+            .map(|h| {
+                let routed = match residue.as_mut().and_then(Iterator::next) {
+                    Some(r) => match certified(r) {
+                        Some(routed) => routed,
+                        None => h.exact_route(ks, cs)?,
+                    },
+                    None => h.route(ks, cs)?,
+                };
+                h.tally.add(routed.route);
+                Ok(routed)
+            })
+            .collect()
+    }
+
+    /// Every road's criteria at `(ks, cs)` in road order, or the first road's error.
+    pub fn evaluate(&self, ks: f64, cs: f64) -> Result<Vec<Criteria>> {
+        self.evaluate_routed(ks, cs)
+            .into_iter()
+            .map(|r| r.map(|r| r.criteria))
+            .collect()
     }
 }
 

@@ -24,6 +24,7 @@ pub use iso2631::{
 };
 pub use modal::{criteria_fast_exact, criteria_modal};
 pub use residue::{
-    Certified, Decline, Residue, ResidueFamily, ResidueRoute, MAX_DOF, RESIDUE_TOLERANCE,
+    Certified, Decline, Residue, ResidueFamily, ResidueRoads, ResidueRoute, MAX_DOF,
+    RESIDUE_TOLERANCE,
 };
 pub use spectral::{criteria_spectral, SpectralCriteria, Spectrum};

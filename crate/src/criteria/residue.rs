@@ -72,12 +72,17 @@ use crate::road::Road;
 use nalgebra::DMatrix;
 use num_complex::Complex64 as C64;
 
+mod roads;
+pub use roads::ResidueRoads;
+
 /// Most generalised coordinates of a family (the symmetric half car has 4).
 pub const MAX_DOF: usize = MAX_N;
 /// Coefficients of `D` and of every numerator (degree `2n` at most).
 const NC: usize = MAX_ROOTS + 1;
 /// Most wheel groups (distinct delays) of one source.
 const MAX_GROUPS: usize = 2;
+/// Most independent sources (left and right tracks).
+const MAX_SOURCES: usize = 2;
 
 /// A wheel group of one source in polynomial form.
 #[derive(Debug, Clone, PartialEq)]
@@ -212,22 +217,39 @@ impl ResidueRoute {
         for (family, weight) in &self.parts {
             match family.variances(ks, cs)? {
                 Residue::Variances { var: v, bound } => {
-                    for o in 0..N_OUT {
-                        var[o] += weight * v[o];
-                        err[o] += weight * v[o] * bound;
-                    }
+                    add_part(&mut var, &mut err, *weight, &v, bound)
                 }
                 Residue::Declined(why) => return Ok(Certified::Declined(why)),
             }
         }
-        let bound = (0..N_OUT).map(|o| err[o] / var[o]).fold(0.0, f64::max);
-        if bound.is_nan() || bound > RESIDUE_TOLERANCE {
-            return Ok(Certified::Declined(Decline::Bound(bound)));
-        }
-        Ok(Certified::Exact {
-            criteria: Criteria::from_array(var.map(f64::sqrt)),
-            bound,
-        })
+        Ok(certify(&var, &err))
+    }
+}
+
+/// Adds a part's variances `v` with weight `weight` and its bound to the route's sums.
+fn add_part(
+    var: &mut [f64; N_OUT],
+    err: &mut [f64; N_OUT],
+    weight: f64,
+    v: &[f64; N_OUT],
+    bound: f64,
+) {
+    for o in 0..N_OUT {
+        var[o] += weight * v[o];
+        err[o] += weight * v[o] * bound;
+    }
+}
+
+/// The RMS criteria of the summed variances `var` with errors `err`, or the bound that
+/// exceeds [`RESIDUE_TOLERANCE`].
+fn certify(var: &[f64; N_OUT], err: &[f64; N_OUT]) -> Certified {
+    let bound = (0..N_OUT).map(|o| err[o] / var[o]).fold(0.0, f64::max);
+    if bound.is_nan() || bound > RESIDUE_TOLERANCE {
+        return Certified::Declined(Decline::Bound(bound));
+    }
+    Certified::Exact {
+        criteria: Criteria::from_array(var.map(f64::sqrt)),
+        bound,
     }
 }
 
@@ -339,6 +361,9 @@ impl ResidueFamily {
             ));
         }
         let exc = base.excitation(road);
+        if exc.sources.len() > MAX_SOURCES {
+            return Err(unsuited("more than 2 independent tracks"));
+        }
         let mut sources = Vec::with_capacity(exc.sources.len());
         for src in &exc.sources {
             // Wheels of one source with equal delays act as one group: delay, Kr and Cr
@@ -433,41 +458,67 @@ impl ResidueFamily {
     /// their error bound, or the reason the route declines. Errors only on a road warp
     /// (non-stationary response), as the exact routes do.
     pub fn variances(&self, ks: f64, cs: f64) -> Result<Residue> {
+        /// This family's own road.
+        struct Own;
+        impl OnPoint for Own {
+            type Out = Residue;
+            fn on<const NP: usize>(self, family: &ResidueFamily, point: &Point<NP>) -> Residue {
+                family.accumulate(point, &family.delay_terms(point))
+            }
+        }
+        Ok(match self.at(ks, cs, Own)? {
+            Ok(residue) => residue,
+            Err(why) => Residue::Declined(why),
+        })
+    }
+
+    /// The road-independent part of the point `(ks, cs)` ([`Point`]) handed to `then`,
+    /// or why the route declines there; errors on a road warp.
+    fn at<V: OnPoint>(
+        &self,
+        ks: f64,
+        cs: f64,
+        then: V,
+    ) -> Result<std::result::Result<V::Out, Decline>> {
         let deg = self.deg;
         let d = self.characteristic(ks, cs);
         if d[..=deg].iter().any(|&v| !v.is_finite() || v <= 0.0) {
-            return Ok(Residue::Declined(Decline::NotStable));
+            return Ok(Err(Decline::NotStable));
         }
         let guess = self.start.as_ref().map(|s| s.predict(ks, cs));
         let Some(found) = roots(&d[..=deg], guess.as_ref()) else {
-            return Ok(Residue::Declined(Decline::Unresolved));
+            return Ok(Err(Decline::Unresolved));
         };
         if found.z[..found.n]
             .iter()
             .any(|l| l.re.is_nan() || l.re >= 0.0)
         {
-            return Ok(Residue::Declined(Decline::NotStable));
+            return Ok(Err(Decline::NotStable));
         }
         // Fixed-size loops over the kept roots: 4 when every root is in a pair (up to
         // 4 pairs), all 8 otherwise; unused places are zero.
         if found.n <= 4 {
-            self.sums::<4>(ks, cs, &d, &found)
+            let point = self.point::<4>(ks, cs, &d, &found)?;
+            Ok(point.map(|p| then.on(self, &p)))
         } else {
-            self.sums::<MAX_ROOTS>(ks, cs, &d, &found)
+            let point = self.point::<MAX_ROOTS>(ks, cs, &d, &found)?;
+            Ok(point.map(|p| then.on(self, &p)))
         }
     }
 
-    /// The closed-form sums of the module doc over `NP >= found.n` places for the roots.
-    fn sums<const NP: usize>(
+    /// The poles, the `S` table and each source's residues and static gains at
+    /// `(ks, cs)` over `NP >= found.n` places for the roots (module doc); errors on a
+    /// road warp (static gains of a source not summing to zero).
+    fn point<const NP: usize>(
         &self,
         ks: f64,
         cs: f64,
         d: &[f64; NC],
         found: &Roots,
-    ) -> Result<Residue> {
+    ) -> Result<std::result::Result<Point<NP>, Decline>> {
         let deg = self.deg;
         let Some(p) = Poles::<NP>::new(&d[..=deg], found) else {
-            return Ok(Residue::Declined(Decline::Unresolved));
+            return Ok(Err(Decline::Unresolved));
         };
         let table = STable::<NP>::new(&p);
         // Rounding of a residue (numerator, product, inverse), and of a term of the sums
@@ -475,17 +526,11 @@ impl ResidueFamily {
         let unit = f64::EPSILON / 2.0;
         let g_eval = 4.0 * (deg + 2) as f64 * unit;
         let g_sum = 8.0 * (deg + 2) as f64 * unit + 4.0 * p.backward * p.mu;
-        let w = self.intensity;
-        let mut var = [0.0; N_OUT];
-        let mut err = [0.0; N_OUT];
-        for groups in &self.sources {
+        let mut sources = [SourceResidues::<NP>::zero(); MAX_SOURCES];
+        for (groups, res) in self.sources.iter().zip(sources.iter_mut()) {
             let ng = groups.len();
             // Residues rho[g][o] on the kept roots, their error bounds, static gains and
             // their errors.
-            let mut rho = [[Cv::<NP>::zero(); N_OUT]; MAX_GROUPS];
-            let mut drho = [[[0.0; NP]; N_OUT]; MAX_GROUPS];
-            let mut gain = [[0.0; N_OUT]; MAX_GROUPS];
-            let mut dgain = [[0.0; N_OUT]; MAX_GROUPS];
             for (g, grp) in groups.iter().enumerate() {
                 for o in 0..N_OUT {
                     // N = alpha + (ks + cs s) beta; `na` bounds its terms' magnitudes.
@@ -504,17 +549,35 @@ impl ResidueFamily {
                             bound[k] += na[i] * p.pw_abs[i][k];
                         }
                     }
-                    let r = &mut rho[g][o];
+                    let r = &mut res.rho[g][o];
                     for k in 0..NP {
                         r.re[k] = re[k] * p.ild.re[k] - im[k] * p.ild.im[k];
                         r.im[k] = re[k] * p.ild.im[k] + im[k] * p.ild.re[k];
-                        drho[g][o][k] = g_eval * bound[k] * p.ild_l1[k];
+                        res.drho[g][o][k] = g_eval * bound[k] * p.ild_l1[k];
                     }
-                    gain[g][o] = nc[0] / d[0] + grp.yr[o];
-                    dgain[g][o] = 4.0 * unit * (na[0] / d[0] + grp.yr[o].abs());
+                    res.gain[g][o] = nc[0] / d[0] + grp.yr[o];
+                    res.dgain[g][o] = 4.0 * unit * (na[0] / d[0] + grp.yr[o].abs());
                 }
             }
-            check_stationary(gain[..ng].iter().copied(), self.scale)?;
+            check_stationary(res.gain[..ng].iter().copied(), self.scale)?;
+        }
+        Ok(Ok(Point {
+            poles: p,
+            table,
+            g_sum,
+            sources,
+        }))
+    }
+
+    /// The terms of the sums that depend on the wheel delays (module doc: the residue
+    /// and box-exponential terms `t`, with their first-order errors `e`), per source,
+    /// output and group, at this family's delays; without the intensity `W`.
+    fn delay_terms<const NP: usize>(&self, point: &Point<NP>) -> DelayTerms {
+        let (p, table, g_sum) = (&point.poles, &point.table, point.g_sum);
+        let mut terms = [[[(0.0, 0.0); MAX_GROUPS]; N_OUT]; MAX_SOURCES];
+        for ((groups, res), out) in self.sources.iter().zip(&point.sources).zip(&mut terms) {
+            let ng = groups.len();
+            let (rho, drho, gain, dgain) = (&res.rho, &res.drho, &res.gain, &res.dgain);
             // ex[g][l] = exp(lambda (tau_g - tau_l)) for l < g.
             let mut ex = [[Cv::<NP>::zero(); MAX_GROUPS]; MAX_GROUPS];
             for g in 0..ng {
@@ -573,6 +636,25 @@ impl ResidueFamily {
                         t -= 2.0 * gain[g][o] * bx;
                         e += 2.0 * (gain[g][o].abs() * dbx + dgain[g][o] * bx.abs());
                     }
+                    out[o][g] = (t, e);
+                }
+            }
+        }
+        terms
+    }
+
+    /// The variances and their bound from the delay terms `terms` (of this family's
+    /// delays) with this family's intensity `W` and the box-box terms
+    /// `W G_g G_l min(tau_g, tau_l)`.
+    fn accumulate<const NP: usize>(&self, point: &Point<NP>, terms: &DelayTerms) -> Residue {
+        let (w, g_sum) = (self.intensity, point.g_sum);
+        let mut var = [0.0; N_OUT];
+        let mut err = [0.0; N_OUT];
+        for ((groups, res), ts) in self.sources.iter().zip(&point.sources).zip(terms) {
+            let ng = groups.len();
+            let (gain, dgain) = (&res.gain, &res.dgain);
+            for o in 0..N_OUT {
+                for &(t, e) in &ts[o][..ng] {
                     var[o] += w * t;
                     err[o] += w * e;
                 }
@@ -593,10 +675,54 @@ impl ResidueFamily {
             }
         }
         if var.iter().any(|v| !v.is_finite() || *v <= 0.0) {
-            return Ok(Residue::Declined(Decline::BadVariance));
+            return Residue::Declined(Decline::BadVariance);
         }
         let bound = (0..N_OUT).map(|o| err[o] / var[o]).fold(0.0, f64::max);
-        Ok(Residue::Variances { var, bound })
+        Residue::Variances { var, bound }
+    }
+}
+
+/// What is done with the road-independent part of a point ([`Point`]): the sums on one
+/// family's road, or on the roads of several families of one model ([`roads`]).
+trait OnPoint {
+    /// The result.
+    type Out;
+    /// Uses `point`, computed by `family`.
+    fn on<const NP: usize>(self, family: &ResidueFamily, point: &Point<NP>) -> Self::Out;
+}
+
+/// Per source, output and group, a residue term of the sums and its first-order error
+/// (without the intensity).
+type DelayTerms = [[[(f64, f64); MAX_GROUPS]; N_OUT]; MAX_SOURCES];
+
+/// What the sums at one design need that does not depend on the road (the wheel delays
+/// and the intensity): the poles and the `S` table of `D`, and each source's residues.
+struct Point<const NP: usize> {
+    poles: Poles<NP>,
+    table: STable<NP>,
+    /// Relative rounding of a term of the sums, with the roots' backward error.
+    g_sum: f64,
+    sources: [SourceResidues<NP>; MAX_SOURCES],
+}
+
+/// One source's residues `rho[g][o]` on the kept roots, their error bounds, the static
+/// gains `G[g][o]` and their errors (module doc).
+#[derive(Clone, Copy)]
+struct SourceResidues<const NP: usize> {
+    rho: [[Cv<NP>; N_OUT]; MAX_GROUPS],
+    drho: [[[f64; NP]; N_OUT]; MAX_GROUPS],
+    gain: [[f64; N_OUT]; MAX_GROUPS],
+    dgain: [[f64; N_OUT]; MAX_GROUPS],
+}
+
+impl<const NP: usize> SourceResidues<NP> {
+    fn zero() -> Self {
+        SourceResidues {
+            rho: [[Cv::zero(); N_OUT]; MAX_GROUPS],
+            drho: [[[0.0; NP]; N_OUT]; MAX_GROUPS],
+            gain: [[0.0; N_OUT]; MAX_GROUPS],
+            dgain: [[0.0; N_OUT]; MAX_GROUPS],
+        }
     }
 }
 

@@ -172,23 +172,34 @@ pub fn evaluate_grid<E: Evaluator + Sync + ?Sized>(
     grid: &Grid,
     threads: usize,
 ) -> Result<Vec<Criteria>> {
-    grid.validate()?;
-    let ks = grid.ks.values();
-    let cs = grid.cs.values();
     let zero = Criteria {
         bacc: 0.0,
         dtl: 0.0,
         sws: 0.0,
     };
-    let mut out = vec![zero; grid.len()];
+    map_grid(grid, threads, zero, |ks, cs| evaluator.evaluate(ks, cs))
+}
+
+/// `f(ks, cs)` at every grid point, row-major (Cs rows, Ks columns), on at most `threads`
+/// threads, as [`evaluate_grid`] (which is this with an evaluator): the first failing
+/// point in row-major order makes the whole call fail with a message naming that point.
+/// `fill` is the initial value of each slot. For several values a point, e.g. every road
+/// of [`crate::analysis::HiFiRoads`].
+pub fn map_grid<T, F>(grid: &Grid, threads: usize, fill: T, f: F) -> Result<Vec<T>>
+where
+    T: Clone + Send,
+    F: Fn(f64, f64) -> Result<T> + Sync,
+{
+    grid.validate()?;
+    let ks = grid.ks.values();
+    let cs = grid.cs.values();
+    let mut out = vec![fill; grid.len()];
     let rows_of =
-        |first_row: usize, chunk: &mut [Criteria]| -> std::result::Result<(), (usize, RideError)> {
+        |first_row: usize, chunk: &mut [T]| -> std::result::Result<(), (usize, RideError)> {
             for (r, row) in chunk.chunks_mut(ks.len()).enumerate() {
                 let j = first_row + r;
                 for (i, slot) in row.iter_mut().enumerate() {
-                    *slot = evaluator
-                        .evaluate(ks[i], cs[j])
-                        .map_err(|e| (j * ks.len() + i, e))?;
+                    *slot = f(ks[i], cs[j]).map_err(|e| (j * ks.len() + i, e))?;
                 }
             }
             Ok(())
@@ -226,14 +237,14 @@ const PARALLEL_MIN_SECONDS: f64 = 1e-3;
 /// claimed in order, so a slow or busy core holds back at most one row). Returns the
 /// failure with the lowest flat index, if any; after a failure no later row is started.
 #[cfg(not(target_arch = "wasm32"))]
-fn run_threads<F>(
-    out: &mut [Criteria],
+fn run_threads<T: Send, F>(
+    out: &mut [T],
     n_ks: usize,
     threads: usize,
     rows_of: &F,
 ) -> Option<(usize, RideError)>
 where
-    F: Fn(usize, &mut [Criteria]) -> std::result::Result<(), (usize, RideError)> + Sync,
+    F: Fn(usize, &mut [T]) -> std::result::Result<(), (usize, RideError)> + Sync,
 {
     use std::sync::atomic::{AtomicUsize, Ordering};
     use std::sync::Mutex;
@@ -278,14 +289,14 @@ where
 
 /// wasm32 has no threads: the rows run on the calling thread.
 #[cfg(target_arch = "wasm32")]
-fn run_threads<F>(
-    out: &mut [Criteria],
+fn run_threads<T, F>(
+    out: &mut [T],
     _n_ks: usize,
     _threads: usize,
     rows_of: &F,
 ) -> Option<(usize, RideError)>
 where
-    F: Fn(usize, &mut [Criteria]) -> std::result::Result<(), (usize, RideError)> + Sync,
+    F: Fn(usize, &mut [T]) -> std::result::Result<(), (usize, RideError)> + Sync,
 {
     rows_of(0, out).err()
 }

@@ -34,7 +34,7 @@ pub mod grid;
 pub mod report;
 
 pub use contour::{auto_levels, contour, contours, nice_levels, Contour, Polyline};
-pub use dcs::{default_threads, evaluate_grid, DatumPoint, Dcs, Scale};
+pub use dcs::{default_threads, evaluate_grid, map_grid, DatumPoint, Dcs, Scale};
 pub use dos_mask::{
     objective_bit, objective_name, objectives_in, DosMap, DosSummary, FeasiblePoint,
     ObjectiveCount, OBJECTIVE_BITS,

@@ -5,14 +5,15 @@
 
 use super::cases::{Case, CaseSet, Combine};
 use super::objective::Combination;
-use crate::analysis::ModelKind;
+use crate::analysis::{HiFiRoads, ModelKind};
 use crate::car::Car;
+use crate::comfort::Comfort;
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
-use crate::gpu::Compute;
+use crate::gpu::{Compute, ComputePath, HiFiGrid};
 use crate::maps::{
-    map_report_from, map_report_on, DatumPoint, Dcs, DosMap, FeasiblePoint, MapReport, MapSettings,
-    Scale,
+    default_threads, map_grid, map_report_from, map_report_on, map_report_with, DatumPoint, Dcs,
+    DosMap, FeasiblePoint, MapReport, MapSettings, Scale,
 };
 use crate::road::Road;
 use serde::Serialize;
@@ -131,7 +132,7 @@ pub fn case_map_report(
 }
 
 /// The robust map of `set` by `model` (each case's map on `compute`, as
-/// [`map_report_on`]); `car` names the report and gives the datum design (the front
+/// [`map_report_on`], see [`case_maps`]); `car` names the report and gives the datum design (the front
 /// spring and damper every case shares), `road` is recorded.
 pub fn robust_map_report(
     model: ModelKind,
@@ -148,11 +149,7 @@ pub fn robust_map_report(
         contour_levels: 0,
         ..settings.clone()
     };
-    let maps: Vec<MapReport> = set
-        .cases
-        .iter()
-        .map(|c| map_report_on(model, &c.car, &c.road, &per_case, compute))
-        .collect::<Result<_>>()?;
+    let maps = case_maps(model, set, &per_case, compute)?;
     let datums: Vec<Criteria> = maps.iter().map(|m| m.datum.criteria).collect();
     let combination = Combination::new(set.combine, &datums, &set.probabilities())?;
     let grid = settings.grid;
@@ -236,4 +233,72 @@ pub fn robust_map_report(
             .collect(),
     };
     Ok(RobustMapReport { map, robust })
+}
+
+/// Every case's map report as [`map_report_on`] gives it (`settings` as the robust map
+/// sets them), in case order. On the HiFi's CPU path (unweighted BAcc) the cases of one
+/// loaded car ([`CaseSet::car_runs`]) are mapped together by one [`HiFiRoads`]: the same
+/// values bit for bit, the road-independent work done once a grid point (for 2 load
+/// cases x 3 speeds about 2 single maps' work instead of 6). Cases the GPU maps stay on
+/// it; where anything fails, the run's cases are mapped one by one, so errors are
+/// those of [`map_report_on`] too.
+fn case_maps(
+    model: ModelKind,
+    set: &CaseSet,
+    settings: &MapSettings,
+    compute: Compute,
+) -> Result<Vec<MapReport>> {
+    let one = |c: &Case| map_report_on(model, &c.car, &c.road, settings, compute);
+    if model != ModelKind::Full || settings.comfort != Comfort::Bacc {
+        return set.cases.iter().map(one).collect();
+    }
+    settings.validate()?;
+    let mut maps = Vec::with_capacity(set.cases.len());
+    for run in set.car_runs() {
+        let cases = &set.cases[run];
+        match shared_maps(cases, settings, compute) {
+            Some(m) => maps.extend(m),
+            None => {
+                for c in cases {
+                    maps.push(one(c)?);
+                }
+            }
+        }
+    }
+    Ok(maps)
+}
+
+/// The maps of `cases` (one loaded car): each on the GPU where [`HiFiGrid::on_gpu`] takes
+/// it, the others by one [`HiFiRoads`] over the grid; `None` where anything fails.
+fn shared_maps(cases: &[Case], settings: &MapSettings, compute: Compute) -> Option<Vec<MapReport>> {
+    let grid = &settings.grid;
+    let mut hifis: Vec<Option<HiFiGrid>> = Vec::with_capacity(cases.len());
+    for c in cases {
+        hifis.push(HiFiGrid::on_gpu(&c.car, &c.road, grid, compute).ok()?);
+    }
+    let cpu: Vec<usize> = (0..cases.len()).filter(|&k| hifis[k].is_none()).collect();
+    if !cpu.is_empty() {
+        let roads: Vec<Road> = cpu.iter().map(|&k| cases[k].road).collect();
+        let many = HiFiRoads::new(&cases[0].car, &roads).ok()?;
+        let values = map_grid(grid, default_threads(), Vec::new(), |ks, cs| {
+            many.evaluate(ks, cs)
+        })
+        .ok()?;
+        for (r, &k) in cpu.iter().enumerate() {
+            let v = values.iter().map(|p| p[r]).collect();
+            let hifi = many.hifis()[r].clone();
+            hifis[k] = Some(HiFiGrid::from_values(hifi, *grid, v, ComputePath::Cpu));
+        }
+    }
+    cases
+        .iter()
+        .zip(hifis)
+        .map(|(c, h)| {
+            let h = h?;
+            let mut r = map_report_with(&h, &c.car, &c.road, settings).ok()?;
+            r.compute = h.path();
+            r.adapter = h.adapter().map(str::to_string);
+            Some(r)
+        })
+        .collect()
 }

@@ -19,6 +19,7 @@
 //! and their mask bits are those of one case.
 
 use super::cases::Combine;
+use crate::analysis::HiFiRoads;
 use crate::dos::{DesignObjectives, DosContext, Objective};
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
@@ -107,30 +108,79 @@ pub fn robust_constraints(
     g
 }
 
-/// An evaluator over the cases: each case's evaluator, and the robust criteria of
-/// [`Combination`] as its [`Evaluator::evaluate`].
+/// The evaluator of a run of consecutive cases: one case's [`Evaluator`], or the HiFi of
+/// one loaded car on its cases' roads ([`HiFiRoads`], which shares the road-independent
+/// work and gives each case's own HiFi criteria bit for bit).
+pub trait CaseRun {
+    /// Number of cases.
+    fn cases(&self) -> usize;
+    /// Appends the cases' criteria at `(ks, cs)` to `out`, in case order; the first
+    /// case's error where one fails.
+    fn evaluate_into(&self, ks: f64, cs: f64, out: &mut Vec<Criteria>) -> Result<()>;
+    /// The evaluator's name ([`Evaluator::name`]).
+    fn run_name(&self) -> String;
+}
+
+impl<E: Evaluator> CaseRun for E {
+    fn cases(&self) -> usize {
+        1
+    }
+    fn evaluate_into(&self, ks: f64, cs: f64, out: &mut Vec<Criteria>) -> Result<()> {
+        out.push(self.evaluate(ks, cs)?);
+        Ok(())
+    }
+    fn run_name(&self) -> String {
+        self.name()
+    }
+}
+
+impl CaseRun for HiFiRoads {
+    fn cases(&self) -> usize {
+        self.hifis().len()
+    }
+    fn evaluate_into(&self, ks: f64, cs: f64, out: &mut Vec<Criteria>) -> Result<()> {
+        out.extend(self.evaluate(ks, cs)?);
+        Ok(())
+    }
+    fn run_name(&self) -> String {
+        "full".into()
+    }
+}
+
+/// An evaluator over the cases: the evaluators of runs of cases ([`CaseRun`]: each case's
+/// own evaluator, or one for several cases), and the robust criteria of [`Combination`]
+/// as its [`Evaluator::evaluate`].
 pub struct RobustEvaluator<E> {
-    /// One evaluator per case.
+    /// The runs' evaluators, in case order.
     pub cases: Vec<E>,
     /// How their criteria combine.
     pub combination: Combination,
 }
 
-impl<E: Evaluator> RobustEvaluator<E> {
+impl<E: CaseRun> RobustEvaluator<E> {
     /// Every case's criteria at `(ks, cs)`, in case order.
     pub fn evaluate_cases(&self, ks: f64, cs: f64) -> Result<Vec<Criteria>> {
-        self.cases.iter().map(|e| e.evaluate(ks, cs)).collect()
+        let mut out = Vec::with_capacity(self.case_count());
+        for e in &self.cases {
+            e.evaluate_into(ks, cs, &mut out)?;
+        }
+        Ok(out)
+    }
+
+    /// Number of cases.
+    pub fn case_count(&self) -> usize {
+        self.cases.iter().map(CaseRun::cases).sum()
     }
 }
 
-impl<E: Evaluator> Evaluator for RobustEvaluator<E> {
+impl<E: CaseRun> Evaluator for RobustEvaluator<E> {
     fn evaluate(&self, ks: f64, cs: f64) -> Result<Criteria> {
         Ok(self.combination.apply(&self.evaluate_cases(ks, cs)?))
     }
     fn name(&self) -> String {
         match self.cases.first() {
-            Some(e) if self.cases.len() == 1 => e.name(),
-            Some(e) => format!("{} x {} cases", e.name(), self.cases.len()),
+            Some(e) if self.case_count() == 1 => e.run_name(),
+            Some(e) => format!("{} x {} cases", e.run_name(), self.case_count()),
             None => "no cases".into(),
         }
     }

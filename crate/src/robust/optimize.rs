@@ -9,8 +9,8 @@
 
 use super::cases::CaseSet;
 use super::map::{CaseInfo, NORMALISATION};
-use super::objective::{robust_constraints, Combination, RobustEvaluator};
-use crate::analysis::ModelKind;
+use super::objective::{robust_constraints, CaseRun, Combination, RobustEvaluator};
+use crate::analysis::{HiFiRoads, ModelKind};
 use crate::car::Car;
 use crate::comfort::Comfort;
 use crate::design::DesignBox;
@@ -37,7 +37,7 @@ pub struct RobustProblem<E> {
     least: RefCell<Option<LeastViolation>>,
 }
 
-impl<E: Evaluator> RobustProblem<E> {
+impl<E: CaseRun> RobustProblem<E> {
     /// The problem over `design` with one evaluator and one context per case.
     pub fn new(
         evaluator: RobustEvaluator<E>,
@@ -63,7 +63,7 @@ impl<E: Evaluator> RobustProblem<E> {
     }
 }
 
-impl<E: Evaluator> Problem for RobustProblem<E> {
+impl<E: CaseRun> Problem for RobustProblem<E> {
     type Info = Criteria;
 
     fn bounds(&self) -> Vec<(f64, f64)> {
@@ -74,7 +74,7 @@ impl<E: Evaluator> Problem for RobustProblem<E> {
     /// `f` = the robust `[BAcc, DTL]`, violation `sum_j max(0, max_k g_kj)`.
     fn evaluate(&self, x: &[f64]) -> Result<Eval<Criteria>> {
         let (ks, cs) = (x[0], x[1]);
-        self.runs.set(self.runs.get() + self.evaluator.cases.len());
+        self.runs.set(self.runs.get() + self.evaluator.case_count());
         let per = self.evaluator.evaluate_cases(ks, cs)?;
         let c = self.evaluator.combination.apply(&per);
         if !c.to_array().iter().all(|v| v.is_finite()) {
@@ -163,8 +163,10 @@ pub fn robust_optimize_report(
     let mut hifis = Vec::with_capacity(set.cases.len());
     for c in &set.cases {
         models.push(match (comfort, evaluator) {
-            (Comfort::Bacc, _) => evaluator.build(&c.car, &c.road, design_box, plan)?,
-            (Comfort::Wk, EvaluatorSpec::Model(kind)) => comfort.evaluator(kind, &c.car, &c.road)?,
+            (Comfort::Bacc, _) => Run::One(evaluator.build(&c.car, &c.road, design_box, plan)?),
+            (Comfort::Wk, EvaluatorSpec::Model(kind)) => {
+                Run::One(comfort.evaluator(kind, &c.car, &c.road)?)
+            }
             (Comfort::Wk, EvaluatorSpec::Surrogate(_)) => {
                 return Err(RideError::field(
                     "comfort",
@@ -173,6 +175,21 @@ pub fn robust_optimize_report(
             }
         });
         hifis.push(comfort.evaluator(ModelKind::Full, &c.car, &c.road)?);
+    }
+    // The HiFi front: the cases of one loaded car together (the same criteria bit for
+    // bit, the road-independent work once a design).
+    if (comfort, evaluator) == (Comfort::Bacc, EvaluatorSpec::Model(ModelKind::Full)) {
+        models = set
+            .car_runs()
+            .into_iter()
+            .map(|run| {
+                let roads: Vec<_> = set.cases[run.clone()].iter().map(|c| c.road).collect();
+                Ok(Run::Roads(HiFiRoads::new(
+                    &set.cases[run.start].car,
+                    &roads,
+                )?))
+            })
+            .collect::<Result<_>>()?;
     }
     let datum_design = |c: &Car| (c.front.spring, c.front.damper);
     let datums: Vec<Criteria> = set
@@ -249,4 +266,32 @@ pub fn robust_optimize_report(
         normalisation: NORMALISATION,
         cases,
     })
+}
+
+/// The front evaluator of a run of cases: one case's, or the HiFi of one loaded car on
+/// its cases' roads.
+enum Run {
+    One(Box<dyn Evaluator + Sync>),
+    Roads(HiFiRoads),
+}
+
+impl CaseRun for Run {
+    fn cases(&self) -> usize {
+        match self {
+            Run::One(e) => e.cases(),
+            Run::Roads(r) => r.cases(),
+        }
+    }
+    fn evaluate_into(&self, ks: f64, cs: f64, out: &mut Vec<Criteria>) -> Result<()> {
+        match self {
+            Run::One(e) => e.evaluate_into(ks, cs, out),
+            Run::Roads(r) => r.evaluate_into(ks, cs, out),
+        }
+    }
+    fn run_name(&self) -> String {
+        match self {
+            Run::One(e) => e.run_name(),
+            Run::Roads(r) => r.run_name(),
+        }
+    }
 }
