@@ -1,7 +1,8 @@
 //! Timings of what the page does on an edit, natively (the page measures the same calls
 //! in wasm with performance.now()): the surrogate's fit, a 160 x 120 map of it computed
 //! afresh and with its values kept (an objective edit), and the STM front on it against
-//! the same front on the LoFi (the baseline). All through the page's [`Session`].
+//! the same front on the LoFi (the baseline), and the HiFi's own front beside them. All
+//! through the page's [`Session`].
 //!
 //! Run: `cargo bench -p ridelab --bench explorer`.
 
@@ -55,6 +56,12 @@ fn explorer(c: &mut Criterion) {
     c.bench_function("front stm 61x61 + 2 levels on the LoFi (baseline)", |b| {
         b.iter(|| black_box(s.front("stm", FrontModel::LoFi).unwrap()))
     });
+    // The objective plane's HiFi front (issue #13): STM on the full car and the
+    // surrogate's front judged on the HiFi against it (fit kept).
+    c.bench_function(
+        "hifi front stm 61x61 + 2 levels on the full car, plane front judged",
+        |b| b.iter(|| black_box(s.hifi_front(None).unwrap())),
+    );
 }
 
 criterion_group!(benches, explorer);
