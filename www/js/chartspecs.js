@@ -162,15 +162,17 @@ export function objectiveSpec({ front: fr, nsga, cloud, design, adaptive = null,
   const rc = fr.recheck.rechecked;
   const dh = fr.datumHifi;
   const hp = ratio ? [rc.bacc / dh.bacc, rc.dtl / dh.dtl] : [rc.bacc, rc.dtl];
+  // The HiFi's own pick, a large cross under the plane's pick and its re-check: where
+  // they coincide its arms stick out around them.
+  if (hf) {
+    const r = hf.study.pick.rule === 'minmax' ? 'min-max' : hf.study.pick.rule;
+    series.push(marker(`HiFi ${r} pick`, COL.hifiFront, COL.hifiFront, 'cross', [hxy(hf.study.pick.criteria.bacc, hf.study.pick.criteria.dtl)], 11));
+  }
   // The re-check larger and underneath: a close one rings the pick.
   series.push(marker('pick re-checked (HiFi)', '#ffffff', COL.hifi, 'diamond', [hp], 9));
   const rule = fr.study.pick.rule === 'minmax' ? 'min-max' : fr.study.pick.rule;
   const w = fr.study.pick.pseudo_weights;
   series.push(marker(`${rule} pick (${fr.study.evaluator}; pseudo-weights ${w[0].toFixed(2)} / ${w[1].toFixed(2)})`, COL.pick, '#000000', 'diamond', [pk]));
-  if (hf) {
-    const r = hf.study.pick.rule === 'minmax' ? 'min-max' : hf.study.pick.rule;
-    series.push(marker(`HiFi ${r} pick`, COL.hifiFront, COL.hifiFront, 'cross', [hxy(hf.study.pick.criteria.bacc, hf.study.pick.criteria.dtl)], 7));
-  }
   series.push(marker('datum', '#ffffff', '#000000', 'square', [datum], 6));
   // The adaptive loop's picks over the min-max pick, so they show where they move.
   if (was) series.push(marker('adaptive loop\'s pick before its latest run', COL.adaptiveWas, '#ffffff', 'triangle', [xy(was.pick.criteria.bacc, was.pick.criteria.dtl)], 6));
