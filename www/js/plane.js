@@ -160,7 +160,9 @@ export class ObjectivePlane {
     // A hidden page gets no animation frames: the move ends on a timer then.
     this.moveTimer = setTimeout(() => finish(performance.now()), 3 * MOVE_MS);
     const step = (now) => {
-      const t = Math.min(1, (now - t0) / MOVE_MS);
+      // A frame's timestamp is when the frame began, which can be before `t0`: clamped,
+      // so the first frame is not ahead of the next (the move stays one way).
+      const t = Math.min(1, Math.max(0, (now - t0) / MOVE_MS));
       if (t >= 1) {
         finish(now);
         return;
