@@ -15,6 +15,8 @@ pub mod surrogate;
 mod tests;
 #[cfg(test)]
 mod tests_criteria;
+#[cfg(test)]
+mod tests_robust;
 
 pub use adaptive::{PageLoop, PageStep, PageUncertainty, MAX_CHECK_LEVELS};
 pub use fields::ui_field;
