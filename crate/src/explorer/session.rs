@@ -29,7 +29,7 @@ use crate::maps::{DatumPoint, Dcs, DosMap, Grid, Scale};
 use crate::report::{build as build_report, MethodReport, ReportInputs};
 use crate::robust::map::{robust_fields, CaseField};
 use crate::robust::optimize::hifi_combination;
-use crate::robust::{CaseSet, MAX_CASES};
+use crate::robust::{CaseSet, Combination, MAX_CASES};
 use crate::surrogate::SurrogateReport;
 use crate::time_domain::TimeOptions;
 use std::rc::Rc;
@@ -45,6 +45,10 @@ pub struct Session {
     scenario: Scenario,
     fit: Option<Rc<FittedSurrogate>>,
     kept: Vec<Kept>,
+    /// With robust cases, the robust front's combination and the cases' HiFi datums
+    /// ([`hifi_combination`]), once per [`FitKey`]: a slider move then costs one LoFi
+    /// run per case.
+    robust: Option<Rc<(Combination, Vec<Criteria>)>>,
 }
 
 /// One model's map values on one grid with one comfort measure, and the path that
@@ -68,6 +72,7 @@ impl Session {
             scenario,
             fit: None,
             kept: Vec::new(),
+            robust: None,
         })
     }
 
@@ -91,6 +96,7 @@ impl Session {
         if FitKey::of(&scenario) != FitKey::of(&self.scenario) {
             self.fit = None;
             self.kept.clear();
+            self.robust = None;
         }
         self.state = state;
         self.scenario = scenario;
@@ -131,12 +137,22 @@ impl Session {
             EvaluatorKind::HiFi => self.scenario.evaluator(ModelKind::Full)?.evaluate(ks, cs),
             EvaluatorKind::Surrogate => self.surrogate()?.model.evaluate(ks, cs),
             EvaluatorKind::Robust => {
-                let set = self.cases("criteria")?;
-                let (combination, _) = hifi_combination(set, self.scenario.comfort)?;
+                let robust = self.robust_combination()?;
                 let per = self.case_criteria(ModelKind::Quarter)?;
-                Ok(combination.apply(&per))
+                Ok(robust.0.apply(&per))
             }
         }
+    }
+
+    /// The robust front's combination and the cases' HiFi datums, kept per [`FitKey`].
+    fn robust_combination(&mut self) -> Result<Rc<(Combination, Vec<Criteria>)>> {
+        if let Some(r) = &self.robust {
+            return Ok(Rc::clone(r));
+        }
+        let set = self.cases("front")?;
+        let r = Rc::new(hifi_combination(set, self.scenario.comfort)?);
+        self.robust = Some(Rc::clone(&r));
+        Ok(r)
     }
 
     /// The scenario's cases; without them an error naming `cases` that says `what` needs them.
@@ -281,10 +297,9 @@ impl Session {
     /// scaled to, and judged against, its HiFi datum ([`hifi_combination`], as
     /// `ridelab optimize --cases`), so the plane's feasible set and its front agree.
     fn robust_front_map(&mut self, grid: &Grid) -> Result<ModelMap> {
-        let set = self.cases("front")?;
-        let n = set.cases.len();
-        let (_, datums) = hifi_combination(set, self.scenario.comfort)?;
-        self.combined(MapModel::LoFi, grid, n, Some(&datums))
+        let n = self.cases("front")?.cases.len();
+        let robust = self.robust_combination()?;
+        self.combined(MapModel::LoFi, grid, n, Some(&robust.1))
     }
 
     /// A model's values on `grid` with the scenario's comfort measure, kept or computed.
