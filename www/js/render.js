@@ -12,6 +12,7 @@ import { MODEL_NAMES, datumStateOf, fitKeyOf, keyOf } from './store.js';
 import { GRID } from './compute.js';
 import { fmt, fmtInput, fmtPct } from './format.js';
 import { pathText } from './gpupath.js';
+import { renderCasePicks, robustMapLabel, robustPlaneLabel } from './robustpanel.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -75,6 +76,8 @@ export class Render {
     this.criteriaLabels();
     this.plane();
     renderPick($('op-pick'), st.front);
+    if (this.ui.robust) this.ui.robust.show(st);
+    renderCasePicks($('op-cases'), st.front);
     this.pickSummary();
     this.controls();
   }
@@ -82,7 +85,7 @@ export class Render {
   /** What says which comfort measure is in use: the plane's heading, the readout's Wk row. */
   criteriaLabels() {
     const wk = this.store.state.comfort === 'wk';
-    $('h-objective').querySelector('.th-sub').textContent = wk ? '(LoFi, Wk comfort)' : '(surrogate)';
+    $('h-objective').querySelector('.th-sub').textContent = robustPlaneLabel(this.store.state, this.store.desc) || (wk ? '(LoFi, Wk comfort)' : '(surrogate)');
     $('criteria').querySelector('tr[data-crit="wk"]').hidden = !wk;
     $('comfort-note').hidden = !wk;
   }
@@ -178,7 +181,9 @@ export class Render {
 
   /** The maps' heading names the model shown. */
   mapsHead() {
-    $('maps-model').textContent = MODEL_NAMES[this.store.view.model];
+    const st = this.store;
+    const robust = robustMapLabel(st.state, st.desc, st.view.model);
+    $('maps-model').textContent = MODEL_NAMES[st.view.model] + (robust ? `, ${robust}` : '');
   }
 
   /** A status line under the maps (`kind`: 'good', 'bad' or plain). */
@@ -201,7 +206,8 @@ export class Render {
     const st = this.store;
     const { state } = st;
     const model = st.view.model;
-    const road = `class ${state.class} at ${fmtInput(state.speed, 3)} m/s, ${state.tracks} tracks`;
+    const rl = robustMapLabel(state, st.desc, model);
+    const road = rl ? (rl.startsWith('case ') ? rl : `every case, ${rl}`) : `class ${state.class} at ${fmtInput(state.speed, 3)} m/s, ${state.tracks} tracks`;
     const maps = shown.maps;
     const n = maps.nx * maps.ny;
     const who = `(${MODEL_NAMES[model === 'error' ? 'hifi' : model]}${maps.nx !== GRID.nx ? `, ${maps.nx} × ${maps.ny} grid` : ''})`;
