@@ -36,6 +36,7 @@ import { pathText, computeMode } from './gpupath.js';
 import { keepDesign, renderCompare, savedEntry, MAX_SAVED } from './compare.js';
 import { LessonPanel } from './lessonpanel.js';
 import { isLessonHash } from './lessons.js';
+import { RobustPanel } from './robustpanel.js';
 
 /** ISO 8608 wording of the classes. */
 const CLASS_WORDS = {
@@ -613,6 +614,20 @@ async function main() {
       objectives: store.objectives,
     }),
     carEditor: new CarEditor($('car-fields')),
+    robust: new RobustPanel({
+      load: $('rb-load'), operating: $('rb-op'), addLoad: $('rb-add-load'), addOp: $('rb-add-op'), combine: $('rb-combine'),
+      text: $('rb-text'), apply: $('rb-apply'), clear: $('rb-clear'), caseSelect: $('rb-case'), msg: $('msg-cases'), count: $('rb-count'),
+    }, {
+      // A refused text leaves the last good state; the core's message names the field.
+      apply: async (text) => {
+        let failure = null;
+        await controller.changeScenario({ cases: text, case: null }, 'cases', { onFail: (e) => (failure = e) });
+        return failure;
+      },
+      pickCase: (c) => controller.changeScenario({ case: c === 'robust' ? null : c }, 'case', {
+        onFail: (e) => ($('msg-cases').textContent = plainWords(e.message)),
+      }),
+    }),
   };
   const render = new Render(store, ui);
   controller = new Controller(store, compute, render, controls);

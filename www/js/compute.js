@@ -26,9 +26,13 @@ export const TIME_RUN = { duration: 10, dt: 0.001, f_min: 0.1, f_max: 200, decim
 /**
  * The model of the objective plane (its feasible set, front, pick and design marker) for
  * state `s`: the surrogate, or with Wk comfort the LoFi (the surrogates are fitted to the
- * unweighted BAcc; the core refuses a Wk front on them, as `ridelab optimize` does).
+ * unweighted BAcc; the core refuses a Wk front on them, as `ridelab optimize` does); with
+ * robust cases (`s.cases`) the LoFi's robust objective, "robust" (the surrogate is fitted
+ * to one case; the core refuses its front naming `cases`, and `ridelab optimize --cases`
+ * optimises the quarter car's robust objective).
  */
 export function planeModel(s) {
+  if (s.cases) return 'robust';
   return s.comfort === 'wk' ? 'lofi' : 'surrogate';
 }
 

@@ -433,6 +433,12 @@ export class Controller {
     const st = this.store;
     const key = scenarioKey(st.state);
     if (st.hifiFront && st.hifiFront.key === key) return;
+    if (st.state.cases) {
+      // The core refuses it too (naming `cases`): the HiFi front is one case's.
+      st.hifiFront = { error: 'one case only; with load cases each case\'s pick is re-checked on its HiFi (Pick tab)', key };
+      this.render.hifiFront();
+      return;
+    }
     this.render.hifiFrontStatus('HiFi front: computing…');
     this.track(
       this.hifiFrontRun(st.state).then((out) => {

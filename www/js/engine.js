@@ -85,7 +85,8 @@ export class Host {
   /** Runs one engine call: synchronously, or a promise for the GPU path's calls. */
   run(method, args) {
     if (FUNCTIONS.includes(method)) return this.api[method](...args);
-    if (this.gpu && method === 'maps' && ['hifi', 'error'].includes(args[1])) return this.gpuMaps(...args);
+    // The robust maps' cases are evaluated on the CPU (as `ridelab map --cases`).
+    if (this.gpu && method === 'maps' && ['hifi', 'error'].includes(args[1]) && !args[0].cases) return this.gpuMaps(...args);
     if (this.gpu && method === 'gpuStatus') return this.gpu.open().then(() => this.gpu.status());
     if (SESSION_METHODS.includes(method)) {
       const [state, ...rest] = args;

@@ -315,7 +315,7 @@ export function renderPick(table, fr) {
       <td class="num delta">${fmtPct(r.rechecked_change_percent[i] / 100)}</td>
       <td class="num">${fmtPct(r.error_percent[i] / 100, 2)}</td></tr>`;
   };
-  const on = fr.comfort === 'wk' ? 'LoFi' : 'Surrogate';
+  const on = fr.comfort === 'wk' || fr.robust ? 'LoFi' : 'Surrogate';
   const w = p.pseudo_weights;
   table.innerHTML = `
     <caption>${ruleLabel(p.rule)}: Ks = <b data-value="${p.ks}">${fmt(p.ks / 1000, 4)} kN/m</b>,

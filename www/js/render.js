@@ -13,6 +13,7 @@ import { GRID } from './compute.js';
 import { fmt, fmtInput, fmtPct } from './format.js';
 import { pathText } from './gpupath.js';
 import { currentHifiFront, hifiFrontLine, hifiFrontTitle, renderHifiFront } from './hififront.js';
+import { renderCasePicks, robustMapLabel, robustPlaneLabel } from './robustpanel.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -77,6 +78,8 @@ export class Render {
     this.plane();
     renderPick($('op-pick'), st.front);
     renderHifiFront($('op-hifi'), currentHifiFront(st), st.front);
+    if (this.ui.robust) this.ui.robust.show(st);
+    renderCasePicks($('op-cases'), st.front);
     this.pickSummary();
     this.controls();
   }
@@ -84,7 +87,7 @@ export class Render {
   /** What says which comfort measure is in use: the plane's heading, the readout's Wk row. */
   criteriaLabels() {
     const wk = this.store.state.comfort === 'wk';
-    $('h-objective').querySelector('.th-sub').textContent = wk ? '(LoFi, Wk comfort)' : '(surrogate)';
+    $('h-objective').querySelector('.th-sub').textContent = robustPlaneLabel(this.store.state, this.store.desc) || (wk ? '(LoFi, Wk comfort)' : '(surrogate)');
     $('criteria').querySelector('tr[data-crit="wk"]').hidden = !wk;
     $('comfort-note').hidden = !wk;
   }
@@ -181,7 +184,9 @@ export class Render {
 
   /** The maps' heading names the model shown. */
   mapsHead() {
-    $('maps-model').textContent = MODEL_NAMES[this.store.view.model];
+    const st = this.store;
+    const robust = robustMapLabel(st.state, st.desc, st.view.model);
+    $('maps-model').textContent = MODEL_NAMES[st.view.model] + (robust ? `, ${robust}` : '');
   }
 
   /** A status line under the maps (`kind`: 'good', 'bad' or plain). */
@@ -204,7 +209,8 @@ export class Render {
     const st = this.store;
     const { state } = st;
     const model = st.view.model;
-    const road = `class ${state.class} at ${fmtInput(state.speed, 3)} m/s, ${state.tracks} tracks`;
+    const rl = robustMapLabel(state, st.desc, model);
+    const road = rl ? (rl.startsWith('case ') ? rl : `every case, ${rl}`) : `class ${state.class} at ${fmtInput(state.speed, 3)} m/s, ${state.tracks} tracks`;
     const maps = shown.maps;
     const n = maps.nx * maps.ny;
     const who = `(${MODEL_NAMES[model === 'error' ? 'hifi' : model]}${maps.nx !== GRID.nx ? `, ${maps.nx} × ${maps.ny} grid` : ''})`;

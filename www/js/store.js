@@ -148,10 +148,12 @@ export class Store {
     const key = scenarioKey(this.state);
     // With Wk comfort the LoFi map's BAcc is Wk-weighted, and so is its datum's.
     const lofiDatum = this.state.comfort === 'wk' ? { ...this.lofi.datum, bacc: this.lofi.datum.bacc_wk } : this.lofi.datum;
-    if (m === 'lofi' && this.maps && this.maps.key === key) return { maps: this.maps, datum: lofiDatum, kind: 'value' };
+    // With robust cases the LoFi and HiFi maps carry their own (robust or case) datum.
+    const cased = (maps, d) => (this.state.cases && maps.datum ? maps.datum : d);
+    if (m === 'lofi' && this.maps && this.maps.key === key) return { maps: this.maps, datum: cased(this.maps, lofiDatum), kind: 'value' };
     if (m === 'surrogate' && this.surMaps && this.surMaps.key === key) return { maps: this.surMaps, datum: this.surrogate.datum, kind: 'value' };
     const mm = this.modelMaps;
-    if (mm && mm.model === m && mm.key === key) return { maps: mm.maps, datum: mm.datum, kind: m === 'error' ? 'error' : 'value' };
+    if (mm && mm.model === m && mm.key === key) return { maps: mm.maps, datum: m === 'hifi' ? cased(mm.maps, mm.datum) : mm.datum, kind: m === 'error' ? 'error' : 'value' };
     return null;
   }
 

@@ -10,10 +10,14 @@
 // maps' model, their sample plan (samples=0 hides it), colour scale and palette, the
 // objective plane's axes and projector mode (`large=1`, from earlier links, means proj=1).
 // A custom car travels as its JSON text: car=custom&carjson=...
+// The robust design's cases (issue #16) travel as their cases file, compact JSON:
+// cases={"load_cases":[...],"operating":[...],"combine":"worst"}, and the case the maps
+// show as case=K (left out for the robust maps).
 // The designs kept to compare travel as keep=ks:cs,ks:cs (N/m : N s/m, at most MAX_SAVED);
 // the page evaluates them again on the link's car and road.
 
 import { MAX_SAVED } from './compare.js';
+import { compactCases } from './robustpanel.js';
 
 const NUMBERS = { ks: 'ks', cs: 'cs', speed: 'speed', dm: 'dtlMargin' };
 
@@ -41,6 +45,8 @@ export function encodeHash(state, view, kept = []) {
   if (state.plan) p.set('plan', state.plan);
   if (state.comfort && state.comfort !== 'bacc') p.set('comfort', state.comfort);
   if (state.pick && state.pick !== 'minmax') p.set('pick', state.pick);
+  if (state.cases) p.set('cases', compactCases(state.cases));
+  if (state.cases && state.case && state.case !== 'robust') p.set('case', state.case);
   if (view.model && view.model !== 'lofi') p.set('model', view.model);
   if (view.plan === false) p.set('samples', '0');
   if (view.scale && view.scale !== 'abs') p.set('scale', view.scale);
@@ -82,6 +88,11 @@ export function decodeHash(hash) {
       out.state.car = v;
     } else if (key === 'carjson') {
       out.state.carJson = raw;
+    } else if (key === 'cases') {
+      // The core reads and checks it (a bad one names the field, `cases.operating[0].speed`).
+      out.state.cases = raw;
+    } else if (key === 'case') {
+      out.state.case = v.toLowerCase();
     } else if (key === 'class') {
       out.state.class = v.toUpperCase();
     } else if (key === 'tracks') {

@@ -30,6 +30,7 @@ pub fn ui_field(core: &str) -> String {
         "dtl_margin" => "dtlMargin".into(),
         "approach" | "scheme" => "surrogate".into(),
         f if f.starts_with("damper.") => "damper".into(),
+        f if f.starts_with("cases.") => "cases".into(),
         f if CAR_FIELDS.contains(&f)
             || f.starts_with("front.")
             || f.starts_with("rear.")
@@ -54,6 +55,9 @@ mod tests {
             ("cs-range", "box"),
             ("ks-range", "box"),
             ("sws_limit", "swsLimit"),
+            ("cases.load_cases[1].mass", "cases"),
+            ("cases", "cases"),
+            ("case", "case"),
             ("bounce_band", "bounceBand"),
             ("damping_band", "dampingBand"),
             ("dtl_margin", "dtlMargin"),

@@ -21,19 +21,24 @@ pub enum MapModel {
     /// The surrogate's signed relative error against the HiFi, %.
     #[serde(rename = "error")]
     SurrogateError,
+    /// With robust cases, the LoFi's robust objective and DOS as the robust front's
+    /// problem sees them (each case scaled to its HiFi datum, each judged against it:
+    /// [`crate::robust::optimize::hifi_combination`]): the objective plane's feasible set.
+    Robust,
 }
 
 impl MapModel {
-    /// Parses "lofi", "hifi", "surrogate" or "error" (errors name `model`).
+    /// Parses "lofi", "hifi", "surrogate", "error" or "robust" (errors name `model`).
     pub fn parse(s: &str) -> Result<MapModel> {
         match s {
+            "robust" => Ok(MapModel::Robust),
             "lofi" => Ok(MapModel::LoFi),
             "hifi" => Ok(MapModel::HiFi),
             "surrogate" => Ok(MapModel::Surrogate),
             "error" => Ok(MapModel::SurrogateError),
             _ => Err(RideError::field(
                 "model",
-                format!("'{s}' is not one of lofi, hifi, surrogate, error"),
+                format!("'{s}' is not one of lofi, hifi, surrogate, error, robust"),
             )),
         }
     }

@@ -18,6 +18,8 @@ mod tests;
 mod tests_criteria;
 #[cfg(test)]
 mod tests_hifi_front;
+#[cfg(test)]
+mod tests_robust;
 
 pub use adaptive::{PageLoop, PageStep, PageUncertainty, MAX_CHECK_LEVELS};
 pub use fields::ui_field;

@@ -26,15 +26,19 @@ use crate::dos::DosContext;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::gpu::{ComputePath, HiFiGrid};
-use crate::maps::{Dcs, DosMap, Grid, Scale};
+use crate::maps::{DatumPoint, Dcs, DosMap, Grid, Scale};
 use crate::report::{build as build_report, MethodReport, ReportInputs};
+use crate::robust::map::{robust_fields, CaseField};
+use crate::robust::optimize::hifi_combination;
+use crate::robust::{CaseSet, Combination, MAX_CASES};
 use crate::surrogate::SurrogateReport;
 use crate::time_domain::TimeOptions;
 use std::rc::Rc;
 
 /// Map values kept at once: one per model and grid in use (the page shows one model's
-/// maps, its objective plane uses the surrogate's feasible set, the worker the HiFi's).
-const KEPT_MAPS: usize = 8;
+/// maps, its objective plane uses the surrogate's feasible set, the worker the HiFi's),
+/// and with robust cases one per case on the maps' and the plane's grids.
+const KEPT_MAPS: usize = 8 + 2 * MAX_CASES;
 
 /// The explorer's session (see the module documentation).
 pub struct Session {
@@ -42,6 +46,10 @@ pub struct Session {
     scenario: Scenario,
     fit: Option<Rc<FittedSurrogate>>,
     kept: Vec<Kept>,
+    /// With robust cases, the robust front's combination and the cases' HiFi datums
+    /// ([`hifi_combination`]), once per [`FitKey`]: a slider move then costs one LoFi
+    /// run per case.
+    robust: Option<Rc<(Combination, Vec<Criteria>)>>,
 }
 
 /// One model's map values on one grid with one comfort measure, and the path that
@@ -50,6 +58,8 @@ struct Kept {
     model: MapModel,
     grid: Grid,
     comfort: Comfort,
+    /// The robust case whose loaded car and road made them (`None`: the scenario's own).
+    case: Option<usize>,
     values: Rc<Dcs>,
     path: ComputePath,
 }
@@ -63,6 +73,7 @@ impl Session {
             scenario,
             fit: None,
             kept: Vec::new(),
+            robust: None,
         })
     }
 
@@ -86,6 +97,7 @@ impl Session {
         if FitKey::of(&scenario) != FitKey::of(&self.scenario) {
             self.fit = None;
             self.kept.clear();
+            self.robust = None;
         }
         self.state = state;
         self.scenario = scenario;
@@ -125,7 +137,49 @@ impl Session {
                 .evaluate(ks, cs),
             EvaluatorKind::HiFi => self.scenario.evaluator(ModelKind::Full)?.evaluate(ks, cs),
             EvaluatorKind::Surrogate => self.surrogate()?.model.evaluate(ks, cs),
+            EvaluatorKind::Robust => {
+                let robust = self.robust_combination()?;
+                let per = self.case_criteria(ModelKind::Quarter)?;
+                Ok(robust.0.apply(&per))
+            }
         }
+    }
+
+    /// The robust front's combination and the cases' HiFi datums, kept per [`FitKey`].
+    fn robust_combination(&mut self) -> Result<Rc<(Combination, Vec<Criteria>)>> {
+        if let Some(r) = &self.robust {
+            return Ok(Rc::clone(r));
+        }
+        let set = self.cases("front")?;
+        let r = Rc::new(hifi_combination(set, self.scenario.comfort)?);
+        self.robust = Some(Rc::clone(&r));
+        Ok(r)
+    }
+
+    /// The scenario's cases; without them an error naming `cases` that says `what` needs them.
+    fn cases(&self, what: &str) -> Result<&CaseSet> {
+        self.scenario.cases.as_ref().ok_or_else(|| {
+            RideError::field(
+                "cases",
+                format!("the robust {what} needs load cases or operating points: there are none"),
+            )
+        })
+    }
+
+    /// The design's criteria in every robust case by `kind` (with the scenario's comfort
+    /// measure), in case order: the robust readout of one design, one run per case.
+    pub fn case_criteria(&self, kind: ModelKind) -> Result<Vec<Criteria>> {
+        let (ks, cs) = self.design();
+        let set = self.cases("readout")?;
+        set.cases
+            .iter()
+            .map(|c| {
+                self.scenario
+                    .comfort
+                    .evaluator(kind, &c.car, &c.road)?
+                    .evaluate(ks, cs)
+            })
+            .collect()
     }
 
     /// The full analysis report of the design by one model (as `ridelab eval`).
@@ -145,6 +199,21 @@ impl Session {
     /// the error map's are the unweighted BAcc.
     pub fn map(&mut self, model: MapModel, nx: usize, ny: usize) -> Result<ModelMap> {
         let grid = Grid::cells(&self.scenario.dbox, nx, ny)?;
+        if model == MapModel::Robust {
+            return self.robust_front_map(&grid);
+        }
+        if let (Some(n), MapModel::LoFi | MapModel::HiFi) =
+            (self.scenario.cases.as_ref().map(|c| c.cases.len()), model)
+        {
+            return match self.scenario.case {
+                Some(k) => {
+                    let values = self.values_in(model, &grid, self.scenario.comfort, Some(k))?;
+                    let dos = self.judge_case(&values, k, values.datum.criteria)?;
+                    Ok(ModelMap { values, dos })
+                }
+                None => self.robust_map(model, &grid, n),
+            };
+        }
         if model == MapModel::SurrogateError {
             // The surrogate is fitted to the unweighted BAcc: it is compared with the HiFi's.
             let hifi = self.values_with(MapModel::HiFi, &grid, Comfort::Bacc)?;
@@ -166,34 +235,121 @@ impl Session {
         DosMap::new(values, &self.scenario.objectives, &ctx)
     }
 
+    /// The design objectives on robust case `k`'s absolute map, in that case's context
+    /// (its loaded car) against the datum criteria `datum`.
+    fn judge_case(&self, values: &Dcs, k: usize, datum: Criteria) -> Result<DosMap> {
+        let set = self.cases("map")?;
+        let ctx = DosContext::new(&set.cases[k].car, datum);
+        DosMap::new(values, &self.scenario.objectives, &ctx)
+    }
+
+    /// Every robust case's values of `model` on `grid` (kept or computed), each judged
+    /// against its datum `datums[k]` (`None`: the case's own datum on `model`), combined
+    /// by [`robust_fields`] with `combination` (`None`: the cases' own datums, as
+    /// `ridelab map --cases`).
+    fn combined(
+        &mut self,
+        model: MapModel,
+        grid: &Grid,
+        n: usize,
+        hifi: Option<&[Criteria]>,
+    ) -> Result<ModelMap> {
+        let comfort = self.scenario.comfort;
+        let values: Vec<Rc<Dcs>> = (0..n)
+            .map(|k| self.values_in(model, grid, comfort, Some(k)))
+            .collect::<Result<_>>()?;
+        let doses: Vec<DosMap> = values
+            .iter()
+            .enumerate()
+            .map(|(k, v)| self.judge_case(v, k, hifi.map_or(v.datum.criteria, |d| d[k])))
+            .collect::<Result<_>>()?;
+        let fields: Vec<CaseField> = values
+            .iter()
+            .zip(&doses)
+            .enumerate()
+            .map(|(k, (v, d))| CaseField {
+                evaluator: &v.evaluator,
+                datum: DatumPoint {
+                    criteria: hifi.map_or(v.datum.criteria, |h| h[k]),
+                    ..v.datum
+                },
+                bacc: &v.bacc,
+                dtl: &v.dtl,
+                sws: &v.sws,
+                mask: &d.mask,
+            })
+            .collect();
+        let set = self.cases("map")?;
+        let active = doses[0].active.clone();
+        let (abs, dos) = robust_fields(set, *grid, &self.scenario.objectives, active, &fields)?;
+        Ok(ModelMap {
+            values: Rc::new(abs),
+            dos,
+        })
+    }
+
+    /// The robust map of `model` (LoFi or HiFi) over the `n` cases: the fields and mask
+    /// of `ridelab map --cases` (each case against its own datum on `model`).
+    fn robust_map(&mut self, model: MapModel, grid: &Grid, n: usize) -> Result<ModelMap> {
+        self.combined(model, grid, n, None)
+    }
+
+    /// The robust front's problem on `grid`: the LoFi's robust objective with each case
+    /// scaled to, and judged against, its HiFi datum ([`hifi_combination`], as
+    /// `ridelab optimize --cases`), so the plane's feasible set and its front agree.
+    fn robust_front_map(&mut self, grid: &Grid) -> Result<ModelMap> {
+        let n = self.cases("front")?.cases.len();
+        let robust = self.robust_combination()?;
+        self.combined(MapModel::LoFi, grid, n, Some(&robust.1))
+    }
+
     /// A model's values on `grid` with the scenario's comfort measure, kept or computed.
     fn values(&mut self, model: MapModel, grid: &Grid) -> Result<Rc<Dcs>> {
         self.values_with(model, grid, self.scenario.comfort)
     }
 
-    /// A model's values on `grid` with `comfort` in the LoFi's or HiFi's BAcc plane (the
-    /// surrogate's is always the unweighted BAcc), kept or computed.
+    /// A model's values on `grid` with `comfort`, kept or computed.
     fn values_with(&mut self, model: MapModel, grid: &Grid, comfort: Comfort) -> Result<Rc<Dcs>> {
+        self.values_in(model, grid, comfort, None)
+    }
+
+    /// A model's values on `grid` with `comfort` in the LoFi's or HiFi's BAcc plane (the
+    /// surrogate's is always the unweighted BAcc), for robust case `case`'s loaded car and
+    /// road (`None`: the scenario's car and road), kept or computed.
+    fn values_in(
+        &mut self,
+        model: MapModel,
+        grid: &Grid,
+        comfort: Comfort,
+        case: Option<usize>,
+    ) -> Result<Rc<Dcs>> {
         let comfort = match model {
-            MapModel::LoFi | MapModel::HiFi => comfort,
+            MapModel::LoFi | MapModel::HiFi | MapModel::Robust => comfort,
             MapModel::Surrogate | MapModel::SurrogateError => Comfort::Bacc,
         };
         if let Some(k) = self
             .kept
             .iter()
-            .find(|k| k.model == model && k.grid == *grid && k.comfort == comfort)
+            .find(|k| k.model == model && k.grid == *grid && k.comfort == comfort && k.case == case)
         {
             return Ok(Rc::clone(&k.values));
         }
         let s = &self.scenario;
-        let at = (s.datum.front.spring, s.datum.front.damper);
+        let (car, road) = match case {
+            Some(k) => {
+                let c = &self.cases("map")?.cases[k];
+                (&c.car, &c.road)
+            }
+            None => (&s.datum, &s.road),
+        };
+        let at = (car.front.spring, car.front.damper);
         let v = Rc::new(match model {
-            MapModel::LoFi => {
-                let e = comfort.evaluator(ModelKind::Quarter, &s.datum, &s.road)?;
+            MapModel::LoFi | MapModel::Robust => {
+                let e = comfort.evaluator(ModelKind::Quarter, car, road)?;
                 Dcs::compute(&*e, grid, at, Scale::Absolute)?
             }
             MapModel::HiFi => {
-                let e = comfort.evaluator(ModelKind::Full, &s.datum, &s.road)?;
+                let e = comfort.evaluator(ModelKind::Full, car, road)?;
                 Dcs::compute(&*e, grid, at, Scale::Absolute)?
             }
             MapModel::Surrogate | MapModel::SurrogateError => {
@@ -201,7 +357,7 @@ impl Session {
                 Dcs::compute(&*fit.model, grid, at, Scale::Absolute)?
             }
         });
-        self.keep(model, *grid, comfort, Rc::clone(&v), ComputePath::Cpu);
+        self.keep(model, *grid, comfort, case, Rc::clone(&v), ComputePath::Cpu);
         Ok(v)
     }
 
@@ -212,11 +368,13 @@ impl Session {
         model: MapModel,
         grid: Grid,
         comfort: Comfort,
+        case: Option<usize>,
         values: Rc<Dcs>,
         path: ComputePath,
     ) {
-        self.kept
-            .retain(|k| !(k.model == model && k.grid == grid && k.comfort == comfort));
+        self.kept.retain(|k| {
+            !(k.model == model && k.grid == grid && k.comfort == comfort && k.case == case)
+        });
         if self.kept.len() >= KEPT_MAPS {
             self.kept.remove(0);
         }
@@ -224,6 +382,7 @@ impl Session {
             model,
             grid,
             comfort,
+            case,
             values,
             path,
         });
@@ -247,6 +406,7 @@ impl Session {
             MapModel::HiFi,
             grid,
             Comfort::Bacc,
+            None,
             Rc::new(dcs),
             ComputePath::Gpu,
         );
@@ -260,7 +420,10 @@ impl Session {
         self.kept
             .iter()
             .find(|k| {
-                k.model == MapModel::HiFi && k.grid == grid && k.comfort == self.scenario.comfort
+                k.model == MapModel::HiFi
+                    && k.grid == grid
+                    && k.comfort == self.scenario.comfort
+                    && k.case.is_none()
             })
             .map(|k| k.path)
     }
@@ -269,8 +432,24 @@ impl Session {
     /// scenario's pick on it re-checked on the HiFi (both with the scenario's comfort
     /// measure). The surrogate is fitted to the unweighted BAcc: with Wk comfort its front
     /// is refused (an error naming `comfort`), as `ridelab optimize --comfort wk` refuses it.
+    ///
+    /// With robust cases the LoFi's front is the robust one ([`FrontModel::Robust`], as
+    /// `ridelab optimize --cases`: every case's datum is its HiFi datum); the surrogate is
+    /// fitted to one case, so its front is refused (an error naming `cases`).
     pub fn front(&mut self, method: &str, model: FrontModel) -> Result<FrontResult> {
+        if let Some(set) = &self.scenario.cases {
+            return match model {
+                FrontModel::LoFi | FrontModel::Robust => {
+                    studies::robust_front(&self.scenario, set, method)
+                }
+                FrontModel::Surrogate => Err(RideError::field(
+                    "cases",
+                    "the surrogate is fitted to the car as given (one case); the robust front is the LoFi's",
+                )),
+            };
+        }
         match model {
+            FrontModel::Robust => Err(self.cases("front").unwrap_err()),
             FrontModel::LoFi => {
                 let lofi = self.scenario.evaluator(ModelKind::Quarter)?;
                 studies::front(&self.scenario, method, &*lofi)
@@ -291,7 +470,14 @@ impl Session {
     /// against it ([`hifi_front::hifi_front`]). `grid_planes`: the HiFi criteria of STM's
     /// starting grid from the GPU (`GpuMaps.stmGrid`'s `values`: BAcc, DTL, SWS planes of
     /// `STM_GRID^2` designs; errors name `values`), or `None` for the CPU HiFi.
+    /// With robust cases it is refused (naming `cases`): the HiFi front is one case's.
     pub fn hifi_front(&mut self, grid_planes: Option<&[f64]>) -> Result<HifiFrontView> {
+        if self.scenario.cases.is_some() {
+            return Err(RideError::field(
+                "cases",
+                "the HiFi front is one case's; with load cases the robust front's pick is re-checked on every case's HiFi (the per-case table)",
+            ));
+        }
         let n = studies::STM_GRID * studies::STM_GRID;
         let given = match grid_planes {
             Some(p) => Some(criteria_of_planes(p, n, &format!("3 x {n}"))?),
@@ -305,6 +491,7 @@ impl Session {
         let name = match model {
             FrontModel::LoFi => "lofi",
             FrontModel::Surrogate => "surrogate",
+            FrontModel::Robust => "robust",
         };
         // The plane's pick costs one HiFi run more: its re-check.
         hifi_front::hifi_front(&self.scenario, &plane, name, runs + 1, given.as_deref())
@@ -358,12 +545,16 @@ pub enum EvaluatorKind {
     HiFi,
     /// The fitted surrogate.
     Surrogate,
+    /// With robust cases, the quarter car's robust objective as the robust front's.
+    Robust,
 }
 
 impl EvaluatorKind {
-    /// Parses "lofi" / "quarter", "hifi" / "full" or "surrogate" (errors name `model`).
+    /// Parses "lofi" / "quarter", "hifi" / "full", "surrogate" or "robust" (errors name
+    /// `model`).
     pub fn parse(s: &str) -> Result<EvaluatorKind> {
         match s {
+            "robust" => Ok(EvaluatorKind::Robust),
             "surrogate" => Ok(EvaluatorKind::Surrogate),
             other => Ok(match ModelKind::parse(other)? {
                 ModelKind::Quarter => EvaluatorKind::LoFi,

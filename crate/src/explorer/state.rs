@@ -13,6 +13,7 @@ use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
 use crate::optimize::PickRule;
 use crate::road::{Road, RoadClass, Tracks};
+use crate::robust::CaseSet;
 use crate::surrogate::{PlanSpec, SurrogateSpec};
 use crate::LoFi;
 use serde::{Deserialize, Serialize};
@@ -21,7 +22,7 @@ use serde::{Deserialize, Serialize};
 /// [`super::FitKey`]; the objectives only judge a map; the comfort measure fills the
 /// LoFi and HiFi maps' BAcc plane): two states equal in these fields have the same fit
 /// and maps (tested). The page keys its fits and maps by them.
-pub const FIT_FIELDS: [&str; 12] = [
+pub const FIT_FIELDS: [&str; 13] = [
     "car",
     "carJson",
     "class",
@@ -34,6 +35,7 @@ pub const FIT_FIELDS: [&str; 12] = [
     "surrogate",
     "plan",
     "comfort",
+    "cases",
 ];
 
 /// The state fields a design's LoFi and HiFi reports depend on: the car, the design and
@@ -41,7 +43,7 @@ pub const FIT_FIELDS: [&str; 12] = [
 pub const REPORT_FIELDS: [&str; 7] = ["car", "carJson", "ks", "cs", "class", "speed", "tracks"];
 
 /// The JS names of the [`State`] fields.
-pub const STATE_FIELDS: [&str; 21] = [
+pub const STATE_FIELDS: [&str; 23] = [
     "car",
     "carJson",
     "ks",
@@ -63,6 +65,8 @@ pub const STATE_FIELDS: [&str; 21] = [
     "plan",
     "comfort",
     "pick",
+    "cases",
+    "case",
 ];
 
 /// The explorer's surrogate unless the state names one: the best of the fidelity study
@@ -72,6 +76,9 @@ pub const DEFAULT_SURROGATE: &str = "rba-mul-rbf-mq";
 pub const DEFAULT_PLAN: &str = "ae:10";
 /// Most HiFi samples a plan may ask for in the explorer (a fit stays a few ms).
 pub const MAX_PLAN_POINTS: usize = 100;
+/// Longest cases text (`cases`), characters: 16 load cases and 16 operating points with
+/// long names fit in a few kB.
+pub const MAX_CASES_CHARS: usize = 16_384;
 
 /// Everything the page needs to define one view: car, design point, road, design box
 /// and the SWS objective. Field names are camelCase on the JS side.
@@ -139,6 +146,18 @@ pub struct State {
     /// with comfort weight `0 <= W <= 1` ([`PickRule`]).
     #[serde(default)]
     pub pick: Option<String>,
+    /// The robust design's cases (issue #16): the text of a cases file as `ridelab map
+    /// --cases FILE` reads it (`{"load_cases": [{name, mass kg, x, y, z m, weight}],
+    /// "operating": [{class, speed m/s, weight}], "combine": "worst" | "mean"}`, every
+    /// key optional, at most [`crate::robust::MAX_CASES`] cases, at most
+    /// [`MAX_CASES_CHARS`] characters) over the datum car on the state's road. Absent: one
+    /// case, the car as given.
+    #[serde(default)]
+    pub cases: Option<String>,
+    /// What the LoFi and HiFi maps show with cases: "robust" (the default) or a case
+    /// index "0".."15" (load-case-major, as `ridelab map --case K`).
+    #[serde(default)]
+    pub case: Option<String>,
 }
 
 impl Default for State {
@@ -169,6 +188,8 @@ impl Default for State {
             plan: Some(DEFAULT_PLAN.into()),
             comfort: Some("bacc".into()),
             pick: Some("minmax".into()),
+            cases: None,
+            case: None,
         }
     }
 }
@@ -194,6 +215,10 @@ pub struct Scenario {
     pub comfort: Comfort,
     /// The pick rule on the front.
     pub pick: PickRule,
+    /// The robust design's cases over the datum car (`None`: the car as given, one case).
+    pub cases: Option<CaseSet>,
+    /// The case the LoFi and HiFi maps show (`None`: the robust maps).
+    pub case: Option<usize>,
 }
 
 impl State {
@@ -285,6 +310,53 @@ impl State {
         Ok((comfort, pick))
     }
 
+    /// The cases over `datum` on `road` (`None` without `cases`), validated: errors name
+    /// the field under `cases` (`cases.load_cases[1].mass`, `cases.operating[0].speed`,
+    /// `cases` for text that is not JSON or too long), as `ridelab map --cases` does
+    /// without the prefix.
+    pub fn case_set(&self, datum: &Car, road: &Road) -> Result<Option<CaseSet>> {
+        let Some(text) = self.cases.as_deref() else {
+            return Ok(None);
+        };
+        let chars = text.chars().count();
+        if chars > MAX_CASES_CHARS {
+            return Err(RideError::field(
+                "cases",
+                format!("is {chars} characters long; at most {MAX_CASES_CHARS}"),
+            ));
+        }
+        CaseSet::from_json(text, datum, &[], road)
+            .map(Some)
+            .map_err(|e| match e {
+                RideError::Field { field, reason } => {
+                    RideError::field(format!("cases.{field}"), reason)
+                }
+                RideError::Json(msg) => RideError::field("cases", msg),
+                other => other,
+            })
+    }
+
+    /// The case the maps show among `n` cases (`None`: robust); errors name `case`.
+    pub fn case_index(&self, n: Option<usize>) -> Result<Option<usize>> {
+        let choice = self.case.as_deref().unwrap_or("robust");
+        if choice == "robust" {
+            return Ok(None);
+        }
+        let Some(n) = n else {
+            return Err(RideError::field(
+                "case",
+                format!("'{choice}' needs cases: without them the maps show the car as given"),
+            ));
+        };
+        match choice.parse::<usize>() {
+            Ok(k) if k < n => Ok(Some(k)),
+            _ => Err(RideError::field(
+                "case",
+                format!("'{choice}' is not 'robust' or a case index 0..{}", n - 1),
+            )),
+        }
+    }
+
     /// Everything at once; the first error names its field.
     pub fn scenario(&self) -> Result<Scenario> {
         self.scenario_after(None)
@@ -314,6 +386,13 @@ impl State {
             _ => self.surrogate()?,
         };
         let (comfort, pick) = self.criteria_choice()?;
+        let cases = match previous {
+            Some((p, s)) if p.cases == self.cases && s.datum == datum && s.road == road => {
+                s.cases.clone()
+            }
+            _ => self.case_set(&datum, &road)?,
+        };
+        let case = self.case_index(cases.as_ref().map(|c| c.cases.len()))?;
         Ok(Scenario {
             datum,
             design,
@@ -324,6 +403,8 @@ impl State {
             plan,
             comfort,
             pick,
+            cases,
+            case,
         })
     }
 }

@@ -8,6 +8,7 @@ use crate::comfort::Comfort;
 use crate::dos::DosContext;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
+use crate::optimize::EvaluatorSpec;
 use crate::optimize::{
     minmax::{normalised_distances, pick, pseudo_weights, recheck, PickRule, Recheck},
     nsga2::Nsga2Params,
@@ -15,6 +16,8 @@ use crate::optimize::{
     study::{run_study, Method, Study},
     suspension::SuspensionProblem,
 };
+use crate::robust::optimize::CasePick;
+use crate::robust::{robust_optimize_report, CaseSet, Combine};
 use crate::time_domain::{simulate, Damper, TimeOptions, TimeResponse};
 use serde::Serialize;
 
@@ -50,17 +53,21 @@ pub enum FrontModel {
     LoFi,
     /// The scenario's fitted surrogate.
     Surrogate,
+    /// With robust cases, the quarter car's robust objective over the cases (as
+    /// `ridelab optimize --cases`); the LoFi's front is this one when there are cases.
+    Robust,
 }
 
 impl FrontModel {
-    /// Parses "lofi" or "surrogate" (errors name `frontModel`).
+    /// Parses "lofi", "surrogate" or "robust" (errors name `frontModel`).
     pub fn parse(s: &str) -> Result<FrontModel> {
         match s {
+            "robust" => Ok(FrontModel::Robust),
             "lofi" => Ok(FrontModel::LoFi),
             "surrogate" => Ok(FrontModel::Surrogate),
             _ => Err(RideError::field(
                 "frontModel",
-                format!("'{s}' is not 'lofi' or 'surrogate'"),
+                format!("'{s}' is not 'lofi', 'surrogate' or 'robust'"),
             )),
         }
     }
@@ -84,6 +91,57 @@ pub struct FrontResult {
     /// Each front point's pseudo-weights `[w_bacc, w_dtl]`,
     /// `w_i = (1 - d_i) / sum_j (1 - d_j)` of its normalised distances `d`, -.
     pub pseudo_weights: Vec<[f64; 2]>,
+    /// With robust cases: the rule, the normalisation and the pick in each case (its
+    /// LoFi prediction and HiFi re-check against that case's datum, the objectives the
+    /// re-check breaks), as `ridelab optimize --cases --json`'s `cases`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub robust: Option<RobustFront>,
+}
+
+/// What a robust front adds (see [`FrontResult::robust`]).
+#[derive(Debug, Clone, Serialize)]
+pub struct RobustFront {
+    /// Worst case or weighted mean.
+    pub combine: Combine,
+    /// The normalisation sentence.
+    pub normalisation: &'static str,
+    /// The pick in each case.
+    pub cases: Vec<CasePick>,
+}
+
+/// The robust front of the scenario's cases on the quarter car by `method_name`, with
+/// the scenario's box, objectives, comfort measure and pick rule: exactly
+/// [`robust_optimize_report`]'s front, pick and per-case re-checks, the datum its robust
+/// (HiFi, case 0's) datum.
+pub fn robust_front(s: &Scenario, set: &CaseSet, method_name: &str) -> Result<FrontResult> {
+    let m = method(method_name)?;
+    let r = robust_optimize_report(
+        set,
+        &s.dbox,
+        EvaluatorSpec::Model(ModelKind::Quarter),
+        s.plan,
+        &m,
+        s.objectives.clone(),
+        s.comfort,
+        s.pick,
+    )?;
+    let weights = normalised_distances(&r.study.front, &r.datum)
+        .into_iter()
+        .map(pseudo_weights)
+        .collect();
+    Ok(FrontResult {
+        datum: r.datum,
+        datum_hifi: r.datum,
+        recheck: r.hifi_recheck,
+        comfort: r.comfort,
+        pseudo_weights: weights,
+        robust: Some(RobustFront {
+            combine: r.combine,
+            normalisation: r.normalisation,
+            cases: r.cases,
+        }),
+        study: r.study,
+    })
 }
 
 /// Runs the front method `method_name` on `model` for scenario `s` (`model` gives the
@@ -116,6 +174,7 @@ pub fn front<E: Evaluator + ?Sized>(
         recheck,
         comfort: s.comfort,
         pseudo_weights: weights,
+        robust: None,
     })
 }
 

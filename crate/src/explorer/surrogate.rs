@@ -12,6 +12,7 @@ use crate::comfort::Comfort;
 use crate::design::DesignBox;
 use crate::error::Result;
 use crate::road::Road;
+use crate::robust::CaseSet;
 use crate::surrogate::{
     sample_plan, surrogate_report_in, LmOptions, PlanSpec, Sample, Setting, Surrogate,
     SurrogateReport, SurrogateSpec,
@@ -29,7 +30,8 @@ pub struct FittedSurrogate {
 
 /// Everything a fit depends on, and a map's values: the objectives only judge them; the
 /// comfort measure fills the LoFi and HiFi maps' BAcc plane (a fit does not depend on it,
-/// but a session keeps its fit and maps together).
+/// but a session keeps its fit and maps together); the robust cases fill the LoFi and
+/// HiFi maps.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FitKey {
     car: Car,
@@ -38,6 +40,7 @@ pub struct FitKey {
     spec: SurrogateSpec,
     plan: PlanSpec,
     comfort: Comfort,
+    cases: Option<CaseSet>,
 }
 
 impl FitKey {
@@ -50,6 +53,7 @@ impl FitKey {
             spec: s.surrogate,
             plan: s.plan,
             comfort: s.comfort,
+            cases: s.cases.clone(),
         }
     }
 }

@@ -457,7 +457,7 @@ fn state_fields_are_the_serialised_keys() {
 #[test]
 fn the_key_field_lists_are_what_fits_and_reports_depend_on() {
     use crate::analysis::{report, ModelKind};
-    let others: [(&str, serde_json::Value); 20] = [
+    let others: [(&str, serde_json::Value); 21] = [
         ("car", "compact".into()),
         ("ks", 21_000.0.into()),
         ("cs", 1_500.0.into()),
@@ -478,11 +478,31 @@ fn the_key_field_lists_are_what_fits_and_reports_depend_on() {
         ("plan", "ae:8".into()),
         ("comfort", "wk".into()),
         ("pick", "knee".into()),
+        (
+            "cases",
+            r#"{"operating": [{"class": "C", "speed": 25}]}"#.into(),
+        ),
     ];
     let base = State::default();
     let base_s = base.scenario().unwrap();
     let base_report = report(ModelKind::Quarter, &base_s.design, &base_s.road).unwrap();
-    let mut seen = vec!["carJson"];
+    let mut seen = vec!["carJson", "case"];
+    // The case the maps show picks among kept values: neither the fit nor the values change.
+    let with_cases = State {
+        cases: Some(
+            r#"{"load_cases": [{"name": "a", "mass": 0}, {"name": "b", "mass": 90}]}"#.into(),
+        ),
+        ..State::default()
+    };
+    let case1 = State {
+        case: Some("1".into()),
+        ..with_cases.clone()
+    };
+    assert!(!FIT_FIELDS.contains(&"case"));
+    assert_eq!(
+        FitKey::of(&case1.scenario().unwrap()),
+        FitKey::of(&with_cases.scenario().unwrap())
+    );
     for (field, value) in others {
         let mut v = serde_json::to_value(&base).unwrap();
         v[field] = value;

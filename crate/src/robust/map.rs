@@ -8,12 +8,13 @@ use super::objective::Combination;
 use crate::analysis::{HiFiRoads, ModelKind};
 use crate::car::Car;
 use crate::comfort::Comfort;
+use crate::dos::{DesignObjectives, Objective};
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
 use crate::gpu::{Compute, ComputePath, HiFiGrid};
 use crate::maps::{
     default_threads, map_grid, map_report_from, map_report_on, map_report_with, DatumPoint, Dcs,
-    DosMap, FeasiblePoint, MapReport, MapSettings, Scale,
+    DosMap, FeasiblePoint, Grid, MapReport, MapSettings, Scale,
 };
 use crate::road::Road;
 use serde::Serialize;
@@ -131,40 +132,51 @@ pub fn case_map_report(
     Ok(CaseMapReport { map, case: info })
 }
 
-/// The robust map of `set` by `model` (each case's map on `compute`, as
-/// [`map_report_on`], see [`case_maps`]); `car` names the report and gives the datum design (the front
-/// spring and damper every case shares), `road` is recorded.
-pub fn robust_map_report(
-    model: ModelKind,
-    car: &Car,
-    road: &Road,
+/// One case's absolute criteria on the map's grid and its feasibility mask (judged
+/// against that case's own datum), as [`robust_fields`] combines them.
+#[derive(Debug, Clone, Copy)]
+pub struct CaseField<'a> {
+    /// The evaluator's name.
+    pub evaluator: &'a str,
+    /// The datum design and its criteria in this case.
+    pub datum: DatumPoint,
+    /// RMS body acceleration (or the comfort measure), m/s^2, grid order.
+    pub bacc: &'a [f64],
+    /// RMS dynamic tyre load, N.
+    pub dtl: &'a [f64],
+    /// RMS suspension working space, m.
+    pub sws: &'a [f64],
+    /// Broken-objective bits per grid point (0: feasible).
+    pub mask: &'a [u8],
+}
+
+/// The robust map of the cases' fields `cases` (one per case of `set`, in case order, on
+/// `grid`): at every point the robust criteria ([`Combination`] of the cases' datums
+/// and `set`'s probabilities, in case 0's units) and the robust mask, the OR of the
+/// cases' masks (feasible only where every case is). `active` are the objectives of the
+/// masks' bits. Returns the absolute fields (datum: case 0's datum design with the
+/// robust datum) and the mask with its feasible set.
+pub fn robust_fields(
     set: &CaseSet,
-    settings: &MapSettings,
-    compute: Compute,
-) -> Result<RobustMapReport> {
-    settings.validate()?;
-    // Each case's absolute fields and mask, without its own contours.
-    let per_case = MapSettings {
-        scale: Scale::Absolute,
-        contour_levels: 0,
-        ..settings.clone()
-    };
-    let maps = case_maps(model, set, &per_case, compute)?;
-    let datums: Vec<Criteria> = maps.iter().map(|m| m.datum.criteria).collect();
+    grid: Grid,
+    objectives: &DesignObjectives,
+    active: Vec<Objective>,
+    cases: &[CaseField],
+) -> Result<(Dcs, DosMap)> {
+    let datums: Vec<Criteria> = cases.iter().map(|m| m.datum.criteria).collect();
     let combination = Combination::new(set.combine, &datums, &set.probabilities())?;
-    let grid = settings.grid;
     let n = grid.len();
     let mut fields = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
     let mut mask = vec![0u8; n];
-    let mut per = vec![Criteria::from_array([0.0; 3]); maps.len()];
+    let mut per = vec![Criteria::from_array([0.0; 3]); cases.len()];
     for k in 0..n {
-        for (c, m) in per.iter_mut().zip(&maps) {
+        for (c, m) in per.iter_mut().zip(cases) {
             *c = Criteria {
                 bacc: m.bacc[k],
                 dtl: m.dtl[k],
                 sws: m.sws[k],
             };
-            mask[k] |= m.feasibility.mask[k];
+            mask[k] |= m.mask[k];
         }
         let r = combination.apply(&per).to_array();
         for j in 0..3 {
@@ -186,24 +198,13 @@ pub fn robust_map_report(
             }
         })
         .collect();
-    let first = &maps[0];
-    let dos = DosMap::from_mask(
-        grid,
-        &settings.objectives,
-        first
-            .feasibility
-            .legend
-            .iter()
-            .map(|b| b.objective)
-            .collect(),
-        mask,
-        feasible_set,
-    );
+    let dos = DosMap::from_mask(grid, objectives, active, mask, feasible_set);
+    let first = &cases[0];
     let abs = Dcs {
-        evaluator: if maps.len() == 1 {
-            first.evaluator.clone()
+        evaluator: if cases.len() == 1 {
+            first.evaluator.to_string()
         } else {
-            format!("{} x {} cases", first.evaluator, maps.len())
+            format!("{} x {} cases", first.evaluator, cases.len())
         },
         grid,
         scale: Scale::Absolute,
@@ -216,6 +217,48 @@ pub fn robust_map_report(
         dtl,
         sws,
     };
+    Ok((abs, dos))
+}
+
+/// The robust map of `set` by `model` (each case's map on `compute`, as
+/// [`map_report_on`], see [`case_maps`]); `car` names the report and gives the datum design (the front
+/// spring and damper every case shares), `road` is recorded.
+pub fn robust_map_report(
+    model: ModelKind,
+    car: &Car,
+    road: &Road,
+    set: &CaseSet,
+    settings: &MapSettings,
+    compute: Compute,
+) -> Result<RobustMapReport> {
+    settings.validate()?;
+    // Each case's absolute fields and mask, without its own contours.
+    let per_case = MapSettings {
+        scale: Scale::Absolute,
+        contour_levels: 0,
+        ..settings.clone()
+    };
+    let maps = case_maps(model, set, &per_case, compute)?;
+    let fields: Vec<CaseField> = maps
+        .iter()
+        .map(|m| CaseField {
+            evaluator: &m.evaluator,
+            datum: m.datum,
+            bacc: &m.bacc,
+            dtl: &m.dtl,
+            sws: &m.sws,
+            mask: &m.feasibility.mask,
+        })
+        .collect();
+    let active = maps[0]
+        .feasibility
+        .legend
+        .iter()
+        .map(|b| b.objective)
+        .collect();
+    let (abs, dos) = robust_fields(set, settings.grid, &settings.objectives, active, &fields)?;
+    let datums: Vec<Criteria> = maps.iter().map(|m| m.datum.criteria).collect();
+    let first = &maps[0];
     let mut map = map_report_from(&abs, dos, car, road, settings)?;
     map.compute = first.compute;
     map.adapter = first.adapter.clone();

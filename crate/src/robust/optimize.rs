@@ -11,7 +11,6 @@ use super::cases::CaseSet;
 use super::map::{CaseInfo, NORMALISATION};
 use super::objective::{robust_constraints, CaseRun, Combination, RobustEvaluator};
 use crate::analysis::{HiFiRoads, ModelKind};
-use crate::car::Car;
 use crate::comfort::Comfort;
 use crate::design::DesignBox;
 use crate::dos::{DesignObjectives, DosContext, Objective};
@@ -145,6 +144,33 @@ pub struct RobustOptimizeReport {
     pub cases: Vec<CasePick>,
 }
 
+/// Every case's datum criteria: the datum design (the loaded car's own front spring and
+/// damper) on that case's evaluator `evaluators[k]`.
+pub fn datums_on(set: &CaseSet, evaluators: &[Box<dyn Evaluator + Sync>]) -> Result<Vec<Criteria>> {
+    set.cases
+        .iter()
+        .zip(evaluators)
+        .map(|(c, e)| e.evaluate(c.car.front.spring, c.car.front.damper))
+        .collect()
+}
+
+/// The combination of the robust optimisation ([`robust_optimize_report`]): the cases'
+/// criteria scaled to their HiFi datums (with the `comfort` measure), the set's rule
+/// and probabilities; also the HiFi datums. What the front's robust objective of a
+/// design is, `combination.apply(per-case criteria)`.
+pub fn hifi_combination(set: &CaseSet, comfort: Comfort) -> Result<(Combination, Vec<Criteria>)> {
+    let hifis = set
+        .cases
+        .iter()
+        .map(|c| comfort.evaluator(ModelKind::Full, &c.car, &c.road))
+        .collect::<Result<Vec<_>>>()?;
+    let datums = datums_on(set, &hifis)?;
+    Ok((
+        Combination::new(set.combine, &datums, &set.probabilities())?,
+        datums,
+    ))
+}
+
 /// The robust optimisation of `set` over `design_box` by `method` on `evaluator` (a
 /// surrogate per case, fitted to that case's HiFi at `plan`), picked by `rule`.
 #[allow(clippy::too_many_arguments)]
@@ -191,16 +217,7 @@ pub fn robust_optimize_report(
             })
             .collect::<Result<_>>()?;
     }
-    let datum_design = |c: &Car| (c.front.spring, c.front.damper);
-    let datums: Vec<Criteria> = set
-        .cases
-        .iter()
-        .zip(&hifis)
-        .map(|(c, h)| {
-            let (ks, cs) = datum_design(&c.car);
-            h.evaluate(ks, cs)
-        })
-        .collect::<Result<_>>()?;
+    let datums = datums_on(set, &hifis)?;
     let combination = Combination::new(set.combine, &datums, &set.probabilities())?;
     let ctxs: Vec<DosContext> = set
         .cases

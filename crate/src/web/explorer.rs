@@ -30,10 +30,18 @@ struct Description {
     delay: f64,
     design_box: crate::design::DesignBox,
     sws_limit: Option<f64>,
+    /// The robust cases' names ("<load case> / <class> at <speed> m/s"), case order;
+    /// absent without cases.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    cases: Option<Vec<String>>,
+    /// Worst case or weighted mean, with cases.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    combine: Option<crate::robust::Combine>,
 }
 
 /// A map as `{nx, ny, values: Float64Array, feasible: Uint8Array, broken: Uint8Array,
-/// feasibleCount}`: `values` the BAcc (m/s^2), DTL (N) and SWS (m) planes in that order,
+/// feasibleCount, datum: {bacc, dtl, sws}}` (`datum`: the map's datum criteria, m/s^2, N,
+/// m; of a robust map the robust datum, case 0's): `values` the BAcc (m/s^2), DTL (N) and SWS (m) planes in that order,
 /// each row-major with Cs slow (row 0 at the lowest Cs) and Ks fast, index
 /// `c nx ny + j nx + i` at the cell centre `ks_i = ks_min + (i + 1/2) (ks_max - ks_min) / nx`;
 /// `broken` the objectives each cell breaks as a bitmask (bit 0 SWS limit, 1 bounce band,
@@ -47,6 +55,7 @@ fn map_js(m: &ModelMap) -> Result<JsValue, JsValue> {
     set("feasible", Uint8Array::from(m.feasible().as_slice()).into())?;
     set("broken", Uint8Array::from(m.broken()).into())?;
     set("feasibleCount", (m.dos.summary.feasible as f64).into())?;
+    set("datum", to_js(&m.values.datum.criteria)?)?;
     Ok(out.into())
 }
 
@@ -81,7 +90,8 @@ impl Explorer {
 
     /// What the page shows about the scenario besides the criteria: `{car, quarter,
     /// datumKs, datumCs, staticWheelLoad, road, velocityPsd, delay, designBox, swsLimit}`
-    /// (N/m, N s/m, N, m^2/s^2/Hz, s, m).
+    /// (N/m, N s/m, N, m^2/s^2/Hz, s, m), and with robust cases `cases` (their names) and
+    /// `combine` ("worst" or "mean").
     pub fn describe(&self) -> Result<JsValue, JsValue> {
         let s = self.0.scenario();
         to_js(&Description {
@@ -94,6 +104,11 @@ impl Explorer {
             delay: s.road.delay(s.datum.wheelbase()),
             design_box: s.dbox,
             sws_limit: s.objectives.sws_limit,
+            cases: s
+                .cases
+                .as_ref()
+                .map(|c| c.cases.iter().map(|k| k.name.clone()).collect()),
+            combine: s.cases.as_ref().map(|c| c.combine),
             car: s.datum.clone(),
         })
     }
@@ -115,7 +130,9 @@ impl Explorer {
 
     /// The criteria `{bacc, dtl, sws}` (m/s^2, N, m) of the design by the fast
     /// evaluators the maps and optimisers use: `model` "lofi", "hifi" or "surrogate" (with
-    /// Wk comfort the LoFi's and HiFi's `bacc` is Wk-weighted; the surrogate's never is).
+    /// Wk comfort the LoFi's and HiFi's `bacc` is Wk-weighted; the surrogate's never is),
+    /// or with robust cases "robust": the LoFi's robust objective as the robust front's
+    /// (one LoFi run per case; "lofi" and "hifi" stay the car as given).
     pub fn criteria(&mut self, model: &str) -> Result<JsValue, JsValue> {
         let kind = EvaluatorKind::parse(model).map_err(js_error)?;
         to_js(&self.0.criteria(kind).map_err(js_error)?)
@@ -126,7 +143,10 @@ impl Explorer {
     /// surrogate's signed relative error against the HiFi, `100 (S / HiFi - 1)` %, with the
     /// HiFi's objectives). A HiFi map costs about 3 us a cell: the page asks its worker.
     /// HiFi and error maps also carry `compute`, `"gpu"` or `"cpu"`: the path that made
-    /// their HiFi values.
+    /// their HiFi values. With robust cases (the state's `cases`) the LoFi and HiFi maps
+    /// are the robust maps of `ridelab map --cases` (or, with `case` K, that case's), and
+    /// `model` "robust" is the robust front's problem on the LoFi (the plane's feasible
+    /// set); the surrogate and error maps stay on the car as given.
     pub fn maps(&mut self, model: &str, nx: usize, ny: usize) -> Result<JsValue, JsValue> {
         let m = MapModel::parse(model).map_err(js_error)?;
         let out = map_js(&self.0.map(m, nx, ny).map_err(js_error)?)?;
@@ -162,8 +182,11 @@ impl Explorer {
     /// 60 x 60), its hypervolume, the pick of the state's `pick` rule and the pick re-checked
     /// on the HiFi model: `{study: {front, hypervolume, referencePoint, pick, evaluations,
     /// ..}, datum, datumHifi, recheck, comfort, pseudoWeights}` (`pseudoWeights[k]`: front
-    /// point k's `[comfort, road holding]`). With no feasible design the error names the
-    /// binding objective.
+    /// point k's `[comfort, road holding]`). With robust cases it is the robust front of
+    /// `ridelab optimize --cases` ("lofi" or "robust"; "surrogate" is refused naming
+    /// `cases`) with `robust: {combine, normalisation, cases}` (each case's pick as that
+    /// command's JSON `cases`). With no feasible design the error names the binding
+    /// objective.
     pub fn front(&mut self, method: &str, model: Option<String>) -> Result<JsValue, JsValue> {
         let on = FrontModel::parse(model.as_deref().unwrap_or("lofi")).map_err(js_error)?;
         to_js(&self.0.front(method, on).map_err(js_error)?)

@@ -1,0 +1,308 @@
+//! The explorer's robust design (issue #16): the session's robust and per-case maps
+//! against `ridelab map --cases`'s own functions, its robust front and per-case pick
+//! against `ridelab optimize --cases`'s, and bad cases named.
+
+use super::*;
+use crate::analysis::ModelKind;
+use crate::gpu::Compute;
+use crate::maps::{Grid, MapReport, MapSettings};
+use crate::optimize::{EvaluatorSpec, Method, StmParams};
+use crate::robust::{case_map_report, robust_map_report, robust_optimize_report, CaseSet};
+
+/// Two load cases at three operating points: six cases.
+const SIX: &str = r#"{"load_cases": [{"name": "driver only", "mass": 0},
+  {"name": "fully laden", "mass": 350, "x": -0.3, "y": 0.4, "z": 0.1, "weight": 2}],
+  "operating": [{"class": "B", "speed": 20}, {"class": "B", "speed": 30, "weight": 3},
+  {"class": "A", "speed": 35}], "combine": "COMBINE"}"#;
+
+fn cases(combine: &str) -> String {
+    SIX.replace("COMBINE", combine)
+}
+
+/// A state with the six cases, "no worse than the datum" on BAcc, a DTL margin and a
+/// 12 mm SWS limit (so the mask depends on each case's own datum and wheel load).
+fn robust_state(combine: &str) -> State {
+    State {
+        cases: Some(cases(combine)),
+        no_worse: Some([true, false, false]),
+        sws_limit: Some(0.012),
+        dtl_margin: Some(3.0),
+        ..State::default()
+    }
+}
+
+/// The CLI's case set and map settings for the session's scenario on its `nx` x `ny`
+/// cell grid.
+fn cli_setting(s: &Session, nx: usize, ny: usize) -> (CaseSet, MapSettings) {
+    let sc = s.scenario();
+    let text = s.state().cases.clone().unwrap();
+    let set = CaseSet::from_json(&text, &sc.datum, &[], &sc.road).unwrap();
+    let settings = MapSettings {
+        grid: Grid::cells(&sc.dbox, nx, ny).unwrap(),
+        objectives: sc.objectives.clone(),
+        comfort: sc.comfort,
+        ..MapSettings::default()
+    };
+    (set, settings)
+}
+
+/// `got`'s planes and mask against a CLI map report's, each value to `tol` relative
+/// (0: bit for bit).
+fn assert_map_eq(got: &ModelMap, want: &MapReport, tol: f64, what: &str) {
+    let planes = got.planes();
+    let n = want.bacc.len();
+    for (c, w) in [&want.bacc, &want.dtl, &want.sws].iter().enumerate() {
+        for k in 0..n {
+            let (g, w) = (planes[c * n + k], w[k]);
+            assert!(
+                (g - w).abs() <= tol * w.abs(),
+                "{what}: plane {c} cell {k}: {g} vs {w}"
+            );
+        }
+    }
+    assert_eq!(
+        got.broken(),
+        want.feasibility.mask.as_slice(),
+        "{what}: mask"
+    );
+    assert_eq!(
+        got.dos.summary.feasible, want.feasibility.summary.feasible,
+        "{what}"
+    );
+    let d = (got.values.datum.criteria, want.datum.criteria);
+    for (g, w) in d.0.to_array().iter().zip(d.1.to_array()) {
+        assert!((g - w).abs() <= tol * w.abs(), "{what}: datum {g} vs {w}");
+    }
+}
+
+/// The page's robust LoFi map is `robust_map_report`'s, cell for cell and bit for bit,
+/// for the worst case and the weighted mean; its HiFi map to 1e-12 relative (the CLI's
+/// HiFi grid route against the session's point evaluator); the mask is the OR of the
+/// cases' masks (a case with fewer feasible cells than the robust map would be wrong).
+#[test]
+fn robust_maps_are_the_clis() {
+    for combine in ["worst", "mean"] {
+        let mut s = Session::new(robust_state(combine)).unwrap();
+        assert_eq!(s.scenario().cases.as_ref().unwrap().cases.len(), 6);
+        assert_eq!(s.scenario().case, None);
+        for (model, kind, nx, ny, tol) in [
+            (MapModel::LoFi, ModelKind::Quarter, 32, 24, 0.0),
+            (MapModel::HiFi, ModelKind::Full, 8, 6, 1e-12),
+        ] {
+            let (set, settings) = cli_setting(&s, nx, ny);
+            let sc = s.scenario().clone();
+            let want = robust_map_report(kind, &sc.datum, &sc.road, &set, &settings, Compute::Cpu)
+                .unwrap();
+            let got = s.map(model, nx, ny).unwrap();
+            assert_map_eq(&got, &want.map, tol, &format!("{combine} {model:?}"));
+            let feasible = got.dos.summary.feasible;
+            assert!(feasible > 0 && feasible < nx * ny, "{feasible}");
+            for f in &want.robust.feasible_per_case {
+                assert!(*f >= feasible);
+            }
+        }
+    }
+}
+
+/// `case` K: the maps are `ridelab map --cases --case K`'s (that case's loaded car on its
+/// road against its own datum), bit for bit; switching back to "robust" reuses the kept
+/// per-case values and gives the robust map again.
+#[test]
+fn case_k_map_is_that_cases_map() {
+    let mut s = Session::new(robust_state("worst")).unwrap();
+    let robust = s.map(MapModel::LoFi, 20, 15).unwrap();
+    for k in [0, 4, 5] {
+        s.set_state(State {
+            case: Some(k.to_string()),
+            ..s.state().clone()
+        })
+        .unwrap();
+        assert_eq!(s.scenario().case, Some(k));
+        let (set, settings) = cli_setting(&s, 20, 15);
+        let want = case_map_report(ModelKind::Quarter, &set, k, &settings, Compute::Cpu).unwrap();
+        let got = s.map(MapModel::LoFi, 20, 15).unwrap();
+        assert_map_eq(&got, &want.map, 0.0, &format!("case {k}"));
+    }
+    s.set_state(State {
+        case: Some("robust".into()),
+        ..s.state().clone()
+    })
+    .unwrap();
+    assert_eq!(s.map(MapModel::LoFi, 20, 15).unwrap(), robust);
+}
+
+/// One case (an empty cases file: the car as given on the state's road): the robust
+/// map is the plain map bit for bit, for both rules.
+#[test]
+fn one_case_is_the_plain_map() {
+    let mut plain = Session::new(robust_state("worst")).unwrap();
+    plain
+        .set_state(State {
+            cases: None,
+            ..plain.state().clone()
+        })
+        .unwrap();
+    let want = plain.map(MapModel::LoFi, 12, 9).unwrap();
+    for text in ["{}", r#"{"combine": "mean"}"#] {
+        let mut s = Session::new(State {
+            cases: Some(text.into()),
+            ..plain.state().clone()
+        })
+        .unwrap();
+        let got = s.map(MapModel::LoFi, 12, 9).unwrap();
+        assert_eq!(got.planes(), want.planes(), "{text}");
+        assert_eq!(got.broken(), want.broken(), "{text}");
+    }
+}
+
+/// The robust front on the page's settings (STM, `STM_GRID` levels `STM_LEVELS`, the
+/// quarter car) is `robust_optimize_report`'s: front, hypervolume, pick, robust HiFi
+/// re-check and each case's prediction, re-check and broken objectives, exactly. The
+/// robust criteria the page gives the design at the pick are the pick's (the plane's
+/// design marker and the front agree), and the plane's feasible set has the pick's cell
+/// values by the same normalisation.
+#[test]
+fn robust_front_is_the_clis() {
+    let mut s = Session::new(State {
+        pick: Some("knee".into()),
+        ..robust_state("worst")
+    })
+    .unwrap();
+    let sc = s.scenario().clone();
+    let set = sc.cases.clone().unwrap();
+    let want = robust_optimize_report(
+        &set,
+        &sc.dbox,
+        EvaluatorSpec::Model(ModelKind::Quarter),
+        sc.plan,
+        &Method::Stm(StmParams {
+            grid: studies::STM_GRID,
+            levels: studies::STM_LEVELS,
+        }),
+        sc.objectives.clone(),
+        sc.comfort,
+        sc.pick,
+    )
+    .unwrap();
+    for model in [FrontModel::Robust, FrontModel::LoFi] {
+        let got = s.front("stm", model).unwrap();
+        assert_eq!(got.study, want.study);
+        assert_eq!(got.datum, want.datum);
+        assert_eq!(got.recheck, want.hifi_recheck);
+        let r = got.robust.as_ref().unwrap();
+        assert_eq!(r.cases, want.cases);
+        assert_eq!(r.cases.len(), 6);
+        assert_eq!(got.pseudo_weights.len(), got.study.front.len());
+    }
+    // The page's NSGA-II (population 60, 60 generations, seed 1) with cases is
+    // `ridelab optimize --cases --method nsga2`'s.
+    let nsga = robust_optimize_report(
+        &set,
+        &sc.dbox,
+        EvaluatorSpec::Model(ModelKind::Quarter),
+        sc.plan,
+        &studies::method("nsga2").unwrap(),
+        sc.objectives.clone(),
+        sc.comfort,
+        sc.pick,
+    )
+    .unwrap();
+    let got = s.front("nsga2", FrontModel::LoFi).unwrap();
+    assert_eq!(got.study, nsga.study);
+    assert_eq!(got.robust.as_ref().unwrap().cases, nsga.cases);
+    assert!(
+        nsga.study.front.len() > 10,
+        "{} points",
+        nsga.study.front.len()
+    );
+    let p = &want.study.pick;
+    s.set_design(p.ks, p.cs).unwrap();
+    assert_eq!(s.criteria(EvaluatorKind::Robust).unwrap(), p.criteria);
+    let per = s.case_criteria(ModelKind::Quarter).unwrap();
+    for (c, w) in per.iter().zip(&want.cases) {
+        assert_eq!(*c, w.hifi_recheck.predicted, "{}", w.case.name);
+    }
+    // The plane's feasible set: its datum is the front's, and no feasible cell beats the
+    // front's ideal point (the front's extremes bound the feasible set) by more than the
+    // STM's grid resolution (0.5 %).
+    let cloud = s.map(MapModel::Robust, 40, 30).unwrap();
+    assert_eq!(cloud.values.datum.criteria, want.datum);
+    let f = &want.study.front;
+    let min_b = f.iter().map(|q| q.bacc).fold(f64::INFINITY, f64::min);
+    let min_d = f.iter().map(|q| q.dtl).fold(f64::INFINITY, f64::min);
+    assert!(!cloud.dos.feasible_set.is_empty());
+    for q in &cloud.dos.feasible_set {
+        assert!(q.bacc >= min_b * 0.995 && q.dtl >= min_d * 0.995, "{q:?}");
+    }
+}
+
+/// Bad cases name the field under `cases` and leave the session at its last good state;
+/// a bad `case` names `case`; the surrogate's front is refused naming `cases`.
+#[test]
+fn bad_cases_are_named_and_the_last_good_state_kept() {
+    let mut s = Session::new(robust_state("worst")).unwrap();
+    let good = s.state().clone();
+    let err = |s: &mut Session, patch: &dyn Fn(&mut State)| {
+        let mut st = s.state().clone();
+        patch(&mut st);
+        let e = s.set_state(st).unwrap_err();
+        assert_eq!(s.state(), &good, "last good state kept");
+        e
+    };
+    let field = |e: &crate::error::RideError| match e {
+        crate::error::RideError::Field { field, .. } => field.clone(),
+        other => panic!("not a field error: {other}"),
+    };
+    let heavy = cases("worst").replace("\"mass\": 350", "\"mass\": -5000");
+    let e = err(&mut s, &|st| st.cases = Some(heavy.clone()));
+    assert_eq!(field(&e), "cases.load_cases[1].mass");
+    assert_eq!(ui_field(&field(&e)), "cases");
+    let e = err(&mut s, &|st| st.cases = Some("{\"operating\": [".into()));
+    assert!(field(&e).starts_with("cases"), "{e}");
+    let e = err(&mut s, &|st| {
+        st.cases = Some(r#"{"operating": [{"class": "B", "speed": -2}]}"#.into())
+    });
+    assert_eq!(field(&e), "cases.operating[0].speed");
+    let e = err(&mut s, &|st| {
+        st.cases = Some(r#"{"combine": "median"}"#.into())
+    });
+    assert_eq!(field(&e), "cases.combine");
+    let ops: Vec<String> = (0..9)
+        .map(|i| format!(r#"{{"class": "B", "speed": {}}}"#, 10 + i))
+        .collect();
+    let many = cases("worst").replace(
+        &cases("worst")[cases("worst").find("\"operating\"").unwrap()
+            ..cases("worst").find(", \"combine\"").unwrap()],
+        &format!("\"operating\": [{}]", ops.join(",")),
+    );
+    let e = err(&mut s, &|st| st.cases = Some(many.clone()));
+    assert_eq!(field(&e), "cases.operating");
+    assert!(e.to_string().contains("= 18 cases; at most 16"), "{e}");
+    let long = format!("{{\"combine\": \"worst\"{}}}", " ".repeat(20_000));
+    let e = err(&mut s, &|st| st.cases = Some(long.clone()));
+    assert_eq!(field(&e), "cases");
+    let e = err(&mut s, &|st| st.case = Some("6".into()));
+    assert_eq!(field(&e), "case");
+    let e = err(&mut s, &|st| st.case = Some("first".into()));
+    assert_eq!(field(&e), "case");
+    let e = s.front("stm", FrontModel::Surrogate).unwrap_err();
+    assert_eq!(field(&e), "cases");
+    // The HiFi front is one case's: refused with cases, on either path.
+    assert_eq!(field(&s.hifi_front(None).unwrap_err()), "cases");
+    let mut plain = Session::new(State::default()).unwrap();
+    let e = plain
+        .set_state(State {
+            case: Some("1".into()),
+            ..State::default()
+        })
+        .unwrap_err();
+    assert_eq!(field(&e), "case");
+    assert_eq!(
+        field(&plain.front("stm", FrontModel::Robust).unwrap_err()),
+        "cases"
+    );
+    assert_eq!(
+        field(&plain.criteria(EvaluatorKind::Robust).unwrap_err()),
+        "cases"
+    );
+}

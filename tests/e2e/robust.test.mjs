@@ -1,0 +1,127 @@
+// The robust design in the page (issue #16): a cases file applied through the Car & road
+// tab's editor gives robust maps and a robust front whose numbers are `ridelab map --cases`'s
+// and `ridelab optimize --cases --json`'s; a bad field is named and the last good state
+// stays; the link carries the cases.
+//   trunk build --release --offline && RIDELAB_CLI=target/debug/ridelab node --test tests/e2e/robust.test.mjs
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { execFileSync } from 'node:child_process';
+import { openPage, settled } from './browser.mjs';
+import { useSuite, assertClean, ROOT, OUT } from './harness.mjs';
+
+const suite = useSuite();
+const CAR = path.join(ROOT, 'assets/cars/sedan.json');
+const CASES = {
+  load_cases: [{ name: 'driver only', mass: 0 }, { name: 'fully laden', mass: 350, x: -0.3, y: 0.4, z: 0.1, weight: 2 }],
+  operating: [{ class: 'B', speed: 15 }, { class: 'B', speed: 20, weight: 2 }, { class: 'A', speed: 30 }],
+  combine: 'worst',
+};
+
+function cli(args) {
+  const candidates = [process.env.RIDELAB_CLI, path.join(ROOT, 'target/debug/ridelab'), path.join(ROOT, 'target/release/ridelab')];
+  const c = candidates.filter(Boolean).find((x) => fs.existsSync(x));
+  assert.ok(c, 'the native CLI is built (cargo build -p ridelab)');
+  const file = path.join(OUT, 'robust-cases.json');
+  fs.writeFileSync(file, JSON.stringify(CASES));
+  return JSON.parse(execFileSync(c, [...args, '--cases', file, '--car', CAR, '--class', 'B', '--speed', '20', '--json'], { encoding: 'utf8' }));
+}
+
+const rel = (a, b) => Math.abs(a / b - 1);
+
+async function applyCases(page, text) {
+  await page.evaluate(() => {
+    const tab = document.getElementById('tab-car');
+    if (tab.getAttribute('aria-selected') !== 'true') tab.click();
+    document.getElementById('robust').open = true;
+  });
+  await page.fill('#rb-text', text);
+  await page.click('#rb-apply');
+  await settled(page, 250);
+}
+
+test('robust maps, front and per-case pick are the CLI\'s; a bad field is named; the link carries the cases', async () => {
+  const { page, context, log } = await openPage(suite.browser, suite.srv.url, { width: 1280, height: 720 });
+  await settled(page, 200);
+  await applyCases(page, JSON.stringify(CASES, null, 1));
+  const st = await page.evaluate(() => ({ state: window.__ridelab.state, desc: window.__ridelab.desc }));
+  assert.equal(st.desc.cases.length, 6);
+  assert.equal(JSON.parse(st.state.cases).operating.length, 3);
+  assert.match(await page.textContent('#maps-model'), /LoFi, robust \(worst of 6 cases\)/);
+  assert.match(await page.textContent('#h-objective'), /LoFi, robust: worst of 6 cases/);
+  assert.match(await page.textContent('#map-status'), /every case, robust \(worst of 6 cases\)/);
+
+  // A map cell against `ridelab map --cases` on a 2 x 2 grid through that cell's centre
+  // and its neighbour's (the page's cells: ks_i = 10000 + (i + 1/2) 30000 / 160 N/m).
+  const [i, j] = [40, 30];
+  const ks = (k) => 10000 + ((k + 0.5) * 30000) / 160;
+  const cs = (k) => 500 + ((k + 0.5) * 3500) / 120;
+  const want = cli(['map', '--model', 'quarter', '--ks-range', `${ks(i)}:${ks(i + 1)}:2`, '--cs-range', `${cs(j)}:${cs(j + 1)}:2`]);
+  const got = await page.evaluate(([i, j]) => {
+    const m = window.__ridelab.maps;
+    const n = m.nx * m.ny;
+    const at = (ii, jj) => jj * m.nx + ii;
+    return [[i, j], [i + 1, j], [i, j + 1], [i + 1, j + 1]].map(([a, b]) => ({
+      v: [0, 1, 2].map((c) => m.values[c * n + at(a, b)]), broken: m.broken[at(a, b)],
+    }));
+  }, [i, j]);
+  got.forEach((g, k) => {
+    ['bacc', 'dtl', 'sws'].forEach((c, ci) => assert.ok(rel(g.v[ci], want[c][k]) < 1e-9, `${c} cell ${k}: ${g.v[ci]} vs ${want[c][k]}`));
+    assert.equal(g.broken, want.feasibility.mask[k], `mask cell ${k}`);
+  });
+
+  // The front and the per-case pick against `ridelab optimize --cases --json`.
+  const opt = cli(['optimize', '--evaluator', 'quarter', '--method', 'stm', '--grid', '61', '--levels', '2']);
+  const fr = await page.evaluate(() => window.__ridelab.front);
+  assert.ok(!fr.error, fr.error);
+  assert.ok(rel(fr.study.pick.ks, opt.pick.ks) < 1e-9 && rel(fr.study.pick.cs, opt.pick.cs) < 1e-9, 'pick design');
+  assert.ok(rel(fr.study.hypervolume, opt.hypervolume) < 1e-9, 'hypervolume');
+  const rows = await page.evaluate(() => [...document.querySelectorAll('#op-cases tr[data-model]')].map((tr) => ({
+    k: Number(tr.dataset.case), model: tr.dataset.model,
+    v: [...tr.querySelectorAll('td[data-value]')].map((td) => Number(td.dataset.value)),
+    pct: [...tr.querySelectorAll('td[data-pct]')].map((td) => Number(td.dataset.pct)),
+  })));
+  assert.equal(rows.length, 12, 'two rows (LoFi, HiFi) per case');
+  for (const r of rows) {
+    const h = opt.cases[r.k].hifi_recheck;
+    const c = r.model === 'lofi' ? h.predicted : h.rechecked;
+    const p = r.model === 'lofi' ? h.predicted_change_percent : h.rechecked_change_percent;
+    ['bacc', 'dtl', 'sws'].forEach((key, ci) => {
+      assert.ok(rel(r.v[ci], c[key]) < 1e-9, `case ${r.k} ${r.model} ${key}`);
+      assert.ok(Math.abs(r.pct[ci] - p[ci]) <= 1e-9 * Math.max(1, Math.abs(p[ci])), `case ${r.k} ${r.model} ${key} %`);
+    });
+  }
+  const broken = await page.evaluate(() => [...document.querySelectorAll('#op-cases .case-broken')].map((e) => e.dataset.broken));
+  assert.deepEqual(broken, opt.cases.map((c) => c.broken.join(',')));
+  await page.screenshot({ path: path.join(OUT, 'robust-drawer-1280.png') });
+
+  // A bad field: the message names it and the state stays.
+  const bad = JSON.stringify({ ...CASES, load_cases: [CASES.load_cases[0], { ...CASES.load_cases[1], mass: -5000 }] });
+  await applyCases(page, bad);
+  assert.match(await page.textContent('#msg-cases'), /cases\.load_cases\[1\]\.mass/);
+  assert.equal(await page.evaluate(() => window.__ridelab.state.cases), st.state.cases, 'last good state kept');
+
+  // One case on the maps: case 4's name in the heading.
+  await page.selectOption('#rb-case', '4');
+  await settled(page, 250);
+  assert.match(await page.textContent('#maps-model'), /case 4: fully laden \/ B at 20 m\/s/);
+  const hash = await page.evaluate(() => location.hash);
+  assert.match(hash, /cases=/);
+  assert.match(hash, /case=4/);
+  await page.evaluate(() => document.getElementById('drawer-close').click());
+  await page.screenshot({ path: path.join(OUT, 'robust-maps-1280.png') });
+  assertClean(log);
+  await context.close();
+
+  // The link reproduces them.
+  const again = await openPage(suite.browser, suite.srv.url + hash, { width: 390, height: 844 });
+  await settled(again.page, 200);
+  const s2 = await again.page.evaluate(() => window.__ridelab.state);
+  assert.equal(s2.cases, st.state.cases);
+  assert.equal(s2.case, '4');
+  assert.match(await again.page.textContent('#maps-model'), /case 4: fully laden/);
+  await again.page.screenshot({ path: path.join(OUT, 'robust-390.png'), fullPage: false });
+  assertClean(again.log);
+  await again.context.close();
+});
