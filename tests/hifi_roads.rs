@@ -4,6 +4,8 @@
 //! the sharing rests on, that the ISO 8608 class only scales the criteria by
 //! `sqrt(Gd / Gd')` at one speed.
 
+mod common;
+
 use ridelab::analysis::{HiFiRoads, HiFiRoute, Routed};
 use ridelab::car::{Car, PRESETS};
 use ridelab::design::DesignBox;
@@ -11,23 +13,12 @@ use ridelab::road::{Road, RoadClass, Tracks};
 use ridelab::robust::LoadCase;
 use ridelab::{Evaluator, HiFi};
 
-const CLASSES: [RoadClass; 8] = [
-    RoadClass::A,
-    RoadClass::B,
-    RoadClass::C,
-    RoadClass::D,
-    RoadClass::E,
-    RoadClass::F,
-    RoadClass::G,
-    RoadClass::H,
-];
-
 /// Every class at every speed of 5 to 40 m/s (classes of one speed next to each other,
 /// so they share the delay terms), on `tracks`.
 fn roads(tracks: Tracks) -> Vec<Road> {
     let mut roads = Vec::new();
     for speed in [5.0, 12.5, 20.0, 31.0, 40.0] {
-        for class in CLASSES {
+        for class in RoadClass::ALL {
             roads.push(Road {
                 class,
                 speed,
@@ -55,17 +46,6 @@ fn designs(car: &Car) -> Vec<(f64, f64)> {
     ]
 }
 
-/// A front-rear symmetric car: double roots at its own design, where the residue route
-/// must fall back to the exact routes.
-fn twin_axle_car() -> Car {
-    let mut car = Car::datum();
-    car.a = 1.4;
-    car.b = 1.4;
-    car.pitch_inertia = car.sprung_mass * 1.4 * 1.4;
-    car.rear = car.front;
-    car
-}
-
 fn cars() -> Vec<Car> {
     let mut cars: Vec<Car> = PRESETS
         .iter()
@@ -84,7 +64,7 @@ fn cars() -> Vec<Car> {
         ..LoadCase::base()
     };
     cars.push(laden.apply(&Car::datum(), "load_cases[0]").unwrap());
-    cars.push(twin_axle_car());
+    cars.push(common::twin_axle_car());
     cars
 }
 
@@ -136,7 +116,7 @@ fn every_road_equals_its_own_hifi_bit_for_bit() {
                 car.name
             );
             assert!(residue > 0, "{}", car.name);
-            if car.name == twin_axle_car().name && car.a == car.b {
+            if car.name == common::twin_axle_car().name && car.a == car.b {
                 // Its own design falls back on every road.
                 assert!(others >= roads.len() as u64, "{others}");
             }
@@ -177,7 +157,7 @@ fn the_class_only_scales_the_criteria() {
                 tracks,
             };
             let b = HiFi::new(&car, &at(RoadClass::B)).unwrap();
-            for class in CLASSES {
+            for class in RoadClass::ALL {
                 let h = HiFi::new(&car, &at(class)).unwrap();
                 let scale = (class.gd_n0() / RoadClass::B.gd_n0()).sqrt();
                 for (ks, cs) in designs(&car) {

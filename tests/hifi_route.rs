@@ -9,6 +9,8 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+mod common;
+
 use ridelab::analysis::{HiFiRoute, Routed};
 use ridelab::car::{Axle, Car, PRESETS};
 use ridelab::criteria::{criteria_exact, criteria_spectral};
@@ -17,17 +19,6 @@ use ridelab::maps::{Dcs, Grid, Scale};
 use ridelab::model::full_car;
 use ridelab::road::{Road, RoadClass, Tracks};
 use ridelab::{Criteria, Evaluator, HiFi};
-
-const CLASSES: [RoadClass; 8] = [
-    RoadClass::A,
-    RoadClass::B,
-    RoadClass::C,
-    RoadClass::D,
-    RoadClass::E,
-    RoadClass::F,
-    RoadClass::G,
-    RoadClass::H,
-];
 
 fn max_rel(a: Criteria, b: Criteria) -> f64 {
     a.to_array()
@@ -137,7 +128,7 @@ fn residue_route_matches_the_exact_routes_on_every_cell() {
     for car in &cars {
         for tracks in [Tracks::Correlated, Tracks::Independent] {
             let road = Road {
-                class: CLASSES[case % 8],
+                class: RoadClass::ALL[case % 8],
                 speed: speeds[case % speeds.len()],
                 tracks,
             };
@@ -236,21 +227,9 @@ fn a_wide_box_and_extreme_designs_stay_exact() {
     }
 }
 
-/// A front-rear symmetric car (`a = b`, equal axles, `Iyy = M a^2`) at its own design:
-/// heave and pitch, and the in-phase and anti-phase wheel hops, share their eigenvalues,
-/// so `D(s)` has double roots; the residue route cannot resolve them and must fall back.
-fn twin_axle_car() -> Car {
-    let mut car = Car::datum();
-    car.a = 1.4;
-    car.b = 1.4;
-    car.pitch_inertia = car.sprung_mass * 1.4 * 1.4;
-    car.rear = car.front;
-    car
-}
-
 #[test]
 fn repeated_roots_fall_back_to_an_exact_route_and_say_so() {
-    let car = twin_axle_car();
+    let car = common::twin_axle_car();
     let (ks, cs) = (car.front.spring, car.front.damper);
     for tracks in [Tracks::Correlated, Tracks::Independent] {
         let road = Road {

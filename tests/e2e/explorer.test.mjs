@@ -313,6 +313,8 @@ test('URL round trip: every key at a non-default value reopens the same state, v
     axes: 'ratio',
     pal: 'cividis',
     proj: '1',
+    cases: JSON.stringify({ load_cases: [{ name: 'driver only', mass: 0 }, { name: 'laden', mass: 200, x: -0.4 }], operating: [{ class: 'A', speed: 25 }], combine: 'mean' }),
+    case: '1',
   };
   const hash = '#' + new URLSearchParams(keys).toString();
   const a = await open(hash);
@@ -332,7 +334,7 @@ test('URL round trip: every key at a non-default value reopens the same state, v
     car: 'custom', carJson: keys.carjson, ks: 31000, cs: 2100, class: 'A', speed: 25, tracks: 'independent',
     ksMin: 12000, ksMax: 38000, csMin: 600, csMax: 3800, swsLimit: 0.009, bounceBand: [0.9, 1.6], dampingBand: [0.15, 0.6],
     noWorse: [false, true, false], dtlMargin: 14, travel: [0.02, 3], surrogate: 'vba-qts', plan: 'grid:4',
-    comfort: 'wk', pick: 'asf:0.3',
+    comfort: 'wk', pick: 'asf:0.3', cases: keys.cases, case: '1',
   });
   assert.deepEqual(first.view, { scale: 'rel', projector: true, model: 'surrogate', plan: false, ratio: true, palette: 'cividis' });
   assert.equal(first.controls['cs-min'], '0.6');
@@ -384,6 +386,8 @@ test('a corrupt or invalid URL shows a message and falls back to the defaults', 
     ['#axes=log', /axes: 'log' is not/],
     ['#pal=rainbow', /pal: 'rainbow' is not/],
     ['#proj=yes', /proj: 'yes' is not 0 or 1/],
+    ['#cases=%7B%22combine%22%3A%22median%22%7D', /cases\.combine/],
+    ['#case=2', /case/],
     ['#zoom=3', /unknown key 'zoom'/],
     ['#%E0%A4%A', /./],
   ];
