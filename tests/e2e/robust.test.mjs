@@ -71,6 +71,25 @@ test('robust maps, front and per-case pick are the CLI\'s; a bad field is named;
     assert.equal(g.broken, want.feasibility.mask[k], `mask cell ${k}`);
   });
 
+  // The maps' captions give the robust map's value at the design: near that cell's centre,
+  // the CLI's robust map through the design (the caption to its 4 digits, the value
+  // behind it to 1e-9).
+  for (const [id, v] of [['#ks-num', ks(i) / 1000], ['#cs-num', cs(j) / 1000]]) {
+    await page.fill(id, String(v));
+    await page.press(id, 'Enter');
+  }
+  await settled(page, 200);
+  const at = await page.evaluate(() => ({
+    design: window.__ridelab.state.ks, csAt: window.__ridelab.state.cs, md: window.__ridelab.mapDesign,
+    captions: [...document.querySelectorAll('.map-panel .at')].map((e) => e.textContent),
+  }));
+  assert.equal(at.design, ks(i));
+  // The Cs box keeps 7 digits: the CLI's map through the design as the page holds it.
+  const here = cli(['map', '--model', 'quarter', '--ks-range', `${at.design}:${at.design + 1}:2`, '--cs-range', `${at.csAt}:${at.csAt + 1}:2`]);
+  ['bacc', 'dtl', 'sws'].forEach((c) => assert.ok(rel(at.md[c], here[c][0]) < 1e-9, `design's ${c} on the robust map: ${at.md[c]} vs ${here[c][0]}`));
+  assert.match(at.captions[0], new RegExp(`${here.bacc[0].toPrecision(4)} m/s²`), at.captions[0]);
+  assert.match(at.captions[2], new RegExp(`${(1000 * here.sws[0]).toPrecision(4)} mm`), at.captions[2]);
+
   // The front and the per-case pick against `ridelab optimize --cases --json`.
   const opt = cli(['optimize', '--evaluator', 'quarter', '--method', 'stm', '--grid', '61', '--levels', '2']);
   const fr = await page.evaluate(() => window.__ridelab.front);

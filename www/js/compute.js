@@ -36,6 +36,15 @@ export function planeModel(s) {
   return s.comfort === 'wk' ? 'lofi' : 'surrogate';
 }
 
+/**
+ * With robust cases (`s.cases`), the design's criteria as the LoFi maps show them (the
+ * robust map's, or with `case` K that case's: the core's `mapCriteria`), for the maps'
+ * captions; null without cases (the captions read the LoFi report).
+ */
+function mapDesignOf(main, s) {
+  return s.cases ? main.call('mapCriteria', s, 'lofi') : Promise.resolve(null);
+}
+
 export class Compute {
   /**
    * `api`: the wasm module (synchronous calls that need no engine: colour tables);
@@ -105,13 +114,14 @@ export class Compute {
     const desc = await main.call('describe', s);
     const ds = { ...s, ks: desc.datumKs, cs: desc.datumCs };
     const plane = planeModel(s);
-    const [datum, design, sDatum, sDesign, cloud, pDesign] = await Promise.all([
+    const [datum, design, sDatum, sDesign, cloud, pDesign, mapDesign] = await Promise.all([
       main.call('analyse', ds, 'lofi'),
       main.call('analyse', s, 'lofi'),
       main.call('criteria', ds, 'surrogate'),
       main.call('criteria', s, 'surrogate'),
       main.call('maps', s, plane, CLOUD_GRID.nx, CLOUD_GRID.ny),
       plane === 'surrogate' ? null : main.call('criteria', s, plane),
+      mapDesignOf(main, s),
     ]);
     let front;
     try {
@@ -128,6 +138,7 @@ export class Compute {
       cloud,
       front,
       plane: { model: plane, design: pDesign || sDesign },
+      mapDesign,
     };
   }
 
@@ -142,9 +153,10 @@ export class Compute {
     const lofi = await this.main.call('analyse', s, 'lofi');
     const sur = await this.main.call('criteria', s, 'surrogate');
     const plane = planeModel(s) === 'surrogate' ? sur : await this.main.call('criteria', s, planeModel(s));
+    const mapDesign = await mapDesignOf(this.main, s);
     let hifi = null;
     if (withHifi) hifi = await this.main.call('readout', s, 'hifi').catch(() => null);
-    return { lofi, surrogate: { ...sur, dtl_relative: sur.dtl / desc.staticWheelLoad }, plane, hifi };
+    return { lofi, surrogate: { ...sur, dtl_relative: sur.dtl / desc.staticWheelLoad }, plane, hifi, mapDesign };
   }
 
   /** A HiFi report on the HiFi worker (`s`: a design or the datum state). */

@@ -165,6 +165,7 @@ export class Controller {
     st.state = s;
     st.desc = r.desc;
     st.lofi = r.lofi;
+    st.mapDesign = r.mapDesign;
     st.surrogate = r.surrogate;
     st.cloud = r.cloud;
     st.front = r.front;
@@ -248,6 +249,7 @@ export class Controller {
       this.controls.setMsg('cs', '');
       st.state = s;
       st.lofi = { ...st.lofi, design: r.lofi };
+      st.mapDesign = r.mapDesign;
       st.surrogate = { ...st.surrogate, design: r.surrogate };
       st.plane = { ...st.plane, design: r.plane };
       if (r.hifi) {

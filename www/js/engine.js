@@ -14,7 +14,7 @@ export const FUNCTIONS = [
 
 /** The methods of the core's `Explorer` session: an engine call is `(method, state, ...args)`. */
 export const SESSION_METHODS = [
-  'describe', 'analyse', 'readout', 'criteria', 'maps', 'front', 'spectra', 'timeResponse', 'surrogateFit',
+  'describe', 'analyse', 'readout', 'criteria', 'mapCriteria', 'maps', 'front', 'spectra', 'timeResponse', 'surrogateFit',
   'studyReport',
 ];
 

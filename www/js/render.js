@@ -242,8 +242,10 @@ export class Render {
     const sur = st.view.model === 'surrogate';
     // The LoFi maps' BAcc is the Wk-weighted one with Wk comfort (the reports' `bacc_wk`).
     const wk = (r) => (st.state.comfort === 'wk' ? { ...r, bacc: r.bacc_wk } : r);
-    const value = sur ? st.surrogate.design : wk(lofi.design);
-    const ref = sur ? st.surrogate.datum : wk(lofi.datum);
+    // With robust cases the LoFi maps are robust (or one case's): their value at the design.
+    const cased = !sur && st.state.cases && st.mapDesign && shown;
+    const value = sur ? st.surrogate.design : cased ? st.mapDesign : wk(lofi.design);
+    const ref = sur ? st.surrogate.datum : cased ? shown.datum : wk(lofi.datum);
     for (const v of this.ui.maps) {
       const k = v.crit.key;
       const caption = shown && (st.view.model === 'lofi' || sur) ? MapView.caption(v.crit, value[k], ref[k], st.view.scale) : '';

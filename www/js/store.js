@@ -75,6 +75,8 @@ export class Store {
     this.desc = null;
     /** LoFi reports of the design and the datum, always for the current state. */
     this.lofi = { design: null, datum: null };
+    /** With robust cases, the design's criteria as the LoFi maps show them (`mapCriteria`), else null. */
+    this.mapDesign = null;
     /** The surrogate's criteria of the design and the datum (`{bacc, dtl, sws, dtl_relative}`). */
     this.surrogate = { design: null, datum: null };
     /** HiFi reports and the state keys they belong to (may lag the state). */

@@ -37,6 +37,10 @@ export function installTestHooks({ store, controller, compute, ui, boot, lessons
     get lofi() {
       return store.lofi;
     },
+    /** With robust cases, the design's criteria as the LoFi maps show them. */
+    get mapDesign() {
+      return store.mapDesign;
+    },
     get hifi() {
       return store.hifi;
     },

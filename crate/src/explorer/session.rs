@@ -182,6 +182,35 @@ impl Session {
             .collect()
     }
 
+    /// The design's criteria as the LoFi or HiFi map (`kind`) shows them at its point, with
+    /// the scenario's comfort measure: without cases the car's; with `case` K that case's;
+    /// otherwise the robust map's ([`robust_fields`], as `ridelab map --cases`): the cases'
+    /// criteria each scaled to its own datum on `kind` (the loaded car's front spring and
+    /// damper), combined by the set's rule, in case 0's units. One run per case.
+    pub fn map_criteria(&mut self, kind: ModelKind) -> Result<Criteria> {
+        let (ks, cs) = self.design();
+        let comfort = self.scenario.comfort;
+        let Some(set) = self.scenario.cases.as_ref() else {
+            return self.scenario.evaluator(kind)?.evaluate(ks, cs);
+        };
+        let one = |k: usize, at: (f64, f64)| {
+            let c = &set.cases[k];
+            comfort
+                .evaluator(kind, &c.car, &c.road)?
+                .evaluate(at.0, at.1)
+        };
+        if let Some(k) = self.scenario.case {
+            return one(k, (ks, cs));
+        }
+        let mut per = Vec::with_capacity(set.cases.len());
+        let mut datums = Vec::with_capacity(set.cases.len());
+        for (k, c) in set.cases.iter().enumerate() {
+            per.push(one(k, (ks, cs))?);
+            datums.push(one(k, (c.car.front.spring, c.car.front.damper))?);
+        }
+        Ok(Combination::new(set.combine, &datums, &set.probabilities())?.apply(&per))
+    }
+
     /// The full analysis report of the design by one model (as `ridelab eval`).
     pub fn report(&self, kind: ModelKind) -> Result<Report> {
         report(kind, &self.scenario.design, &self.scenario.road)

@@ -306,3 +306,43 @@ fn bad_cases_are_named_and_the_last_good_state_kept() {
         "cases"
     );
 }
+
+/// The design's criteria as the maps show them (`map_criteria`, what the page's map
+/// captions read) equal the robust and per-case LoFi and HiFi maps' cells at that point,
+/// both rules; without cases the car's own criteria.
+#[test]
+fn map_criteria_are_the_maps_cells() {
+    for combine in ["worst", "mean"] {
+        let mut s = Session::new(robust_state(combine)).unwrap();
+        for (kind, model) in [
+            (ModelKind::Quarter, MapModel::LoFi),
+            (ModelKind::Full, MapModel::HiFi),
+        ] {
+            for case in [None, Some("4")] {
+                let mut st = s.state().clone();
+                st.case = case.map(str::to_string);
+                s.set_state(st).unwrap();
+                let map = s.map(model, 3, 2).unwrap();
+                let v = &map.values;
+                for k in [0, 4] {
+                    let (i, j) = v.grid.indices(k);
+                    let (ks, cs) = v.grid.point(i, j);
+                    s.set_design(ks, cs).unwrap();
+                    let got = s.map_criteria(kind).unwrap().to_array();
+                    let want = [v.bacc[k], v.dtl[k], v.sws[k]];
+                    for (g, w) in got.iter().zip(want) {
+                        assert!(
+                            (g / w - 1.0).abs() < 1e-12,
+                            "{combine} {model:?} case {case:?} cell {k}: {g} vs {w}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+    let mut plain = Session::new(State::default()).unwrap();
+    assert_eq!(
+        plain.map_criteria(ModelKind::Quarter).unwrap(),
+        plain.criteria(EvaluatorKind::LoFi).unwrap()
+    );
+}

@@ -138,6 +138,15 @@ impl Explorer {
         to_js(&self.0.criteria(kind).map_err(js_error)?)
     }
 
+    /// The design's criteria as the LoFi or HiFi map (`model` "lofi" or "hifi") shows them
+    /// at its point (m/s^2, N, m): the car's, or with robust cases the robust map's (with
+    /// `case` K that case's), as `ridelab map --cases` computes the map's cells.
+    #[wasm_bindgen(js_name = mapCriteria)]
+    pub fn map_criteria(&mut self, model: &str) -> Result<JsValue, JsValue> {
+        let kind = ModelKind::parse(model).map_err(js_error)?;
+        to_js(&self.0.map_criteria(kind).map_err(js_error)?)
+    }
+
     /// The map of one model on the `nx` x `ny` cell-centre grid of the design box (see
     /// `map_js` for the layout): `model` "lofi", "hifi", "surrogate" or "error" (the
     /// surrogate's signed relative error against the HiFi, `100 (S / HiFi - 1)` %, with the
