@@ -144,3 +144,32 @@ test('robust maps, front and per-case pick are the CLI\'s; a bad field is named;
   assertClean(again.log);
   await again.context.close();
 });
+
+test('a car file with load cases (as `ridelab --car FILE`) makes the design robust over them; its maps are `ridelab map --car FILE`\'s', async () => {
+  const { page, context, log } = await openPage(suite.browser, suite.srv.url, { width: 1280, height: 720 });
+  await settled(page, 200);
+  const car = JSON.parse(fs.readFileSync(CAR, 'utf8'));
+  const file = { ...car, name: 'Sedan with a roof box', load_cases: [{ name: 'driver only', mass: 0 }, { name: 'roof box', mass: 60, x: -0.2, z: 0.9 }] };
+  const carPath = path.join(OUT, 'robust-car.json');
+  fs.writeFileSync(carPath, JSON.stringify(file));
+  await page.evaluate(() => document.getElementById('tab-car').click());
+  await page.setInputFiles('#car-file', { name: 'roofbox.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(file)) });
+  await settled(page, 250);
+  const st = await page.evaluate(() => ({ state: window.__ridelab.state, desc: window.__ridelab.desc, maps: window.__ridelab.maps }));
+  assert.deepEqual(JSON.parse(st.state.cases).load_cases, file.load_cases.map((c) => ({ ...c })), 'the file\'s load cases in the cases file');
+  assert.equal(st.desc.cases.length, 2);
+  assert.match(await page.textContent('#maps-model'), /LoFi, robust \(worst of 2 cases\)/);
+  assert.match(await page.textContent('#note-car'), /Robust over its 2 load cases/);
+  // The CLI reads the same file with no cases file: the robust map over its load cases.
+  const c = [process.env.RIDELAB_CLI, path.join(ROOT, 'target/debug/ridelab')].filter(Boolean).find((x) => fs.existsSync(x));
+  const [i, j] = [100, 70];
+  const ks = 10000 + ((i + 0.5) * 30000) / 160;
+  const cs = 500 + ((j + 0.5) * 3500) / 120;
+  const want = JSON.parse(execFileSync(c, ['map', '--model', 'quarter', '--car', carPath, '--class', 'B', '--speed', '20', '--json',
+    '--ks-range', `${ks}:${ks + 1}:2`, '--cs-range', `${cs}:${cs + 1}:2`], { encoding: 'utf8' }));
+  const n = st.maps.nx * st.maps.ny;
+  const k = j * st.maps.nx + i;
+  ['bacc', 'dtl', 'sws'].forEach((name, ci) => assert.ok(rel(st.maps.values[ci * n + k], want[name][0]) < 1e-9, `${name}: ${st.maps.values[ci * n + k]} vs ${want[name][0]}`));
+  assertClean(log);
+  await context.close();
+});

@@ -36,7 +36,7 @@ import { pathText, computeMode } from './gpupath.js';
 import { keepDesign, renderCompare, savedEntry, MAX_SAVED } from './compare.js';
 import { LessonPanel } from './lessonpanel.js';
 import { isLessonHash } from './lessons.js';
-import { RobustPanel } from './robustpanel.js';
+import { RobustPanel, withLoadCases } from './robustpanel.js';
 
 /** ISO 8608 wording of the classes. */
 const CLASS_WORDS = {
@@ -174,8 +174,17 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
       return;
     }
     const json = JSON.stringify(JSON.parse(text));
-    const ok = await ctl.changeScenario({ car: 'custom', carJson: json, ks: parsed.ks, cs: parsed.cs }, 'carFile', {
-      note: moved(parsed.car.name, parsed.ks, parsed.cs),
+    const change = { car: 'custom', carJson: json, ks: parsed.ks, cs: parsed.cs };
+    let note = moved(parsed.car.name, parsed.ks, parsed.cs);
+    if (parsed.loadCases.length) {
+      // As `ridelab --car FILE`: the file's load cases make the design robust over them.
+      // They go into the cases file (the Car & road tab's editor), replacing its own.
+      change.cases = withLoadCases(st.state.cases, parsed.loadCases);
+      change.case = null;
+      note += ` Robust over its ${parsed.loadCases.length} load cases (Car & road tab).`;
+    }
+    const ok = await ctl.changeScenario(change, 'carFile', {
+      note,
       onFail: (e) => controls.setMsg('carFile', `${file.name}: cannot be computed: ${plainWords(e.message)}`),
     });
     if (ok) {

@@ -69,6 +69,15 @@ export function casesText({ load, operating, combine }) {
   return JSON.stringify(out);
 }
 
+/**
+ * The cases text `text` (or none) with its load cases replaced by `loadCases` (a car
+ * file's, as the core's `parseCar` gives them); its operating points and rule kept.
+ */
+export function withLoadCases(text, loadCases) {
+  const c = (text && readCases(text)) || { load: [], operating: [], combine: 'worst' };
+  return casesText({ ...c, load: loadCases });
+}
+
 /** The cases text in its compact form (one line, no spaces), or the text itself when it is not JSON. */
 export function compactCases(text) {
   try {

@@ -13,7 +13,7 @@ use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
 use crate::optimize::PickRule;
 use crate::road::{Road, RoadClass, Tracks};
-use crate::robust::CaseSet;
+use crate::robust::{CarFile, CaseSet};
 use crate::surrogate::{PlanSpec, SurrogateSpec};
 use crate::LoFi;
 use serde::{Deserialize, Serialize};
@@ -224,14 +224,24 @@ pub struct Scenario {
 impl State {
     /// The datum car (a preset or the custom car file), validated.
     pub fn datum_car(&self) -> Result<Car> {
+        self.datum_car_file().map(|f| f.car)
+    }
+
+    /// The datum car and the load cases its file lists (none for a preset), as
+    /// `ridelab --car FILE` reads a car file; validated (load case errors name
+    /// `load_cases[i].field`).
+    pub fn datum_car_file(&self) -> Result<CarFile> {
         if self.car == "custom" {
             let text = self
                 .car_json
                 .as_deref()
                 .ok_or_else(|| RideError::field("car", "'custom' needs a car file (carJson)"))?;
-            Car::from_json(text)
+            CarFile::from_json(text)
         } else {
-            Car::preset(&self.car)
+            Ok(CarFile {
+                car: Car::preset(&self.car)?,
+                load_cases: Vec::new(),
+            })
         }
     }
 
@@ -325,7 +335,9 @@ impl State {
                 format!("is {chars} characters long; at most {MAX_CASES_CHARS}"),
             ));
         }
-        CaseSet::from_json(text, datum, &[], road)
+        // `load_cases` defaults to the car file's, as `ridelab map --cases` reads it.
+        let loads = self.datum_car_file()?.load_cases;
+        CaseSet::from_json(text, datum, &loads, road)
             .map(Some)
             .map_err(|e| match e {
                 RideError::Field { field, reason } => {
@@ -387,7 +399,12 @@ impl State {
         };
         let (comfort, pick) = self.criteria_choice()?;
         let cases = match previous {
-            Some((p, s)) if p.cases == self.cases && s.datum == datum && s.road == road => {
+            Some((p, s))
+                if p.cases == self.cases
+                    && p.car_json == self.car_json
+                    && s.datum == datum
+                    && s.road == road =>
+            {
                 s.cases.clone()
             }
             _ => self.case_set(&datum, &road)?,

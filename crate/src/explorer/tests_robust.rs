@@ -346,3 +346,74 @@ fn map_criteria_are_the_maps_cells() {
         plain.criteria(EvaluatorKind::LoFi).unwrap()
     );
 }
+
+/// A custom car file that lists load cases, as `ridelab map --car FILE --cases C` reads
+/// it: the cases file's `load_cases` default to the file's; a cases file with its own
+/// replaces them; a new car file brings its own (the kept case set is not reused).
+#[test]
+fn a_car_files_load_cases_are_the_cases_default() {
+    let mut file: serde_json::Value = serde_json::from_str(crate::car::PRESETS[0].1).unwrap();
+    file["load_cases"] = serde_json::json!([
+        {"name": "driver only", "mass": 0},
+        {"name": "roof box", "mass": 60, "x": -0.2, "z": 0.9}
+    ]);
+    let text = file.to_string();
+    let cases = r#"{"operating": [{"class": "B", "speed": 20}, {"class": "C", "speed": 15}]}"#;
+    let mut s = Session::new(State {
+        car: "custom".into(),
+        car_json: Some(text.clone()),
+        cases: Some(cases.into()),
+        ..State::default()
+    })
+    .unwrap();
+    let sc = s.scenario().clone();
+    let cli = crate::robust::CarFile::from_json(&text).unwrap();
+    assert_eq!(cli.load_cases.len(), 2);
+    let want = CaseSet::from_json(cases, &cli.car, &cli.load_cases, &sc.road).unwrap();
+    let got = sc.cases.clone().unwrap();
+    assert_eq!(got.cases.len(), 4);
+    for (g, w) in got.cases.iter().zip(&want.cases) {
+        assert_eq!((&g.name, &g.car, g.road), (&w.name, &w.car, w.road));
+    }
+    let settings = MapSettings {
+        grid: Grid::cells(&sc.dbox, 16, 12).unwrap(),
+        objectives: sc.objectives.clone(),
+        ..MapSettings::default()
+    };
+    let map = robust_map_report(
+        ModelKind::Quarter,
+        &cli.car,
+        &sc.road,
+        &want,
+        &settings,
+        Compute::Cpu,
+    )
+    .unwrap();
+    assert_map_eq(
+        &s.map(MapModel::LoFi, 16, 12).unwrap(),
+        &map.map,
+        0.0,
+        "car file's load cases",
+    );
+    // The cases file's own load cases replace the car file's.
+    let own = r#"{"load_cases": [{"name": "laden", "mass": 300}], "combine": "mean"}"#;
+    let mut st = s.state().clone();
+    st.cases = Some(own.into());
+    s.set_state(st).unwrap();
+    assert_eq!(s.scenario().cases.as_ref().unwrap().cases.len(), 1);
+    // The same cases text with a car file of other load cases: re-read, not kept.
+    let mut st = s.state().clone();
+    st.cases = Some(cases.into());
+    s.set_state(st).unwrap();
+    file["load_cases"] = serde_json::json!([{"name": "empty", "mass": 0}]);
+    let mut st = s.state().clone();
+    st.car_json = Some(file.to_string());
+    s.set_state(st).unwrap();
+    assert_eq!(s.scenario().cases.as_ref().unwrap().cases.len(), 2);
+    // A bad load case in the car file names it.
+    file["load_cases"] = serde_json::json!([{"name": "x", "mass": -5000}]);
+    let mut st = s.state().clone();
+    st.car_json = Some(file.to_string());
+    let e = s.set_state(st).unwrap_err();
+    assert!(e.to_string().contains("load_cases[0].mass"), "{e}");
+}

@@ -27,6 +27,7 @@ use crate::chart::ColourMap;
 use crate::error::RideError;
 use crate::explorer::{ui_field, State, FIT_FIELDS, REPORT_FIELDS, STATE_FIELDS};
 use crate::road::RoadClass;
+use crate::robust::{CarFile, LoadCase};
 use js_sys::{Float64Array, Object, Reflect, Uint8Array};
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
@@ -235,7 +236,9 @@ pub fn road_classes() -> Result<JsValue, JsValue> {
     to_js(&v)
 }
 
-/// Parses and validates a car file; returns `{car, ks, cs}` or an error naming the field.
+/// Parses and validates a car file (as `ridelab --car FILE`: its `load_cases` too);
+/// returns `{car, ks, cs, loadCases}` (`loadCases`: the file's load cases as a cases
+/// file lists them, empty when it lists none) or an error naming the field.
 #[wasm_bindgen(js_name = parseCar)]
 pub fn parse_car(json: &str) -> Result<JsValue, JsValue> {
     #[derive(Serialize)]
@@ -243,10 +246,19 @@ pub fn parse_car(json: &str) -> Result<JsValue, JsValue> {
         car: Car,
         ks: f64,
         cs: f64,
+        #[serde(rename = "loadCases")]
+        load_cases: Vec<LoadCase>,
     }
-    let car = Car::from_json(json).map_err(js_error)?;
+    let file = CarFile::from_json(json).map_err(js_error)?;
+    let car = file.car;
     let (ks, cs) = (car.front.spring, car.front.damper);
-    to_js(&Parsed { car, ks, cs })
+    let load_cases = file.load_cases;
+    to_js(&Parsed {
+        car,
+        ks,
+        cs,
+        load_cases,
+    })
 }
 
 /// Checks a state; returns the normalised state or an error naming the field.
