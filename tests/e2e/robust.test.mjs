@@ -156,7 +156,7 @@ test('a car file with load cases (as `ridelab --car FILE`) makes the design robu
   await page.setInputFiles('#car-file', { name: 'roofbox.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(file)) });
   await settled(page, 250);
   const st = await page.evaluate(() => ({ state: window.__ridelab.state, desc: window.__ridelab.desc, maps: window.__ridelab.maps }));
-  assert.deepEqual(JSON.parse(st.state.cases).load_cases, file.load_cases.map((c) => ({ ...c })), 'the file\'s load cases in the cases file');
+  assert.deepEqual(JSON.parse(st.state.cases).load_cases, file.load_cases.map((c) => ({ x: 0, y: 0, z: 0, weight: 1, ...c })), 'the file\'s load cases in the cases file');
   assert.equal(st.desc.cases.length, 2);
   assert.match(await page.textContent('#maps-model'), /LoFi, robust \(worst of 2 cases\)/);
   assert.match(await page.textContent('#note-car'), /Robust over its 2 load cases/);
