@@ -51,6 +51,9 @@ test('robust maps, front and per-case pick are the CLI\'s; a bad field is named;
   assert.match(await page.textContent('#maps-model'), /LoFi, robust \(worst of 6 cases\)/);
   assert.match(await page.textContent('#h-objective'), /LoFi, robust: worst of 6 cases/);
   assert.match(await page.textContent('#map-status'), /every case, robust \(worst of 6 cases\)/);
+  // The HiFi front (issue #13) is one case's: not drawn with cases, and the line says so.
+  assert.match(await page.textContent('#op-hifi-status'), /HiFi front: one case only/);
+  assert.equal(await page.evaluate(() => window.__ridelab.objPlane.data.hifi), null, 'no HiFi front on the plane');
 
   // A map cell against `ridelab map --cases` on a 2 x 2 grid through that cell's centre
   // and its neighbour's (the page's cells: ks_i = 10000 + (i + 1/2) 30000 / 160 N/m).

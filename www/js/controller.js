@@ -437,7 +437,7 @@ export class Controller {
     if (st.hifiFront && st.hifiFront.key === key) return;
     if (st.state.cases) {
       // The core refuses it too (naming `cases`): the HiFi front is one case's.
-      st.hifiFront = { error: 'one case only; with load cases each case\'s pick is re-checked on its HiFi (Pick tab)', key };
+      st.hifiFront = { error: 'one case only; each case\'s HiFi re-check is in the Pick tab', key };
       this.render.hifiFront();
       return;
     }
