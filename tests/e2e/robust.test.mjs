@@ -51,9 +51,19 @@ test('robust maps, front and per-case pick are the CLI\'s; a bad field is named;
   assert.match(await page.textContent('#maps-model'), /LoFi, robust \(worst of 6 cases\)/);
   assert.match(await page.textContent('#h-objective'), /LoFi, robust: worst of 6 cases/);
   assert.match(await page.textContent('#map-status'), /every case, robust \(worst of 6 cases\)/);
-  // The HiFi front (issue #13) is one case's: not drawn with cases, and the line says so.
-  assert.match(await page.textContent('#op-hifi-status'), /HiFi front: one case only/);
-  assert.equal(await page.evaluate(() => window.__ridelab.objPlane.data.hifi), null, 'no HiFi front on the plane');
+  // The HiFi front (issue #13) with cases is the robust one: `ridelab optimize --cases
+  // --evaluator full` with the plane's STM, every point to 1e-9; the line under the plane
+  // judges the LoFi's robust front against it.
+  const hopt = cli(['optimize', '--evaluator', 'full', '--method', 'stm', '--grid', '61', '--levels', '2']);
+  const hf = await page.evaluate(() => window.__ridelab.objPlane.data.hifi);
+  assert.ok(hf && !hf.error, hf && hf.error);
+  assert.equal(hf.front.study.front.length, hopt.front.length);
+  hf.front.study.front.forEach((p, k) => ['ks', 'cs', 'bacc', 'dtl'].forEach((c) => assert.ok(rel(p[c], hopt.front[k][c]) < 1e-9, `HiFi front point ${k} ${c}`)));
+  assert.ok(rel(hf.front.study.hypervolume, hopt.hypervolume) < 1e-9, 'HiFi robust hypervolume');
+  assert.ok(rel(hf.front.study.pick.ks, hopt.pick.ks) < 1e-9 && rel(hf.front.study.pick.cs, hopt.pick.cs) < 1e-9, 'HiFi robust pick');
+  assert.equal(hf.hifiRuns, hopt.evaluations + 6);
+  assert.equal(hf.plane.model, 'robust');
+  assert.match(await page.textContent('#op-hifi-status'), /HiFi runs\. LoFi's robust front \(12 runs\): [\d.]+ % of its hypervolume/);
 
   // A map cell against `ridelab map --cases` on a 2 x 2 grid through that cell's centre
   // and its neighbour's (the page's cells: ks_i = 10000 + (i + 1/2) 30000 / 160 N/m).

@@ -146,7 +146,8 @@ export function objectiveSpec({ front: fr, nsga, cloud, design, adaptive = null,
   }
   // The HiFi's own front wide and dark underneath: where the plane's front is on it, it
   // shows as a dark edge around the plane's line.
-  if (hf) series.push(line(`HiFi front, STM on the full car (${hf.study.front.length} pts, ${hifi.hifiRuns} HiFi runs)`, COL.hifiFront, hfPts, 5));
+  const on = hifi && hifi.plane && hifi.plane.model === 'robust' ? "HiFi robust front, STM on every case's full car" : 'HiFi front, STM on the full car';
+  if (hf) series.push(line(`${on} (${hf.study.front.length} pts, ${hifi.hifiRuns} HiFi runs)`, COL.hifiFront, hfPts, 5));
   series.push(line(`Pareto front, STM (${frontPts.length} pts)`, COL.stm, frontPts, 2.5));
   if (nsga && !nsga.error) {
     const nf = nsga.study.front.map((p) => xy(p.bacc, p.dtl));

@@ -435,12 +435,6 @@ export class Controller {
     const st = this.store;
     const key = scenarioKey(st.state);
     if (st.hifiFront && st.hifiFront.key === key) return;
-    if (st.state.cases) {
-      // The core refuses it too (naming `cases`): the HiFi front is one case's.
-      st.hifiFront = { error: 'one case only; each case\'s HiFi re-check is in the Pick tab', key };
-      this.render.hifiFront();
-      return;
-    }
     this.render.hifiFrontStatus('HiFi front: computing…');
     this.track(
       this.hifiFrontRun(st.state).then((out) => {

@@ -126,7 +126,8 @@ export class Host {
     const t0 = performance.now();
     let values;
     const key = `${scenarioKey(state)}|stm`;
-    if (this.gpu && (state.comfort || 'bacc') === 'bacc' && this.gpuFailedKey !== key) {
+    // The GPU grid is one case's unweighted BAcc: Wk comfort and robust cases run on the CPU.
+    if (this.gpu && (state.comfort || 'bacc') === 'bacc' && !state.cases && this.gpuFailedKey !== key) {
       const maps = await this.gpu.open();
       if (maps) {
         try {

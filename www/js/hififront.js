@@ -13,9 +13,13 @@ export function currentHifiFront(st) {
   return h && !h.error && h.key === scenarioKey(st.state) ? h : null;
 }
 
-/** "surrogate's" or "LoFi's": whose front the plane shows. */
+/** Whose front the plane shows (the core's `plane.model`): in a sentence, at its start, in the table. */
+const WHOSE = { surrogate: "the surrogate's", lofi: "the LoFi's", robust: "the LoFi's robust" };
+const LINE_NAMES = { surrogate: "Surrogate's", lofi: "LoFi's", robust: "LoFi's robust" };
+const TABLE_NAMES = { surrogate: 'Surrogate front', lofi: 'LoFi front', robust: 'LoFi robust front' };
+
 function whose(h) {
-  return h.plane.model === 'lofi' ? "the LoFi's" : "the surrogate's";
+  return WHOSE[h.plane.model];
 }
 
 /** A count with thin-space thousands ("4 620"). */
@@ -28,14 +32,15 @@ export function hifiFrontLine(h) {
   if (!h) return '';
   if (h.error) return `HiFi front: ${h.error.replace(/^sws_limit: /, 'SWS limit: ')}`;
   const p = h.plane;
-  return `${count(h.hifiRuns)} HiFi runs. ${h.plane.model === 'lofi' ? 'LoFi' : 'Surrogate'}'s front (${count(p.hifiRuns)} runs): ` +
+  return `${count(h.hifiRuns)} HiFi runs. ${LINE_NAMES[h.plane.model]} front (${count(p.hifiRuns)} runs): ` +
     `${fmt(100 * p.hypervolumeRatio, 4)} % of its hypervolume, pick ${fmtPct(p.pickGapPercent[0] / 100, 2)} BAcc, ${fmtPct(p.pickGapPercent[1] / 100, 2)} DTL.`;
 }
 
 /** The line's tooltip: how the figures were made. */
 export function hifiFrontTitle(h) {
   const p = h.plane;
-  return `STM on the full car, 61 × 61 grid refined twice (${h.compute === 'gpu' ? 'starting grid on the GPU' : 'CPU'}, ${fmt(h.ms, 3)} ms in the worker). ` +
+  const on = h.plane.model === 'robust' ? "every case's full car, the robust objective" : 'the full car';
+  return `STM on ${on}, 61 × 61 grid refined twice (${h.compute === 'gpu' ? 'starting grid on the GPU' : 'CPU'}, ${fmt(h.ms, 3)} ms in the worker). ` +
     `Hypervolumes against the HiFi front's reference point (${fmt(h.front.study.reference_point[0], 4)} m/s², ${fmt(h.front.study.reference_point[1], 4)} N): ` +
     `HiFi front ${fmt(h.front.study.hypervolume, 5)}, ${whose(h)} front ${fmt(p.hypervolume, 5)} as predicted and ${fmt(p.hypervolumeOnHifi, 5)} on the HiFi ` +
     `(${p.hifiFeasiblePoints} of its ${p.frontPoints} designs meet the objectives there), (m/s²)·N.`;
@@ -55,7 +60,7 @@ export function renderHifiFront(table, h, fr) {
   const p = h.plane;
   const hp = h.front.study.pick;
   const rc = fr.recheck;
-  const on = p.model === 'lofi' ? 'LoFi front' : 'Surrogate front';
+  const on = TABLE_NAMES[p.model];
   const cell = (v, text) => `<td class="num" data-value="${v}">${text}</td>`;
   const row = (name, unit, a, b, extra = '<td></td>') =>
     `<tr><th scope="row">${name}${unit ? ` <span class="unit">${unit}</span>` : ''}</th>${a}${b}${extra}</tr>`;

@@ -9,6 +9,9 @@
 //! `nadir + 0.1 (nadir - ideal)` ([`crate::optimize::reference_point`]), so they compare.
 //! The plane front's designs are re-evaluated on the HiFi; those that break the design
 //! objectives there by more than [`HIFI_FEASIBILITY_TOLERANCE`] add nothing.
+//!
+//! With robust cases both fronts are robust ([`robust_hifi_front`]): STM on the robust
+//! objective of every case's full car against the plane's LoFi robust front.
 
 use super::state::Scenario;
 use super::studies::{self, FrontResult};
@@ -20,6 +23,8 @@ use crate::evaluate::{Criteria, Evaluator};
 use crate::gpu::{ComputePath, HiFiGrid};
 use crate::maps::Grid;
 use crate::optimize::{hypervolume, Counted};
+use crate::robust::optimize::hifi_combination;
+use crate::robust::{robust_constraints, CaseSet};
 use crate::surrogate::adaptive::HIFI_FEASIBILITY_TOLERANCE;
 use serde::Serialize;
 
@@ -43,10 +48,11 @@ pub struct HifiFrontView {
 #[derive(Debug, Clone, Serialize)]
 #[serde(rename_all = "camelCase")]
 pub struct PlaneCheck {
-    /// The plane's model: "surrogate" or "lofi".
+    /// The plane's model: "surrogate", "lofi" or "robust" (the LoFi's robust objective).
     pub model: String,
     /// HiFi runs behind the plane's front and pick: the surrogate's samples and the
-    /// pick's re-check (the LoFi: the re-check only).
+    /// pick's re-check (the LoFi: the re-check only; robust: every case's HiFi datum and
+    /// the pick's re-check in every case).
     pub hifi_runs: usize,
     /// Points of the plane's front.
     pub front_points: usize,
@@ -110,7 +116,12 @@ pub fn hifi_front(
                 (front, counted.count(), ComputePath::Gpu)
             }
         };
-    let plane = plane_check(s, &front, plane, plane_model, plane_runs)?;
+    let full = s.evaluator(ModelKind::Full)?;
+    let ctx = DosContext::new(&s.datum, front.datum);
+    let plane = plane_check(&front, plane, plane_model, plane_runs, |ks, cs| {
+        let c = full.evaluate(ks, cs)?;
+        Ok((s.objectives.violation(&ctx, ks, cs, &c) <= HIFI_FEASIBILITY_TOLERANCE).then_some(c))
+    })?;
     Ok(HifiFrontView {
         front,
         hifi_runs,
@@ -119,25 +130,68 @@ pub fn hifi_front(
     })
 }
 
-/// `plane` judged on the HiFi against `hifi` (see [`PlaneCheck`]).
-fn plane_check(
+/// The robust HiFi front of `s`'s cases `set` (STM on every case's full car, the robust
+/// objective and DOS of `ridelab optimize --cases --evaluator full`) and the plane's
+/// LoFi robust front `plane` judged against it: each of its designs re-run on every
+/// case's HiFi, combined as the HiFi front combines them, and kept where it meets the
+/// objectives in every case (to [`HIFI_FEASIBILITY_TOLERANCE`]). HiFi runs: the HiFi
+/// front's `evaluations` (designs x cases) and its cases' datums; the plane's, its cases'
+/// HiFi datums (its normalisation) and its pick's re-check in every case.
+pub fn robust_hifi_front(
     s: &Scenario,
+    set: &CaseSet,
+    plane: &FrontResult,
+) -> Result<HifiFrontView> {
+    let front = studies::robust_front(s, set, "stm", ModelKind::Full)?;
+    let n = set.cases.len();
+    let hifi_runs = front.study.evaluations + n;
+    let (combination, datums) = hifi_combination(set, s.comfort)?;
+    let hifis = set
+        .cases
+        .iter()
+        .map(|c| s.comfort.evaluator(ModelKind::Full, &c.car, &c.road))
+        .collect::<Result<Vec<_>>>()?;
+    let ctxs: Vec<DosContext> = set
+        .cases
+        .iter()
+        .zip(&datums)
+        .map(|(c, d)| DosContext::new(&c.car, *d))
+        .collect();
+    let plane = plane_check(&front, plane, "robust", 2 * n, |ks, cs| {
+        let per = hifis
+            .iter()
+            .map(|h| h.evaluate(ks, cs))
+            .collect::<Result<Vec<_>>>()?;
+        let g = robust_constraints(&s.objectives, &ctxs, ks, cs, &per);
+        let violation: f64 = g.iter().map(|(_, v)| v.max(0.0)).sum();
+        Ok((violation <= HIFI_FEASIBILITY_TOLERANCE).then(|| combination.apply(&per)))
+    })?;
+    Ok(HifiFrontView {
+        front,
+        hifi_runs,
+        compute: ComputePath::Cpu,
+        plane,
+    })
+}
+
+/// `plane` judged on the HiFi against `hifi` (see [`PlaneCheck`]); `on_hifi(ks, cs)`: a
+/// design's HiFi criteria where it meets the objectives there, else `None`.
+fn plane_check(
     hifi: &FrontResult,
     plane: &FrontResult,
     model: &str,
     plane_runs: usize,
+    on_hifi: impl Fn(f64, f64) -> Result<Option<Criteria>>,
 ) -> Result<PlaneCheck> {
-    let full = s.evaluator(ModelKind::Full)?;
-    let ctx = DosContext::new(&s.datum, hifi.datum);
     let reference = hifi.study.reference_point;
     let predicted: Vec<[f64; 2]> = plane.study.front.iter().map(|p| [p.bacc, p.dtl]).collect();
-    let mut on_hifi = Vec::new();
+    let mut kept = Vec::new();
     for p in &plane.study.front {
-        let c = full.evaluate(p.ks, p.cs)?;
-        if s.objectives.violation(&ctx, p.ks, p.cs, &c) <= HIFI_FEASIBILITY_TOLERANCE {
-            on_hifi.push([c.bacc, c.dtl]);
+        if let Some(c) = on_hifi(p.ks, p.cs)? {
+            kept.push([c.bacc, c.dtl]);
         }
     }
+    let on_hifi = kept;
     let hv_on_hifi = hypervolume(&on_hifi, reference);
     let (a, b) = (
         plane.recheck.rechecked.to_array(),

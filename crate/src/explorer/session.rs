@@ -469,7 +469,7 @@ impl Session {
         if let Some(set) = &self.scenario.cases {
             return match model {
                 FrontModel::LoFi | FrontModel::Robust => {
-                    studies::robust_front(&self.scenario, set, method)
+                    studies::robust_front(&self.scenario, set, method, ModelKind::Quarter)
                 }
                 FrontModel::Surrogate => Err(RideError::field(
                     "cases",
@@ -499,29 +499,34 @@ impl Session {
     /// against it ([`hifi_front::hifi_front`]). `grid_planes`: the HiFi criteria of STM's
     /// starting grid from the GPU (`GpuMaps.stmGrid`'s `values`: BAcc, DTL, SWS planes of
     /// `STM_GRID^2` designs; errors name `values`), or `None` for the CPU HiFi.
-    /// With robust cases it is refused (naming `cases`): the HiFi front is one case's.
+    /// With robust cases both fronts are the robust ones ([`hifi_front::robust_hifi_front`]:
+    /// `ridelab optimize --cases --evaluator full` against the plane's LoFi robust front),
+    /// on the CPU (GPU values are refused naming `cases`).
     pub fn hifi_front(&mut self, grid_planes: Option<&[f64]>) -> Result<HifiFrontView> {
-        if self.scenario.cases.is_some() {
-            return Err(RideError::field(
-                "cases",
-                "the HiFi front is one case's; with load cases the robust front's pick is re-checked on every case's HiFi (the per-case table)",
-            ));
+        if let Some(set) = self.scenario.cases.clone() {
+            if grid_planes.is_some() {
+                return Err(RideError::field(
+                    "cases",
+                    "the GPU grid is one case's; the robust HiFi front runs on the CPU",
+                ));
+            }
+            let plane = self.front("stm", FrontModel::Robust)?;
+            return hifi_front::robust_hifi_front(&self.scenario, &set, &plane);
         }
         let n = studies::STM_GRID * studies::STM_GRID;
         let given = match grid_planes {
             Some(p) => Some(criteria_of_planes(p, n, &format!("3 x {n}"))?),
             None => None,
         };
-        let (model, runs) = match self.scenario.comfort {
-            Comfort::Wk => (FrontModel::LoFi, 0),
-            Comfort::Bacc => (FrontModel::Surrogate, self.surrogate()?.samples.len()),
+        let (model, name, runs) = match self.scenario.comfort {
+            Comfort::Wk => (FrontModel::LoFi, "lofi", 0),
+            Comfort::Bacc => (
+                FrontModel::Surrogate,
+                "surrogate",
+                self.surrogate()?.samples.len(),
+            ),
         };
         let plane = self.front("stm", model)?;
-        let name = match model {
-            FrontModel::LoFi => "lofi",
-            FrontModel::Surrogate => "surrogate",
-            FrontModel::Robust => "robust",
-        };
         // The plane's pick costs one HiFi run more: its re-check.
         hifi_front::hifi_front(&self.scenario, &plane, name, runs + 1, given.as_deref())
     }

@@ -109,16 +109,22 @@ pub struct RobustFront {
     pub cases: Vec<CasePick>,
 }
 
-/// The robust front of the scenario's cases on the quarter car by `method_name`, with
-/// the scenario's box, objectives, comfort measure and pick rule: exactly
-/// [`robust_optimize_report`]'s front, pick and per-case re-checks, the datum its robust
-/// (HiFi, case 0's) datum.
-pub fn robust_front(s: &Scenario, set: &CaseSet, method_name: &str) -> Result<FrontResult> {
+/// The robust front of the scenario's cases on `kind` (the quarter car for the plane, the
+/// full car for the HiFi's own) by `method_name`, with the scenario's box, objectives,
+/// comfort measure and pick rule: exactly [`robust_optimize_report`]'s front, pick and
+/// per-case re-checks (`ridelab optimize --cases --evaluator quarter|full`), the datum
+/// its robust (HiFi, case 0's) datum.
+pub fn robust_front(
+    s: &Scenario,
+    set: &CaseSet,
+    method_name: &str,
+    kind: ModelKind,
+) -> Result<FrontResult> {
     let m = method(method_name)?;
     let r = robust_optimize_report(
         set,
         &s.dbox,
-        EvaluatorSpec::Model(ModelKind::Quarter),
+        EvaluatorSpec::Model(kind),
         s.plan,
         &m,
         s.objectives.clone(),

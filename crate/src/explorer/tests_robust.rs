@@ -287,8 +287,9 @@ fn bad_cases_are_named_and_the_last_good_state_kept() {
     assert_eq!(field(&e), "case");
     let e = s.front("stm", FrontModel::Surrogate).unwrap_err();
     assert_eq!(field(&e), "cases");
-    // The HiFi front is one case's: refused with cases, on either path.
-    assert_eq!(field(&s.hifi_front(None).unwrap_err()), "cases");
+    // The robust HiFi front runs on the CPU: GPU values (one case's grid) are refused.
+    let planes = vec![1.0; 3 * studies::STM_GRID * studies::STM_GRID];
+    assert_eq!(field(&s.hifi_front(Some(&planes)).unwrap_err()), "cases");
     let mut plain = Session::new(State::default()).unwrap();
     let e = plain
         .set_state(State {
@@ -416,4 +417,94 @@ fn a_car_files_load_cases_are_the_cases_default() {
     st.car_json = Some(file.to_string());
     let e = s.set_state(st).unwrap_err();
     assert!(e.to_string().contains("load_cases[0].mass"), "{e}");
+}
+
+/// With cases the HiFi front is the robust one, `ridelab optimize --cases --evaluator
+/// full` bit for bit, and the plane's LoFi robust front is judged against it: each of its
+/// designs re-run on every case's HiFi through the session's per-case readout, combined
+/// with the cases' HiFi datums and kept where no case breaks an objective (`broken`, a
+/// second function from the optimiser's constraints), to 1e-12. One case "as given" on
+/// the scenario's road gives the single-case HiFi front exactly (the limiting case).
+#[test]
+fn robust_hifi_front_is_optimize_cases_on_the_full_car() {
+    let mut s = Session::new(robust_state("worst")).unwrap();
+    let view = s.hifi_front(None).unwrap();
+    let sc = s.scenario().clone();
+    let set = sc.cases.clone().unwrap();
+    let want = robust_optimize_report(
+        &set,
+        &sc.dbox,
+        EvaluatorSpec::Model(ModelKind::Full),
+        sc.plan,
+        &studies::method("stm").unwrap(),
+        sc.objectives.clone(),
+        sc.comfort,
+        sc.pick,
+    )
+    .unwrap();
+    assert_eq!(view.front.study, want.study);
+    assert_eq!(view.front.datum, want.datum);
+    assert_eq!(view.hifi_runs, want.study.evaluations + 6);
+    assert_eq!(view.plane.model, "robust");
+    assert_eq!(view.plane.hifi_runs, 12);
+    assert!(
+        want.study.front.len() > 10,
+        "{} points",
+        want.study.front.len()
+    );
+    // The plane's front, judged independently.
+    let plane = s.front("stm", FrontModel::Robust).unwrap();
+    let (combination, datums) =
+        crate::robust::optimize::hifi_combination(&set, sc.comfort).unwrap();
+    let mut kept = Vec::new();
+    for p in &plane.study.front {
+        s.set_design(p.ks, p.cs).unwrap();
+        let per = s.case_criteria(ModelKind::Full).unwrap();
+        let ok = set.cases.iter().zip(&per).zip(&datums).all(|((c, h), d)| {
+            let ctx = crate::dos::DosContext::new(&c.car, *d);
+            sc.objectives.broken(&ctx, p.ks, p.cs, h).is_empty()
+        });
+        if ok {
+            let r = combination.apply(&per);
+            kept.push([r.bacc, r.dtl]);
+        }
+    }
+    let reference = want.study.reference_point;
+    let hv = crate::optimize::hypervolume(&kept, reference);
+    assert_eq!(view.plane.front_points, plane.study.front.len());
+    assert_eq!(view.plane.hifi_feasible_points, kept.len());
+    assert!(
+        (view.plane.hypervolume_on_hifi / hv - 1.0).abs() < 1e-12,
+        "{} vs {hv}",
+        view.plane.hypervolume_on_hifi
+    );
+    assert!((view.plane.hypervolume_ratio - hv / want.study.hypervolume).abs() < 1e-12);
+    assert!(
+        view.plane.hypervolume_ratio > 0.5 && view.plane.hypervolume_ratio <= 1.0 + 1e-9,
+        "{}",
+        view.plane.hypervolume_ratio
+    );
+    let (a, b) = (
+        plane.recheck.rechecked.to_array(),
+        want.study.pick.criteria.to_array(),
+    );
+    for k in 0..3 {
+        assert!((view.plane.pick_gap_percent[k] - 100.0 * (a[k] / b[k] - 1.0)).abs() < 1e-12);
+    }
+    // One case, the car as given on the scenario's road: the single-case HiFi front.
+    let mut one = Session::new(State {
+        cases: Some(r#"{"combine": "worst"}"#.into()),
+        ..State::default()
+    })
+    .unwrap();
+    let robust = one.hifi_front(None).unwrap();
+    let mut plain = Session::new(State::default()).unwrap();
+    let single = plain.hifi_front(None).unwrap();
+    assert_eq!(robust.front.study.front, single.front.study.front);
+    assert_eq!(
+        robust.front.study.hypervolume,
+        single.front.study.hypervolume
+    );
+    assert_eq!(robust.front.study.pick, single.front.study.pick);
+    assert_eq!(robust.hifi_runs, single.hifi_runs);
 }
