@@ -23,8 +23,8 @@ use crate::evaluate::{Criteria, Evaluator};
 use crate::gpu::{ComputePath, HiFiGrid};
 use crate::maps::Grid;
 use crate::optimize::{hypervolume, Counted};
-use crate::robust::optimize::hifi_combination;
-use crate::robust::{robust_constraints, CaseSet};
+use crate::robust::optimize::{case_contexts, case_hifis, datums_on};
+use crate::robust::{robust_constraints, CaseSet, Combination};
 use crate::surrogate::adaptive::HIFI_FEASIBILITY_TOLERANCE;
 use serde::Serialize;
 
@@ -145,18 +145,11 @@ pub fn robust_hifi_front(
     let front = studies::robust_front(s, set, "stm", ModelKind::Full)?;
     let n = set.cases.len();
     let hifi_runs = front.study.evaluations + n;
-    let (combination, datums) = hifi_combination(set, s.comfort)?;
-    let hifis = set
-        .cases
-        .iter()
-        .map(|c| s.comfort.evaluator(ModelKind::Full, &c.car, &c.road))
-        .collect::<Result<Vec<_>>>()?;
-    let ctxs: Vec<DosContext> = set
-        .cases
-        .iter()
-        .zip(&datums)
-        .map(|(c, d)| DosContext::new(&c.car, *d))
-        .collect();
+    // The cases' HiFis and their datums: the robust objective the HiFi front optimises.
+    let hifis = case_hifis(set, s.comfort)?;
+    let datums = datums_on(set, &hifis)?;
+    let combination = Combination::new(set.combine, &datums, &set.probabilities())?;
+    let ctxs = case_contexts(set, &datums);
     let plane = plane_check(&front, plane, "robust", 2 * n, |ks, cs| {
         let per = hifis
             .iter()

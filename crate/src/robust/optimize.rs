@@ -154,17 +154,30 @@ pub fn datums_on(set: &CaseSet, evaluators: &[Box<dyn Evaluator + Sync>]) -> Res
         .collect()
 }
 
+/// Every case's HiFi (the full car of its loaded car on its road) with the `comfort`
+/// measure, in case order.
+pub fn case_hifis(set: &CaseSet, comfort: Comfort) -> Result<Vec<Box<dyn Evaluator + Sync>>> {
+    set.cases
+        .iter()
+        .map(|c| comfort.evaluator(ModelKind::Full, &c.car, &c.road))
+        .collect()
+}
+
+/// Every case's DOS context: its loaded car against its datum criteria `datums[k]`.
+pub fn case_contexts(set: &CaseSet, datums: &[Criteria]) -> Vec<DosContext> {
+    set.cases
+        .iter()
+        .zip(datums)
+        .map(|(c, d)| DosContext::new(&c.car, *d))
+        .collect()
+}
+
 /// The combination of the robust optimisation ([`robust_optimize_report`]): the cases'
 /// criteria scaled to their HiFi datums (with the `comfort` measure), the set's rule
 /// and probabilities; also the HiFi datums. What the front's robust objective of a
 /// design is, `combination.apply(per-case criteria)`.
 pub fn hifi_combination(set: &CaseSet, comfort: Comfort) -> Result<(Combination, Vec<Criteria>)> {
-    let hifis = set
-        .cases
-        .iter()
-        .map(|c| comfort.evaluator(ModelKind::Full, &c.car, &c.road))
-        .collect::<Result<Vec<_>>>()?;
-    let datums = datums_on(set, &hifis)?;
+    let datums = datums_on(set, &case_hifis(set, comfort)?)?;
     Ok((
         Combination::new(set.combine, &datums, &set.probabilities())?,
         datums,
@@ -219,12 +232,7 @@ pub fn robust_optimize_report(
     }
     let datums = datums_on(set, &hifis)?;
     let combination = Combination::new(set.combine, &datums, &set.probabilities())?;
-    let ctxs: Vec<DosContext> = set
-        .cases
-        .iter()
-        .zip(&datums)
-        .map(|(c, d)| DosContext::new(&c.car, *d))
-        .collect();
+    let ctxs = case_contexts(set, &datums);
     let problem = RobustProblem::new(
         RobustEvaluator {
             cases: models,
