@@ -532,6 +532,11 @@ fn optimize_by_library(evaluator: &str, method: Method) -> Value {
     let mut v = to_json(&study);
     v["datum"] = to_json(&datum);
     v["hifi_recheck"] = to_json(&check);
+    v["warnings"] = to_json(&ridelab::optimize::pick_warnings(
+        &study.pick,
+        &check,
+        &design_box,
+    ));
     v
 }
 
@@ -1483,7 +1488,12 @@ fn optimize_pick_rules_equal_the_library() {
             ridelab::dos::DesignObjectives::default(),
         )
         .unwrap();
-        lib.repick(rule.parse::<PickRule>().unwrap(), &car, &road)
+        lib.repick(
+            rule.parse::<PickRule>().unwrap(),
+            &car,
+            &road,
+            &ridelab::DesignBox::default(),
+        )
             .unwrap();
         assert_same_json(&v, &to_json(&lib), rule);
         assert_eq!(v["pick"]["rule"], rule);

@@ -1,7 +1,7 @@
 //! The LoFi and HiFi evaluators over the design variables, and the full analysis
 //! report of one design (criteria by both routes, modes, ride properties).
 
-use crate::car::{Car, QuarterCar};
+use crate::car::{Car, DesignDomain, QuarterCar};
 use crate::criteria::{
     bacc_wk, bacc_wk_spectral, comfort_label, criteria_exact, criteria_fast_exact, criteria_modal,
     criteria_spectral, quarter_car_rms, Certified, ResidueFamily, ResidueRoads, ResidueRoute,
@@ -89,6 +89,9 @@ impl Evaluator for LoFi {
         let mut q = self.car.quarter();
         q.ks = ks;
         q.cs = cs;
+        // The car's own faults first (they name its field), then the design's domain.
+        q.validate()?;
+        DesignDomain::new(q.ms, q.kt).check(ks, cs)?;
         quarter_criteria(&q, &self.road)
     }
     fn name(&self) -> String {
@@ -184,6 +187,7 @@ impl PartialEq for Tally {
 #[derive(Debug, Clone, PartialEq)]
 pub struct HiFi {
     car: Car,
+    domain: DesignDomain,
     road: Road,
     base: LinearModel,
     dk: nalgebra::DMatrix<f64>,
@@ -215,6 +219,7 @@ impl HiFi {
         let unit = project(&full_car(&unit));
         Ok(HiFi {
             car: car.clone(),
+            domain: car.design_domain(),
             road: *road,
             dk: unit.k,
             dc: unit.c,
@@ -258,7 +263,7 @@ impl HiFi {
     pub fn evaluate_routed(&self, ks: f64, cs: f64) -> Result<Routed> {
         // The rest of the car was checked in `new`; a valid design needs no more than
         // these comparisons, and the design check (which formats the field) names a fault.
-        check_point(ks, cs)?;
+        self.check_point(ks, cs)?;
         let routed = self.route(ks, cs)?;
         self.tally.add(routed.route);
         Ok(routed)
@@ -301,13 +306,15 @@ impl HiFi {
     }
 }
 
-/// The design check of a point: a valid design needs only these comparisons, and the
-/// design check (which formats the field) names a fault.
-fn check_point(ks: f64, cs: f64) -> Result<()> {
-    if !(ks.is_finite() && cs.is_finite()) || ks <= 0.0 || cs <= 0.0 {
-        crate::car::check_design(ks, cs)?;
+impl HiFi {
+    /// The design check of a point ([`DesignDomain`]): a valid design needs only a few
+    /// comparisons, and the check (which formats the field) names a fault.
+    fn check_point(&self, ks: f64, cs: f64) -> Result<()> {
+        if !self.domain.contains(ks, cs) {
+            self.domain.check(ks, cs)?;
+        }
+        Ok(())
     }
-    Ok(())
 }
 
 /// The residue route's value when it certified one. Anything it cannot certify (or
@@ -373,7 +380,7 @@ impl HiFiRoads {
 
     /// Per road, what its [`HiFi::evaluate_routed`] gives at `(ks, cs)` (N/m, N s/m).
     pub fn evaluate_routed(&self, ks: f64, cs: f64) -> Vec<Result<Routed>> {
-        if let Err(e) = check_point(ks, cs) {
+        if let Err(e) = self.hifis[0].check_point(ks, cs) {
             return vec![Err(e); self.hifis.len()];
         }
         let residue = self.shared.as_ref().map(|s| s.criteria(ks, cs));

@@ -5,6 +5,7 @@
 
 use crate::error::{Result, RideError};
 use serde::{Deserialize, Serialize};
+use std::f64::consts::TAU;
 
 /// One axle's corner: unsprung mass, suspension and tyre (identical left and right).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -79,14 +80,22 @@ pub const PRESETS: [(&str, &str); 3] = [
 impl Car {
     /// Parses and validates a car from JSON text.
     pub fn from_json(text: &str) -> Result<Car> {
+        check_object("car", "a car file", text)?;
         let de = &mut serde_json::Deserializer::from_str(text);
         let car: Car = serde_path_to_error::deserialize(de).map_err(|e| {
             let path = e.path().to_string();
-            let inner = e.into_inner();
+            let inner = e.into_inner().to_string();
+            // A car file may also list `load_cases` (robust::CarFile reads them).
+            let inner = match inner.split_once(", expected one of ") {
+                Some((head, keys)) if head.starts_with("unknown field") => {
+                    format!("{head}, expected one of {keys}, `load_cases`")
+                }
+                _ => inner,
+            };
             if path == "." || path == "?" || path.is_empty() {
-                RideError::Json(inner.to_string())
+                RideError::Json(inner)
             } else {
-                RideError::field(path, inner.to_string())
+                RideError::field(path, inner)
             }
         })?;
         car.validate()?;
@@ -120,25 +129,45 @@ impl Car {
         self.a + self.b
     }
 
-    /// Checks every number: masses, inertias, lengths and stiffnesses > 0, tyre damping
-    /// >= 0, suspension dampers > 0 (a zero damper leaves the RMS unbounded), all finite.
+    /// Checks every number against its physical range ([`crate::domain`]): masses,
+    /// lengths, rates, and the inertias through the body's dynamic index
+    /// `Iyy / (M a b)` and roll index `Ixx / (M (t/2)^2)`, so a body whose mass and
+    /// inertias do not belong together (a 1e9 kg body with a car's inertia) is refused.
     pub fn validate(&self) -> Result<()> {
-        let positive = [
-            ("sprung_mass", self.sprung_mass),
-            ("pitch_inertia", self.pitch_inertia),
-            ("roll_inertia", self.roll_inertia),
-            ("a", self.a),
-            ("b", self.b),
-            ("track_front", self.track_front),
-            ("track_rear", self.track_rear),
-        ];
-        for (f, v) in positive {
+        use crate::domain::{AXLE_DISTANCE, DYNAMIC_INDEX, ROLL_INDEX, SPRUNG_MASS, TRACK};
+        for (f, v, limit) in [
+            ("sprung_mass", self.sprung_mass, &SPRUNG_MASS),
+            ("a", self.a, &AXLE_DISTANCE),
+            ("b", self.b, &AXLE_DISTANCE),
+            ("track_front", self.track_front, &TRACK),
+            ("track_rear", self.track_rear, &TRACK),
+        ] {
             check_positive(f, v)?;
+            limit.check(f, v)?;
         }
-        for (prefix, ax) in [("front", &self.front), ("rear", &self.rear)] {
+        let m_ab = self.sprung_mass * self.a * self.b;
+        check_inertia("pitch_inertia", self.pitch_inertia, m_ab, &DYNAMIC_INDEX)?;
+        let half_track = (self.track_front + self.track_rear) / 4.0;
+        let m_t2 = self.sprung_mass * half_track * half_track;
+        check_inertia("roll_inertia", self.roll_inertia, m_t2, &ROLL_INDEX)?;
+        let l = self.wheelbase();
+        let shares = [
+            ("front", &self.front, self.sprung_mass * self.b / (2.0 * l)),
+            ("rear", &self.rear, self.sprung_mass * self.a / (2.0 * l)),
+        ];
+        for (prefix, ax, _) in shares {
             ax.validate(prefix)?;
         }
+        for (prefix, ax, ms) in shares {
+            ax.validate_corner(prefix, ms)?;
+        }
         Ok(())
+    }
+
+    /// The domain of the front design `(ks, cs)` on this car ([`DesignDomain`]).
+    pub fn design_domain(&self) -> DesignDomain {
+        let q = self.quarter();
+        DesignDomain::new(q.ms, q.kt)
     }
 
     /// The car with the front spring and damper replaced (the design variables).
@@ -147,6 +176,7 @@ impl Car {
         c.front.spring = ks;
         c.front.damper = cs;
         c.front.validate("front")?;
+        self.design_domain().check(ks, cs)?;
         Ok(c)
     }
 
@@ -170,16 +200,171 @@ impl Car {
 }
 
 impl Axle {
-    /// Checks every field; messages name `prefix.field`.
+    /// Checks every field against its physical range; messages name `prefix.field`.
     pub fn validate(&self, prefix: &str) -> Result<()> {
-        check_positive(&format!("{prefix}.unsprung_mass"), self.unsprung_mass)?;
-        check_positive(&format!("{prefix}.spring"), self.spring)?;
-        check_positive(&format!("{prefix}.tire_stiffness"), self.tire_stiffness)?;
+        use crate::domain::{DAMPER, SPRING, TIRE_DAMPING, TIRE_STIFFNESS, UNSPRUNG_MASS};
+        for (f, v, limit) in [
+            ("unsprung_mass", self.unsprung_mass, &UNSPRUNG_MASS),
+            ("spring", self.spring, &SPRING),
+            ("tire_stiffness", self.tire_stiffness, &TIRE_STIFFNESS),
+        ] {
+            let field = format!("{prefix}.{f}");
+            check_positive(&field, v)?;
+            limit.check(&field, v)?;
+        }
         check_damper(&format!("{prefix}.damper"), self.damper)?;
         let t = format!("{prefix}.tire_damping");
         check_finite(&t, self.tire_damping)?;
         if self.tire_damping < 0.0 {
             return Err(RideError::field(t, "must not be negative (N s/m)"));
+        }
+        TIRE_DAMPING.check(&t, self.tire_damping)?;
+        // The damper's own range (after the sign and zero messages above).
+        DAMPER.check(&format!("{prefix}.damper"), self.damper)
+    }
+}
+
+impl Axle {
+    /// Checks the corner as a whole on its share `ms` (kg) of the body: the mass ratio,
+    /// the wheel-hop and body-bounce frequencies and the damping ratio
+    /// ([`crate::domain`]'s derived limits); messages name `prefix.field` and give the
+    /// range of that field for this corner.
+    pub fn validate_corner(&self, prefix: &str, ms: f64) -> Result<()> {
+        use crate::domain::{num, MASS_RATIO, WHEEL_HOP};
+        let field = |f: &str| format!("{prefix}.{f}");
+        let ratio = self.unsprung_mass / ms;
+        if !MASS_RATIO.contains(ratio) {
+            return Err(RideError::field(
+                field("unsprung_mass"),
+                format!(
+                    "{} kg on the corner's {} kg share of the body is a mass ratio of {}, outside {}..{} ({}): for this corner {}..{} kg",
+                    num(self.unsprung_mass),
+                    num(ms),
+                    num(ratio),
+                    num(MASS_RATIO.min),
+                    num(MASS_RATIO.max),
+                    MASS_RATIO.why,
+                    num(MASS_RATIO.min * ms),
+                    num(MASS_RATIO.max * ms)
+                ),
+            ));
+        }
+        let hop = ((self.spring + self.tire_stiffness) / self.unsprung_mass).sqrt() / TAU;
+        if !WHEEL_HOP.contains(hop) {
+            let w = |f: f64| (TAU * f).powi(2) * self.unsprung_mass - self.spring;
+            return Err(RideError::field(
+                field("tire_stiffness"),
+                format!(
+                    "{} N/m under a {} kg wheel gives a wheel-hop frequency of {} Hz, outside {}..{} Hz ({}): for this wheel {}..{} N/m",
+                    num(self.tire_stiffness),
+                    num(self.unsprung_mass),
+                    num(hop),
+                    num(WHEEL_HOP.min),
+                    num(WHEEL_HOP.max),
+                    WHEEL_HOP.why,
+                    num(w(WHEEL_HOP.min).max(0.0)),
+                    num(w(WHEEL_HOP.max))
+                ),
+            ));
+        }
+        DesignDomain::new(ms, self.tire_stiffness)
+            .check_named(self.spring, self.damper, &field("spring"), &field("damper"))
+    }
+}
+
+/// Where a corner's spring and damper may lie for its share `ms` (kg) of the body and its
+/// tyre rate `kt` (N/m): each in its own range ([`crate::domain::SPRING`],
+/// [`crate::domain::DAMPER`]), the body-bounce frequency on the ride rate in
+/// [`crate::domain::BOUNCE`]'s and the damping ratio in [`crate::domain::DAMPING_RATIO`]'s.
+/// The bounce range is a spring range (the ride rate `Kw = k kt / (k + kt)` grows with
+/// `k`), precomputed so a map's cell needs four comparisons and a square root.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DesignDomain {
+    ms: f64,
+    kt: f64,
+    /// Springs with the bounce frequency in range, N/m (`ks_hi` may be infinite).
+    ks_lo: f64,
+    ks_hi: f64,
+}
+
+impl DesignDomain {
+    /// The domain of a corner with body share `ms` (kg) on a tyre of rate `kt` (N/m).
+    pub fn new(ms: f64, kt: f64) -> DesignDomain {
+        use crate::domain::BOUNCE;
+        // Kw = ms (2 pi f)^2; k = Kw kt / (kt - Kw) while Kw < kt.
+        let spring = |f: f64| {
+            let kw = ms * (TAU * f).powi(2);
+            if kw < kt {
+                kw * kt / (kt - kw)
+            } else {
+                f64::INFINITY
+            }
+        };
+        DesignDomain {
+            ms,
+            kt,
+            ks_lo: spring(BOUNCE.min),
+            ks_hi: spring(BOUNCE.max),
+        }
+    }
+
+    /// True when `(ks, cs)` lies in the domain.
+    pub fn contains(&self, ks: f64, cs: f64) -> bool {
+        use crate::domain::DAMPING_RATIO;
+        design_in_domain(ks, cs) && ks >= self.ks_lo && ks <= self.ks_hi && {
+            let zeta = cs / (2.0 * (ks * self.ms).sqrt());
+            DAMPING_RATIO.contains(zeta)
+        }
+    }
+
+    /// Checks a front design; errors name `ks` or `cs`.
+    pub fn check(&self, ks: f64, cs: f64) -> Result<()> {
+        if self.contains(ks, cs) {
+            return Ok(());
+        }
+        check_design(ks, cs)?;
+        self.check_named(ks, cs, "ks", "cs")
+    }
+
+    /// Checks a spring `k` and damper `c` against the derived limits; errors name
+    /// `spring_field` or `damper_field` with the range of that field on this corner.
+    fn check_named(&self, k: f64, c: f64, spring_field: &str, damper_field: &str) -> Result<()> {
+        use crate::domain::{num, BOUNCE, DAMPING_RATIO};
+        let f = crate::dos::bounce_frequency(k, self.kt, self.ms);
+        if !BOUNCE.contains(f) {
+            return Err(RideError::field(
+                spring_field,
+                format!(
+                    "{} N/m gives a body-bounce frequency of {} Hz on this corner's {} kg share of the body, outside {}..{} Hz ({}): for this corner {}..{} N/m",
+                    num(k),
+                    num(f),
+                    num(self.ms),
+                    num(BOUNCE.min),
+                    num(BOUNCE.max),
+                    BOUNCE.why,
+                    num(self.ks_lo),
+                    num(self.ks_hi)
+                ),
+            ));
+        }
+        let zeta = crate::dos::damping_ratio(k, c, self.ms);
+        if !DAMPING_RATIO.contains(zeta) {
+            let c_of = |z: f64| 2.0 * z * (k * self.ms).sqrt();
+            return Err(RideError::field(
+                damper_field,
+                format!(
+                    "{} N s/m gives a body damping ratio of {} with a {} N/m spring on this corner's {} kg share of the body, outside {}..{} ({}): with this spring {}..{} N s/m",
+                    num(c),
+                    num(zeta),
+                    num(k),
+                    num(self.ms),
+                    num(DAMPING_RATIO.min),
+                    num(DAMPING_RATIO.max),
+                    DAMPING_RATIO.why,
+                    num(c_of(DAMPING_RATIO.min)),
+                    num(c_of(DAMPING_RATIO.max))
+                ),
+            ));
         }
         Ok(())
     }
@@ -226,12 +411,68 @@ impl QuarterCar {
     }
 }
 
+/// Refuses text that is not one JSON object before serde reads it, so an empty file or
+/// an array is named as such (`what` says which file, `field` names it) rather than
+/// "EOF while parsing" or "invalid type: sequence".
+pub fn check_object(field: &str, what: &str, text: &str) -> Result<()> {
+    let kind = match text.trim_start().chars().next() {
+        None => {
+            return Err(RideError::field(
+                field,
+                format!("the file is empty: {what} is one JSON object {{\"key\": value, ...}}"),
+            ))
+        }
+        Some('[') => "an array",
+        Some('"') => "a string",
+        Some(c) if c == '-' || c.is_ascii_digit() => "a number",
+        // An object, or text that is not JSON at all: serde says where it breaks.
+        _ => return Ok(()),
+    };
+    Err(RideError::field(
+        field,
+        format!("{what} is one JSON object {{\"key\": value, ...}}; this text is {kind}"),
+    ))
+}
+
 /// Checks a front design `(ks, cs)` as every evaluator takes it (same rules as a car
-/// file's front axle): `ks` finite and > 0, `cs` finite and > 0 (with no suspension damping
-/// the RMS is unbounded). Errors name `ks` or `cs`.
+/// file's front axle): `ks` in [`crate::domain::SPRING`]'s range, `cs` finite and > 0 (with
+/// no suspension damping the RMS is unbounded) and in [`crate::domain::DAMPER`]'s. Errors
+/// name `ks` or `cs`.
 pub fn check_design(ks: f64, cs: f64) -> Result<()> {
     check_positive("ks", ks)?;
-    check_damper("cs", cs)
+    crate::domain::SPRING.check("ks", ks)?;
+    check_damper("cs", cs)?;
+    crate::domain::DAMPER.check("cs", cs)
+}
+
+/// True when `(ks, cs)` lies in the design domain: the few comparisons a map's cell
+/// needs before [`check_design`] formats a message.
+pub fn design_in_domain(ks: f64, cs: f64) -> bool {
+    crate::domain::SPRING.contains(ks) && crate::domain::DAMPER.contains(cs)
+}
+
+/// An inertia `i` checked through its index `i / scale` (kg m^2 over kg m^2); the
+/// message states the index, its range and the inertias that range allows.
+fn check_inertia(field: &str, i: f64, scale: f64, index: &crate::domain::Limit) -> Result<()> {
+    check_positive(field, i)?;
+    if index.contains(i / scale) {
+        return Ok(());
+    }
+    use crate::domain::num;
+    Err(RideError::field(
+        field,
+        format!(
+            "{} kg m^2 gives a {} of {}, outside {}..{} ({}): for this body {}..{} kg m^2",
+            num(i),
+            index.what,
+            num(i / scale),
+            num(index.min),
+            num(index.max),
+            index.why,
+            num(index.min * scale),
+            num(index.max * scale)
+        ),
+    ))
 }
 
 /// A suspension damper rate: finite, not negative, not zero (unbounded RMS).

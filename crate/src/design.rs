@@ -29,37 +29,82 @@ impl Default for DesignBox {
 }
 
 impl DesignBox {
-    /// Checks that both ranges are finite, positive and increasing.
+    /// Checks that both ranges lie in the design domain ([`crate::domain::SPRING`],
+    /// [`crate::domain::DAMPER`]) and increase; errors name `ks-range` or `cs-range`.
     pub fn validate(&self) -> Result<()> {
-        for (name, lo, hi) in [
-            ("ks", self.ks_min, self.ks_max),
-            ("cs", self.cs_min, self.cs_max),
+        for (name, lo, hi, limit) in [
+            ("ks", self.ks_min, self.ks_max, &crate::domain::SPRING),
+            ("cs", self.cs_min, self.cs_max, &crate::domain::DAMPER),
         ] {
+            let field = format!("{name}-range");
             if !lo.is_finite() || !hi.is_finite() {
-                return Err(RideError::field(
-                    format!("{name}-range"),
-                    "must be finite numbers",
-                ));
+                return Err(RideError::field(field, "must be finite numbers"));
             }
             if lo <= 0.0 {
-                return Err(RideError::field(
-                    format!("{name}-range"),
-                    "minimum must be > 0",
-                ));
+                return Err(RideError::field(field, "minimum must be > 0"));
             }
             if lo >= hi {
                 return Err(RideError::field(
-                    format!("{name}-range"),
+                    field,
                     format!("minimum {lo} must be below maximum {hi}"),
                 ));
+            }
+            for (end, v) in [("minimum", lo), ("maximum", hi)] {
+                limit.check(&field, v).map_err(|e| match e {
+                    RideError::Field { field, reason } => {
+                        RideError::field(field, format!("{end} {reason}"))
+                    }
+                    other => other,
+                })?;
             }
         }
         Ok(())
     }
 
+    /// Checks that the box's four corners lie in `domain` (a car's front-design domain:
+    /// the body-bounce frequency and damping ratio in range, [`crate::car::DesignDomain`]);
+    /// errors name `ks-range` (a bounce frequency) or `cs-range` (a damping ratio) and
+    /// the corner.
+    pub fn check_on(&self, domain: &crate::car::DesignDomain) -> Result<()> {
+        for (ks, cs) in [
+            (self.ks_min, self.cs_min),
+            (self.ks_min, self.cs_max),
+            (self.ks_max, self.cs_min),
+            (self.ks_max, self.cs_max),
+        ] {
+            domain.check(ks, cs).map_err(|e| match e {
+                RideError::Field { field, reason } => RideError::field(
+                    if field == "ks" { "ks-range" } else { "cs-range" },
+                    format!(
+                        "the box's corner Ks {} N/m, Cs {} N s/m: {reason}",
+                        crate::domain::num(ks),
+                        crate::domain::num(cs)
+                    ),
+                ),
+                other => other,
+            })?;
+        }
+        Ok(())
+    }
+
+    /// True when `(ks, cs)` lies in the box (ends included).
+    pub fn contains(&self, ks: f64, cs: f64) -> bool {
+        (self.ks_min..=self.ks_max).contains(&ks) && (self.cs_min..=self.cs_max).contains(&cs)
+    }
+
     /// Parses `min:max` (N/m or N s/m) of one range; errors name `field`.
     pub fn parse_range(field: &str, text: &str) -> Result<(f64, f64)> {
-        let bad = || RideError::field(field, format!("'{text}' is not min:max (e.g. 10000:40000)"));
+        let example = match field {
+            "cs-range" => "500:4000",
+            "travel" => "0.025:3",
+            _ => "10000:40000",
+        };
+        let shape = if field == "travel" {
+            "M:N, bump travel in m and sigma factor"
+        } else {
+            "min:max"
+        };
+        let bad = || RideError::field(field, format!("'{text}' is not {shape} (e.g. {example})"));
         let (lo, hi) = text.split_once(':').ok_or_else(bad)?;
         let lo: f64 = lo.trim().parse().map_err(|_| bad())?;
         let hi: f64 = hi.trim().parse().map_err(|_| bad())?;

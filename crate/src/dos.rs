@@ -141,8 +141,12 @@ pub fn damping_ratio(ks: f64, cs: f64, ms: f64) -> f64 {
 }
 
 impl DesignObjectives {
-    /// Checks that limits and bands are finite, positive and ordered.
+    /// Checks every limit and band against its physical range ([`crate::domain`]) and
+    /// that bands are ordered; errors name the objective's field.
     pub fn validate(&self) -> Result<()> {
+        use crate::domain::{
+            BOUNCE_BAND, DAMPING_BAND, DTL_MARGIN, SWS_LIMIT, TRAVEL, TRAVEL_SIGMAS,
+        };
         if let Some(l) = self.sws_limit {
             if !(l.is_finite() && l > 0.0) {
                 return Err(RideError::field(
@@ -150,38 +154,26 @@ impl DesignObjectives {
                     "must be a finite number > 0 (m)",
                 ));
             }
+            SWS_LIMIT.check("sws_limit", l)?;
         }
-        for (name, band) in [
-            ("bounce_band", self.bounce_band),
-            ("damping_band", self.damping_band),
+        for (name, band, limit) in [
+            ("bounce_band", self.bounce_band, &BOUNCE_BAND),
+            ("damping_band", self.damping_band, &DAMPING_BAND),
         ] {
             if let Some((lo, hi)) = band {
                 if !(lo.is_finite() && hi.is_finite() && lo >= 0.0 && lo < hi) {
                     return Err(RideError::field(name, "needs finite 0 <= lo < hi"));
                 }
+                limit.check(name, lo)?;
+                limit.check(name, hi)?;
             }
         }
         if let Some(k) = self.dtl_margin {
-            if !(k.is_finite() && k > 0.0 && k <= 100.0) {
-                return Err(RideError::field(
-                    "dtl_margin",
-                    "must be a ratio F_static / RMS DTL in (0, 100]",
-                ));
-            }
+            DTL_MARGIN.check("dtl_margin", k)?;
         }
         if let Some((travel, n)) = self.travel {
-            if !(travel.is_finite() && travel > 0.0 && travel <= 1.0) {
-                return Err(RideError::field(
-                    "travel",
-                    "available travel must be in (0, 1] m",
-                ));
-            }
-            if !(n.is_finite() && n > 0.0 && n <= 10.0) {
-                return Err(RideError::field(
-                    "travel",
-                    "sigma factor must be in (0, 10]",
-                ));
-            }
+            TRAVEL.check("travel", travel)?;
+            TRAVEL_SIGMAS.check("travel", n)?;
         }
         Ok(())
     }

@@ -4,15 +4,18 @@
 //! The core is plain Rust; `web` (wasm only) and the `ridelab` binary are thin shells.
 
 pub mod analysis;
+pub mod budget;
 pub mod car;
 pub mod chart;
 pub mod comfort;
 pub mod criteria;
 pub mod design;
+pub mod domain;
 pub mod doe;
 pub mod dos;
 pub mod error;
 pub mod evaluate;
+pub mod finite;
 pub mod explorer;
 pub mod gpu;
 pub mod maps;

@@ -118,7 +118,8 @@ impl Default for Road {
 }
 
 impl Road {
-    /// Checks the speed is finite and positive.
+    /// Checks the speed: a finite number > 0 in its physical range
+    /// ([`crate::domain::SPEED`], 1..100 m/s).
     pub fn validate(&self) -> Result<()> {
         if !(self.speed.is_finite() && self.speed > 0.0) {
             return Err(RideError::field(
@@ -126,10 +127,7 @@ impl Road {
                 "must be a finite number > 0 (m/s)",
             ));
         }
-        if self.speed > 100.0 {
-            return Err(RideError::field("speed", "must be at most 100 m/s"));
-        }
-        Ok(())
+        crate::domain::SPEED.check("speed", self.speed)
     }
 
     /// One-sided PSD of the road velocity, `Gv = (2 pi n0)^2 Gd(n0) v`, m^2/s^2 per Hz.

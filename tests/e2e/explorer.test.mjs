@@ -428,7 +428,7 @@ test('each bad input shows its message next to the field and keeps the last good
     ['#speed', 'speed', '', /enter a number/],
     ['#speed', 'speed', 'NaN', /'NaN' is not a number/],
     ['#speed', 'speed', '1e999', /not a finite number/],
-    ['#speed', 'speed', '150', /at most 100 m\/s/],
+    ['#speed', 'speed', '150', /150 m\/s is outside 1\.\.100 m\/s/],
     ['#ks-num', 'ks', '-5', /Ks \(front spring\): must be > 0 \(got −5 kN\/m\)/],
     ['#ks-num', 'ks', 'abc', /'abc' is not a number/],
     ['#ks-num', 'ks', '0', /must be > 0/],

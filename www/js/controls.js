@@ -28,6 +28,7 @@ export function plainWords(text) {
     .replace(/^time options: /, '')
     .replace(/^invalid JSON: EOF while parsing a value at line 1 column 0$/, 'the file is empty')
     .replace(/^invalid JSON: /, 'not a valid car file: ')
+    .replace(/^car: /, '')
     .replace(/EOF while parsing an? (value|object|list|string)/, 'the text ends too early')
     .replace(/missing field `([^`]+)`/g, "'$1' is missing")
     .replace(/unknown field `([^`]+)`, expected (one of )?(.*?)(?= at line|$)/, (m, f, one, list) => `'${f}' is not a known field (expected ${one || ''}${list.replace(/`/g, '')})`)
@@ -46,9 +47,14 @@ export const kN = (v) => String(+(Number(v) / 1000).toPrecision(6)).replace(/^-/
 export function explain(failure, field) {
   const msg = plainWords(failure.message || String(failure));
   const got = (unit) => (m, v) => `(got ${kN(v)} ${unit})`;
-  if (field === 'ks') return msg.replace(/^front\.spring: /, 'Ks (front spring): ').replace(/\(got ([-\d.e+]+)\)/, got('kN/m')).replace(/ \(N\/m\)/, '');
-  if (field === 'cs') return msg.replace(/^front\.damper: /, 'Cs (front damper): ').replace(/\(got ([-\d.e+]+)\)/, got('kNs/m')).replace(/ \(N s\/m\)/, '');
-  if (field === 'swsLimit') return msg.replace(/^sws_limit: must be a finite number > 0 \(m\)/, 'SWS limit: must be a number > 0 (mm)');
+  if (field === 'ks') return msg.replace(/^(front\.spring|ks): /, 'Ks (front spring): ').replace(/\(got ([-\d.e+]+)\)/, got('kN/m')).replace(/ \(N\/m\)/, '');
+  if (field === 'cs') return msg.replace(/^(front\.damper|cs): /, 'Cs (front damper): ').replace(/\(got ([-\d.e+]+)\)/, got('kNs/m')).replace(/ \(N s\/m\)/, '');
+  if (field === 'swsLimit') {
+    const mm = (v) => String(+(Number(v) * 1000).toPrecision(6));
+    return msg
+      .replace(/^sws_limit: must be a finite number > 0 \(m\)/, 'SWS limit: must be a number > 0 (mm)')
+      .replace(/^sws_limit: ([-\d.e+]+) m is outside ([-\d.e+]+)\.\.([-\d.e+]+) m/, (m, v, lo, hi) => `SWS limit: ${mm(v)} mm is outside ${mm(lo)}..${mm(hi)} mm`);
+  }
   if (field === 'bounceBand') return msg.replace(/^bounce_band: /, 'Bounce band (Hz): ');
   if (field === 'dampingBand') return msg.replace(/^damping_band: /, 'Damping band: ');
   if (field === 'surrogate') return msg.replace(/^(approach|scheme): /, 'Surrogate: ');

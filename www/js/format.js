@@ -52,3 +52,14 @@ export function parseNumber(text) {
   if (!Number.isFinite(v)) return { error: `'${t}' is not a finite number` };
   return { value: v };
 }
+
+/**
+ * A core message in the page's units: spring rates in N/m as kN/m and damper rates in
+ * N s/m as kNs/m (numbers and ranges such as `1000..2e+6 N/m`), as `ridelab::domain::page_units`.
+ */
+export function inPageUnits(text) {
+  const kilo = (nums) => nums.split('..').map((n) => String(+(Number(n) / 1000).toPrecision(6))).join('..');
+  return String(text)
+    .replace(/(-?[\d.]+(?:e[+-]?\d+)?(?:\.\.-?[\d.]+(?:e[+-]?\d+)?)?) N s\/m/g, (m, n) => `${kilo(n)} kNs/m`)
+    .replace(/(-?[\d.]+(?:e[+-]?\d+)?(?:\.\.-?[\d.]+(?:e[+-]?\d+)?)?) N\/m/g, (m, n) => `${kilo(n)} kN/m`);
+}

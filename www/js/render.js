@@ -10,7 +10,7 @@ import { renderMetrics, tuningText, renderAdaptive, proposalText } from './surro
 import { adaptivePlane, adaptiveSpec } from './chartspecs.js';
 import { MODEL_NAMES, datumStateOf, fitKeyOf, keyOf } from './store.js';
 import { GRID } from './compute.js';
-import { fmt, fmtInput, fmtPct } from './format.js';
+import { fmt, fmtInput, fmtPct, inPageUnits } from './format.js';
 import { pathText } from './gpupath.js';
 import { currentHifiFront, hifiFrontLine, hifiFrontTitle, renderHifiFront } from './hififront.js';
 import { renderCasePicks, robustMapLabel, robustPlaneLabel } from './robustpanel.js';
@@ -118,6 +118,20 @@ export class Render {
     el.textContent = `${ruleLabel(p.rule)}: Ks ${fmt(p.ks / 1000, 4)} kN/m, Cs ${fmt(p.cs / 1000, 4)} kNs/m; ` +
       `${fr.comfort === 'wk' ? 'BAcc (Wk)' : 'BAcc'} ${fmtPct(p.change_percent[0] / 100)}, DTL ${fmtPct(p.change_percent[1] / 100)} vs datum; the HiFi agrees within ${fmt(worst, 2)} %.`;
     el.title = weightsText(p.pseudo_weights);
+    // How far to trust the pick: a box bound it sits on, a re-check beyond the tolerance.
+    // The short note on the line, the whole message on hover.
+    const BOUND = { ks_min: 'lowest Ks', ks_max: 'highest Ks', cs_min: 'lowest Cs', cs_max: 'highest Cs' };
+    for (const w of fr.warnings || []) {
+      const note = document.createElement('strong');
+      note.className = 'pick-warning';
+      note.dataset.kind = w.kind;
+      note.dataset.field = w.field;
+      note.textContent = w.kind === 'box_edge'
+        ? ` ⚠ At the box's ${BOUND[w.field] || w.field}: the box stopped it.`
+        : ` ⚠ The HiFi re-check misses its ${w.field.toUpperCase()}.`;
+      note.title = inPageUnits(w.message);
+      el.append(note);
+    }
   }
 
   /** What a new design changes: LoFi and surrogate readout, ride properties, markers, plane marker, controls. */

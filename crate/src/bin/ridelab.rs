@@ -19,6 +19,7 @@ use ridelab::gpu::{Compute, ComputePath};
 use ridelab::maps::{map_csv, map_report_on, Axis, Grid, MapSettings, Scale};
 use ridelab::optimize::{
     optimize_report_on, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, PickRule, StmParams,
+    Warning,
 };
 use ridelab::report::{build, ReportInputs, SECTIONS};
 use ridelab::road::{Road, RoadClass, Tracks};
@@ -97,7 +98,7 @@ struct EvalArgs {
     model: ModelKind,
     #[command(flatten)]
     car: CarRoad,
-    /// Machine-readable output.
+    /// Machine-readable output (JSON).
     #[arg(long)]
     json: bool,
 }
@@ -110,6 +111,7 @@ struct DoeArgs {
     /// Seed of the annealing (plans beyond the stored optima).
     #[arg(long, default_value_t = 1, value_parser = count_u64, allow_negative_numbers = true)]
     seed: u64,
+    /// Machine-readable output (JSON).
     #[arg(long)]
     json: bool,
 }
@@ -125,6 +127,8 @@ struct OptimizeArgs {
     /// stm (space transformation) or nsga2.
     #[arg(long, default_value = "stm", value_parser = ["stm", "nsga2"])]
     method: String,
+    #[command(flatten)]
+    design_box: BoxArgs,
     #[command(flatten)]
     objectives: ObjectiveArgs,
     /// The pick: minmax (the thesis's), knee, or asf:W (weighted, comfort weight W in 0..1).
@@ -160,6 +164,7 @@ struct OptimizeArgs {
     car: CarRoad,
     #[command(flatten)]
     cases: CasesArgs,
+    /// Machine-readable output (JSON).
     #[arg(long)]
     json: bool,
     /// Also write the front in the BAcc-DTL plane as an SVG file.
@@ -173,10 +178,10 @@ struct MapArgs {
     #[arg(long)]
     model: ModelKind,
     /// Ks axis, min:max:points (N/m).
-    #[arg(long, default_value = "10000:40000:41", value_parser = |s: &str| Axis::parse("ks-range", s))]
+    #[arg(long, default_value = "10000:40000:41", allow_hyphen_values = true, value_parser = |s: &str| Axis::parse("ks-range", s))]
     ks_range: Axis,
     /// Cs axis, min:max:points (N s/m).
-    #[arg(long, default_value = "500:4000:41", value_parser = |s: &str| Axis::parse("cs-range", s))]
+    #[arg(long, default_value = "500:4000:41", allow_hyphen_values = true, value_parser = |s: &str| Axis::parse("cs-range", s))]
     cs_range: Axis,
     /// Criteria relative to the datum car's.
     #[arg(long)]
@@ -195,11 +200,12 @@ struct MapArgs {
     cases: CasesArgs,
     /// The map of case K alone (its loaded car on its road, its own datum) instead of
     /// the robust map; cases are numbered load-case-major from 0.
-    #[arg(long, value_name = "K", value_parser = count)]
+    #[arg(long, value_name = "K", value_parser = count, allow_negative_numbers = true)]
     case: Option<usize>,
-    #[arg(long)]
+    /// Machine-readable output (JSON).
+    #[arg(long, conflicts_with = "csv")]
     json: bool,
-    /// One row per grid point instead of JSON.
+    /// One row per grid point (CSV) instead of the text summary.
     #[arg(long)]
     csv: bool,
     /// Also write PREFIX-bacc.svg, PREFIX-dtl.svg and PREFIX-sws.svg.
@@ -235,6 +241,31 @@ impl CasesArgs {
     }
 }
 
+/// The design box (optimize, surrogate, report).
+#[derive(Args)]
+struct BoxArgs {
+    /// Ks range of the design box, min:max (N/m).
+    #[arg(long, value_name = "MIN:MAX", default_value = "10000:40000", allow_hyphen_values = true, value_parser = |s: &str| DesignBox::parse_range("ks-range", s))]
+    ks_range: (f64, f64),
+    /// Cs range of the design box, min:max (N s/m).
+    #[arg(long, value_name = "MIN:MAX", default_value = "500:4000", allow_hyphen_values = true, value_parser = |s: &str| DesignBox::parse_range("cs-range", s))]
+    cs_range: (f64, f64),
+}
+
+impl BoxArgs {
+    /// The box, checked against the domain (errors name `ks-range` or `cs-range`).
+    fn design_box(&self) -> Result<DesignBox> {
+        let b = DesignBox {
+            ks_min: self.ks_range.0,
+            ks_max: self.ks_range.1,
+            cs_min: self.cs_range.0,
+            cs_max: self.cs_range.1,
+        };
+        b.validate()?;
+        Ok(b)
+    }
+}
+
 /// Design objectives beyond the defaults (optimize, report, map).
 #[derive(Args)]
 struct ObjectiveArgs {
@@ -245,7 +276,7 @@ struct ObjectiveArgs {
     #[arg(long, value_name = "K", value_parser = number, allow_negative_numbers = true)]
     dtl_margin: Option<f64>,
     /// Travel budget M:N: N x RMS SWS within M metres of bump travel (e.g. 0.025:3) [default: off].
-    #[arg(long, value_name = "M:N", value_parser = |s: &str| DesignBox::parse_range("travel", s), allow_negative_numbers = true)]
+    #[arg(long, value_name = "M:N", value_parser = |s: &str| DesignBox::parse_range("travel", s), allow_hyphen_values = true)]
     travel: Option<(f64, f64)>,
 }
 
@@ -275,9 +306,12 @@ struct SurrogateArgs {
     #[arg(long, value_name = "grid:N", value_parser = predict_grid)]
     predict: Option<usize>,
     #[command(flatten)]
+    design_box: BoxArgs,
+    #[command(flatten)]
     adaptive: AdaptiveArgs,
     #[command(flatten)]
     car: CarRoad,
+    /// Machine-readable output (JSON).
     #[arg(long)]
     json: bool,
 }
@@ -287,7 +321,7 @@ struct SurrogateArgs {
 #[derive(Args)]
 struct AdaptiveArgs {
     /// HiFi runs added one at a time after the plan (plan + runs <= 100).
-    #[arg(long, value_name = "K", value_parser = count)]
+    #[arg(long, value_name = "K", value_parser = count, allow_negative_numbers = true)]
     adaptive: Option<usize>,
     /// Infill criterion: ehvi-front (expected hypervolume improvement of the surrogate's
     /// predicted front x probability of meeting the SWS limit) or ehvi (of the feasible
@@ -299,7 +333,7 @@ struct AdaptiveArgs {
     #[arg(long, requires = "adaptive")]
     uncertainty: Option<UncertaintyMethod>,
     /// Candidate grid of the infill, points per axis, 2..201 [default: 41].
-    #[arg(long, value_parser = count, requires = "adaptive")]
+    #[arg(long, value_parser = count, requires = "adaptive", allow_negative_numbers = true)]
     candidates: Option<usize>,
     /// Smallest normalised distance of a new run to every sample, (0, 0.5] [default: 0.02].
     #[arg(long, value_name = "D", value_parser = number, allow_negative_numbers = true, requires = "adaptive")]
@@ -329,21 +363,22 @@ struct StudyArgs {
     #[arg(long, value_name = "SURROGATE")]
     adaptive: Option<SurrogateSpec>,
     /// Audze-Eglais points of the adaptive study's initial plan, 2.. [default: 5].
-    #[arg(long, value_parser = count, requires = "adaptive")]
+    #[arg(long, value_parser = count, requires = "adaptive", allow_negative_numbers = true)]
     initial: Option<usize>,
     /// Smallest total of HiFi runs of the adaptive study [default: 6].
-    #[arg(long, value_parser = count, requires = "adaptive")]
+    #[arg(long, value_parser = count, requires = "adaptive", allow_negative_numbers = true)]
     min_runs: Option<usize>,
     /// Largest total of HiFi runs of the adaptive study, ..100 [default: 20].
-    #[arg(long, value_parser = count, requires = "adaptive")]
+    #[arg(long, value_parser = count, requires = "adaptive", allow_negative_numbers = true)]
     max_runs: Option<usize>,
     /// STM grid points per variable of every front of the adaptive study (the HiFi's own
     /// included), 2..2001 [default: 201].
-    #[arg(long, value_parser = count, requires = "adaptive")]
+    #[arg(long, value_parser = count, requires = "adaptive", allow_negative_numbers = true)]
     grid: Option<usize>,
     #[command(flatten)]
     car: CarRoad,
-    #[arg(long)]
+    /// Machine-readable output (JSON).
+    #[arg(long, conflicts_with = "markdown")]
     json: bool,
     /// The study as a Markdown table.
     #[arg(long)]
@@ -385,9 +420,10 @@ struct SimulateArgs {
     decimate: usize,
     #[command(flatten)]
     car: CarRoad,
-    #[arg(long)]
+    /// Machine-readable output (JSON).
+    #[arg(long, conflicts_with = "csv")]
     json: bool,
-    /// One row per kept sample instead of JSON.
+    /// One row per kept sample (CSV) instead of the text summary.
     #[arg(long)]
     csv: bool,
 }
@@ -396,12 +432,8 @@ struct SimulateArgs {
 struct ReportArgs {
     #[command(flatten)]
     car: CarRoad,
-    /// Ks range of the design box, min:max (N/m).
-    #[arg(long, value_name = "MIN:MAX", default_value = "10000:40000", value_parser = |s: &str| DesignBox::parse_range("ks-range", s))]
-    ks_range: (f64, f64),
-    /// Cs range of the design box, min:max (N s/m).
-    #[arg(long, value_name = "MIN:MAX", default_value = "500:4000", value_parser = |s: &str| DesignBox::parse_range("cs-range", s))]
-    cs_range: (f64, f64),
+    #[command(flatten)]
+    design_box: BoxArgs,
     #[command(flatten)]
     objectives: ObjectiveArgs,
     /// The surrogate of sections 4 and 5 [default: the study's best at 10 HiFi samples].
@@ -421,6 +453,7 @@ struct ReportArgs {
 
 #[derive(Args)]
 struct PresetsArgs {
+    /// Machine-readable output (JSON).
     #[arg(long)]
     json: bool,
 }
@@ -521,7 +554,7 @@ fn parse_error_line(e: &clap::Error) -> String {
         .replace('_', "-");
     match e.kind() {
         ErrorKind::InvalidSubcommand | ErrorKind::MissingSubcommand => format!(
-            "command: {} (eval, doe, optimize, map, surrogate, study, simulate, presets; --help lists them)",
+            "command: {} (eval, doe, optimize, map, surrogate, study, simulate, presets, report; --help lists them)",
             match context(ContextKind::InvalidSubcommand) {
                 s if s.is_empty() => "missing".to_string(),
                 s => format!("unknown command '{s}'"),
@@ -532,7 +565,15 @@ fn parse_error_line(e: &clap::Error) -> String {
             format!("{arg}: unexpected argument (options start with --)")
         }
         ErrorKind::MissingRequiredArgument => format!("{option}: missing"),
-        ErrorKind::ArgumentConflict => format!("{option}: given twice or with a conflicting option"),
+        ErrorKind::ArgumentConflict => {
+            let prior = context(ContextKind::PriorArg);
+            let prior = prior.split_whitespace().next().unwrap_or_default();
+            if prior.is_empty() || prior.trim_start_matches('-') == option {
+                format!("{option}: given twice")
+            } else {
+                format!("{option}: cannot be given with {prior}: they ask for two different outputs or settings; give one")
+            }
+        }
         ErrorKind::InvalidValue if context(ContextKind::InvalidValue).is_empty() => {
             format!("{option}: needs a value")
         }
@@ -600,7 +641,7 @@ fn car_loads_road(o: &CarRoad) -> Result<(Car, Vec<LoadCase>, Road)> {
     };
     let ks = o.ks.unwrap_or(car.front.spring);
     let cs = o.cs.unwrap_or(car.front.damper);
-    ridelab::car::check_design(ks, cs)?;
+    car.design_domain().check(ks, cs)?;
     let car = car.with_front(ks, cs)?;
     let mut road = Road::default();
     if let Some(c) = o.class {
@@ -620,7 +661,10 @@ fn car_loads_road(o: &CarRoad) -> Result<(Car, Vec<LoadCase>, Road)> {
     Ok((car, loads, road))
 }
 
+/// `v` as pretty JSON, once every number in it is known to be finite (serde_json would
+/// write a NaN as `null` silently).
 fn json<T: serde::Serialize>(v: &T) -> Result<String> {
+    ridelab::finite::check(v)?;
     serde_json::to_string_pretty(v)
         .map(|s| s + "\n")
         .map_err(|e| RideError::Numerical(format!("cannot write JSON: {e}")))
@@ -749,7 +793,7 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
             ..Nsga2Params::default()
         })
     };
-    let design_box = DesignBox::default();
+    let design_box = a.design_box.design_box()?;
     if let Some(set) = set {
         if a.compute == Some(Compute::Gpu) {
             return Err(RideError::field(
@@ -774,6 +818,7 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
             a.pick,
         )?;
         if let Some(path) = &svg {
+            ridelab::finite::check(&out)?;
             let mut chart = front_chart(&out.study, &out.datum, Some(&out.hifi_recheck));
             chart.title = format!("Robust {}", chart.title);
             if out.comfort == Comfort::Wk {
@@ -832,9 +877,10 @@ fn optimize(a: OptimizeArgs) -> Result<String> {
         }
     };
     if a.pick != PickRule::MinMax {
-        out.repick(a.pick, &car, &road)?;
+        out.repick(a.pick, &car, &road, &design_box)?;
     }
     if let Some(path) = &svg {
+        ridelab::finite::check(&out)?;
         let mut chart = front_chart(&out.study, &out.datum, Some(&out.hifi_recheck));
         if out.comfort == Comfort::Wk {
             chart.title = chart.title.replacen("BAcc", out.comfort.label(), 1);
@@ -905,6 +951,7 @@ fn optimize_text(out: &OptimizeReport) -> String {
         check.error_percent[1],
         check.error_percent[2],
     );
+    text += &warning_lines(&out.warnings);
     match (out.compute, &out.adapter) {
         (Some(ComputePath::Gpu), Some(a)) => text += &format!("compute: gpu ({a})\n"),
         (Some(ComputePath::Gpu), None) => text += "compute: gpu\n",
@@ -912,6 +959,11 @@ fn optimize_text(out: &OptimizeReport) -> String {
         (None, _) => {}
     }
     text
+}
+
+/// One `warning:` line per warning about a pick ([`ridelab::optimize::trust`]).
+fn warning_lines(w: &[Warning]) -> String {
+    w.iter().map(|w| format!("warning: {}\n", w.message)).collect()
 }
 
 /// The robust optimisation: the front and pick as [`optimize_text`], then each case.
@@ -923,6 +975,7 @@ fn robust_optimize_text(out: &RobustOptimizeReport) -> String {
         comfort: out.comfort,
         compute: None,
         adapter: None,
+        warnings: out.warnings.clone(),
     };
     let bacc = out.comfort.label();
     let mut s = format!(
@@ -1011,6 +1064,7 @@ fn simulate_cmd(a: SimulateArgs) -> Result<String> {
         return json(&r);
     }
     if a.csv {
+        ridelab::finite::check(&r)?;
         return Ok(simulate_csv(&r));
     }
     let damper = match opt.damper {
@@ -1106,6 +1160,7 @@ fn map_cmd(a: MapArgs) -> Result<String> {
         }
     };
     if let Some(prefix) = svg {
+        ridelab::finite::check(&r)?;
         let prefix = prefix.to_string_lossy();
         let prefix = prefix.strip_suffix(".svg").unwrap_or(&prefix);
         for (key, chart) in map_report_charts(&r) {
@@ -1116,6 +1171,7 @@ fn map_cmd(a: MapArgs) -> Result<String> {
         }
     }
     if a.csv {
+        ridelab::finite::check(&r)?;
         Ok(map_csv(&r))
     } else {
         Ok(json_text)
@@ -1124,7 +1180,7 @@ fn map_cmd(a: MapArgs) -> Result<String> {
 
 fn surrogate_cmd(a: SurrogateArgs) -> Result<String> {
     let (car, road) = car_and_road(&a.car)?;
-    let design_box = DesignBox::default();
+    let design_box = a.design_box.design_box()?;
     let r = match a.adaptive.options() {
         None => surrogate_report_in(a.approach, a.plan, &car, &road, &design_box, a.predict),
         Some(options) => adaptive::surrogate_report(
@@ -1180,13 +1236,7 @@ fn study_cmd(a: StudyArgs) -> Result<String> {
 
 fn report_cmd(a: ReportArgs) -> Result<String> {
     let (car, road) = car_and_road(&a.car)?;
-    let design_box = DesignBox {
-        ks_min: a.ks_range.0,
-        ks_max: a.ks_range.1,
-        cs_min: a.cs_range.0,
-        cs_max: a.cs_range.1,
-    };
-    design_box.validate()?;
+    let design_box = a.design_box.design_box()?;
     let inputs = ReportInputs {
         design_box,
         objectives: a.objectives.objectives()?,
@@ -1218,6 +1268,8 @@ fn report_cmd(a: ReportArgs) -> Result<String> {
         }
         last = (now, Some(k));
     })?;
+    // Nothing is written unless every number in the report is finite.
+    ridelab::finite::check(&report)?;
     let render = std::time::Instant::now();
     let docs = report.documents()?;
     let write = |name: &Path, text: &str| {

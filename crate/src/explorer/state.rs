@@ -340,6 +340,9 @@ impl State {
         CaseSet::from_json(text, datum, &loads, road)
             .map(Some)
             .map_err(|e| match e {
+                RideError::Field { field, reason } if field == "cases" => {
+                    RideError::field(field, reason)
+                }
                 RideError::Field { field, reason } => {
                     RideError::field(format!("cases.{field}"), reason)
                 }
@@ -410,11 +413,13 @@ impl State {
             _ => self.case_set(&datum, &road)?,
         };
         let case = self.case_index(cases.as_ref().map(|c| c.cases.len()))?;
+        let dbox = self.design_box()?;
+        dbox.check_on(&datum.design_domain())?;
         Ok(Scenario {
             datum,
             design,
             road,
-            dbox: self.design_box()?,
+            dbox,
             objectives: self.objectives()?,
             surrogate,
             plan,

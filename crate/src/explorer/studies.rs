@@ -11,6 +11,7 @@ use crate::evaluate::{Criteria, Evaluator};
 use crate::optimize::EvaluatorSpec;
 use crate::optimize::{
     minmax::{normalised_distances, pick, pseudo_weights, recheck, PickRule, Recheck},
+        trust::{pick_warnings, Warning},
     nsga2::Nsga2Params,
     stm::StmParams,
     study::{run_study, Method, Study},
@@ -91,6 +92,9 @@ pub struct FrontResult {
     /// Each front point's pseudo-weights `[w_bacc, w_dtl]`,
     /// `w_i = (1 - d_i) / sum_j (1 - d_j)` of its normalised distances `d`, -.
     pub pseudo_weights: Vec<[f64; 2]>,
+    /// How far the pick can be trusted: a design-box bound it sits on, a criterion its
+    /// HiFi re-check misses by more than [`crate::optimize::RECHECK_TOLERANCE_PERCENT`].
+    pub warnings: Vec<Warning>,
     /// With robust cases: the rule, the normalisation and the pick in each case (its
     /// LoFi prediction and HiFi re-check against that case's datum, the objectives the
     /// re-check breaks), as `ridelab optimize --cases --json`'s `cases`.
@@ -136,6 +140,7 @@ pub fn robust_front(
         .map(pseudo_weights)
         .collect();
     Ok(FrontResult {
+        warnings: r.warnings,
         datum: r.datum,
         datum_hifi: r.datum,
         recheck: r.hifi_recheck,
@@ -174,6 +179,7 @@ pub fn front<E: Evaluator + ?Sized>(
     let datum_hifi = hifi.evaluate(s.datum.front.spring, s.datum.front.damper)?;
     let recheck = recheck(&study.pick, &*hifi, &datum_hifi)?;
     Ok(FrontResult {
+        warnings: pick_warnings(&study.pick, &recheck, &s.dbox),
         study,
         datum,
         datum_hifi,

@@ -56,9 +56,11 @@ impl Default for MapSettings {
 }
 
 impl MapSettings {
-    /// Checks the grid, the objectives and the level count.
+    /// Checks the grid (its axes inside the design domain, [`crate::domain`]), the
+    /// objectives and the level count.
     pub fn validate(&self) -> Result<()> {
         self.grid.validate()?;
+        self.grid.design_box().validate()?;
         self.objectives.validate()?;
         if self.contour_levels > MAX_CONTOUR_LEVELS {
             return Err(RideError::field(
@@ -301,6 +303,7 @@ pub fn map_report_on(
     settings: &MapSettings,
     compute: Compute,
 ) -> Result<MapReport> {
+    settings.grid.design_box().check_on(&car.design_domain())?;
     match (model, compute) {
         (ModelKind::Quarter, Compute::Gpu) => Err(RideError::field(
             "compute",

@@ -15,6 +15,7 @@ pub mod report;
 pub mod stm;
 pub mod study;
 pub mod suspension;
+pub mod trust;
 #[cfg(test)]
 mod test_problems;
 #[cfg(test)]
@@ -33,3 +34,4 @@ pub use report::{
 pub use stm::{stm, StmParams};
 pub use study::{run_study, Method, Study};
 pub use suspension::{Counted, FrontPoint, SuspensionProblem};
+pub use trust::{pick_warnings, Warning, RECHECK_TOLERANCE_PERCENT};

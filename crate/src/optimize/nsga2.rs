@@ -50,9 +50,6 @@ impl Default for Nsga2Params {
 pub const MAX_POPULATION: usize = 10_000;
 /// Most generations accepted.
 pub const MAX_GENERATIONS: usize = 10_000;
-/// Most evaluations one run may cost, `population (generations + 1)` (on the HiFi at
-/// about 25 us a point, some 8 minutes).
-pub const MAX_EVALUATIONS: usize = 20_000_000;
 
 impl Nsga2Params {
     /// Checks every setting; errors name the field.
@@ -75,15 +72,7 @@ impl Nsga2Params {
                 format!("must be 1 to {MAX_GENERATIONS} (got {})", self.generations),
             ));
         }
-        let cost = self.population.saturating_mul(self.generations + 1);
-        if cost > MAX_EVALUATIONS {
-            return Err(RideError::field(
-                "generations",
-                format!(
-                    "population x (generations + 1) = {cost} evaluations; at most {MAX_EVALUATIONS}"
-                ),
-            ));
-        }
+        self.check_runs(1)?;
         let unit = |name: &str, p: f64| {
             if (0.0..=1.0).contains(&p) {
                 Ok(())
@@ -101,6 +90,27 @@ impl Nsga2Params {
             }
         }
         Ok(())
+    }
+}
+
+impl Nsga2Params {
+    /// Refuses a run over `cases` cases whose `population (generations + 1)` runs each
+    /// exceed the command's bound ([`crate::budget::MAX_RUNS`]); errors name `generations`.
+    pub fn check_runs(&self, cases: usize) -> Result<()> {
+        let runs = (self.population as u64)
+            .saturating_mul(self.generations as u64 + 1)
+            .saturating_mul(cases as u64);
+        crate::budget::check(
+            runs,
+            "generations",
+            &format!(
+                "NSGA-II with population {} for {} generations{}",
+                self.population,
+                self.generations,
+                if cases > 1 { format!(" over {cases} cases") } else { String::new() }
+            ),
+            "--population or --generations",
+        )
     }
 }
 

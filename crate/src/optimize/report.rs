@@ -8,6 +8,7 @@
 
 use super::minmax::{pick, recheck, PickRule, Recheck};
 use super::study::{run_study, Method, Study};
+use super::trust::{pick_warnings, Warning};
 use super::suspension::SuspensionProblem;
 use crate::analysis::{HiFi, LoFi, ModelKind};
 use crate::car::Car;
@@ -98,15 +99,25 @@ pub struct OptimizeReport {
     /// The GPU adapter's name when the GPU ran.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub adapter: Option<String>,
+    /// How far the pick can be trusted ([`super::trust`]): a box bound it sits on, a
+    /// criterion its HiFi re-check misses by more than the tolerance; empty when neither.
+    pub warnings: Vec<Warning>,
 }
 
 impl OptimizeReport {
     /// Replaces the pick by `rule`'s on the same front and re-checks it on the HiFi of
     /// `car` on `road` (the report's datum is that HiFi's).
-    pub fn repick(&mut self, rule: PickRule, car: &Car, road: &Road) -> Result<()> {
+    pub fn repick(
+        &mut self,
+        rule: PickRule,
+        car: &Car,
+        road: &Road,
+        design_box: &DesignBox,
+    ) -> Result<()> {
         let p = pick(&self.study.front, &self.datum, rule)?;
         let hifi = self.comfort.evaluator(ModelKind::Full, car, road)?;
         self.hifi_recheck = recheck(&p, &*hifi, &self.datum)?;
+        self.warnings = pick_warnings(&p, &self.hifi_recheck, design_box);
         self.study.pick = p;
         Ok(())
     }
@@ -206,6 +217,7 @@ pub fn optimize_model_with(
     let study = run_study(&problem, method, None)?;
     let hifi_recheck = recheck(&study.pick, &*hifi, &datum)?;
     Ok(OptimizeReport {
+        warnings: pick_warnings(&study.pick, &hifi_recheck, design_box),
         study,
         datum,
         hifi_recheck,

@@ -11,6 +11,7 @@
 //! is traced exactly rather than at the nearest feasible lattice row.
 
 use super::problem::{check_bounds, feasible_front, non_dominated, Problem, Solution};
+use crate::budget;
 use crate::error::{Result, RideError};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -51,7 +52,32 @@ impl StmParams {
         if self.levels > 10 {
             return Err(RideError::field("levels", "at most 10 refinement levels"));
         }
-        Ok(())
+        let side = budget::lattice_side(self.grid, self.levels);
+        if side > budget::MAX_LATTICE_SIDE {
+            return Err(RideError::field(
+                "levels",
+                format!(
+                    "--grid {} with {} levels refines to a lattice of {} steps a side; at most {} (a front of a few points a step): lower --levels or --grid",
+                    self.grid,
+                    self.levels,
+                    budget::group(side),
+                    budget::group(budget::MAX_LATTICE_SIDE)
+                ),
+            ));
+        }
+        self.check_runs(1)
+    }
+
+    /// Refuses STM over `cases` cases whose estimated runs ([`budget::stm_runs`] each)
+    /// exceed the command's bound; errors name `grid`.
+    pub fn check_runs(&self, cases: usize) -> Result<()> {
+        let runs = budget::stm_runs(self.grid, self.levels).saturating_mul(cases as u64);
+        let what = if cases > 1 {
+            format!("STM on a {0} x {0} grid with {1} levels over {cases} cases", self.grid, self.levels)
+        } else {
+            format!("STM on a {0} x {0} grid with {1} levels", self.grid, self.levels)
+        };
+        budget::check(runs, "grid", &what, "--grid or --levels")
     }
 }
 

@@ -32,8 +32,20 @@ impl<E: Evaluator> Counted<E> {
 }
 
 impl<E: Evaluator> Evaluator for Counted<E> {
+    /// The inner evaluation, counted; past [`crate::budget::HARD_RUNS`] calls an error
+    /// naming `grid` (the optimisers' runs are bounded, whatever their estimate said).
     fn evaluate(&self, ks: f64, cs: f64) -> Result<Criteria> {
-        self.count.set(self.count.get() + 1);
+        let n = self.count.get() + 1;
+        self.count.set(n);
+        if n as u64 > crate::budget::HARD_RUNS {
+            return Err(RideError::field(
+                "grid",
+                format!(
+                    "the optimiser has made {} model runs, the most one command may (lower --grid, --levels or --generations)",
+                    crate::budget::group(crate::budget::HARD_RUNS)
+                ),
+            ));
+        }
         self.inner.evaluate(ks, cs)
     }
     fn name(&self) -> String {
@@ -148,6 +160,10 @@ impl<E: Evaluator> SuspensionProblem<E> {
         ctx: DosContext,
     ) -> Result<Self> {
         design.validate()?;
+        design.check_on(&crate::car::DesignDomain::new(
+            ctx.sprung_mass,
+            ctx.tire_stiffness,
+        ))?;
         objectives.validate()?;
         Ok(SuspensionProblem {
             evaluator: Counted::new(evaluator),

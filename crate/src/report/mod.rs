@@ -835,7 +835,7 @@ fn optimise(inputs: &ReportInputs, spec: SurrogateSpec, plan: PlanSpec) -> Resul
         .iter()
         .map(|&rule| {
             let mut r = stm_front.clone();
-            r.repick(rule, &inputs.car, &inputs.road)?;
+            r.repick(rule, &inputs.car, &inputs.road, &inputs.design_box)?;
             let (p, c) = (&r.study.pick, &r.hifi_recheck);
             Ok(RulePick {
                 rule: p.rule.clone(),

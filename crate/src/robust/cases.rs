@@ -169,6 +169,7 @@ impl CaseSet {
         car_load_cases: &[LoadCase],
         road: &Road,
     ) -> Result<CaseSet> {
+        crate::car::check_object("cases", "a cases file", text)?;
         let de = &mut serde_json::Deserializer::from_str(text);
         let file: CasesFile = serde_path_to_error::deserialize(de).map_err(|e| {
             let path = e.path().to_string();
@@ -250,12 +251,7 @@ fn check_operating(ops: &[Operating]) -> Result<()> {
             }
             other => other,
         })?;
-        if !(o.weight.is_finite() && o.weight >= 0.0) {
-            return Err(RideError::field(
-                format!("operating[{i}].weight"),
-                format!("must be a finite number >= 0 (got {})", o.weight),
-            ));
-        }
+        crate::domain::CASE_WEIGHT.check(&format!("operating[{i}].weight"), o.weight)?;
     }
     Ok(())
 }

@@ -74,22 +74,15 @@ impl LoadCase {
     /// wheelbase (`x`), an inertia not > 0, a bad weight or name.
     pub fn apply(&self, car: &Car, prefix: &str) -> Result<Car> {
         let field = |f: &str| format!("{prefix}.{f}");
-        for (f, v) in [
-            ("mass", self.mass),
-            ("x", self.x),
-            ("y", self.y),
-            ("z", self.z),
-            ("weight", self.weight),
+        use crate::domain::{CASE_WEIGHT, LOAD_MASS, LOAD_POSITION, LOAD_SPREAD};
+        for (f, v, limit) in [
+            ("mass", self.mass, &LOAD_MASS),
+            ("x", self.x, &LOAD_POSITION),
+            ("y", self.y.abs(), &LOAD_SPREAD),
+            ("z", self.z, &LOAD_POSITION),
+            ("weight", self.weight, &CASE_WEIGHT),
         ] {
-            if !v.is_finite() {
-                return Err(RideError::field(field(f), "must be a finite number"));
-            }
-        }
-        if self.weight < 0.0 {
-            return Err(RideError::field(
-                field("weight"),
-                format!("must be >= 0 (got {})", self.weight),
-            ));
+            limit.check(&field(f), v)?;
         }
         if self.name.trim().is_empty() || self.name.chars().count() > MAX_NAME_CHARS {
             return Err(RideError::field(

@@ -232,6 +232,13 @@ pub fn robust_map_report(
     compute: Compute,
 ) -> Result<RobustMapReport> {
     settings.validate()?;
+    let (nx, ny) = (settings.grid.ks.n, settings.grid.cs.n);
+    crate::budget::check(
+        (nx as u64) * (ny as u64) * set.cases.len() as u64,
+        "ks-range",
+        &format!("a {nx} x {ny} map over {} cases", set.cases.len()),
+        "the points of --ks-range and --cs-range, or the cases",
+    )?;
     // Each case's absolute fields and mask, without its own contours.
     let per_case = MapSettings {
         scale: Scale::Absolute,

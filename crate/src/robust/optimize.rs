@@ -14,6 +14,7 @@ use crate::analysis::{HiFiRoads, ModelKind};
 use crate::comfort::Comfort;
 use crate::design::DesignBox;
 use crate::dos::{DesignObjectives, DosContext, Objective};
+use crate::optimize::trust::{pick_warnings, Warning};
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::optimize::hypervolume::{hypervolume, reference_point};
@@ -45,6 +46,12 @@ impl<E: CaseRun> RobustProblem<E> {
         ctxs: Vec<DosContext>,
     ) -> Result<Self> {
         design.validate()?;
+        for ctx in &ctxs {
+            design.check_on(&crate::car::DesignDomain::new(
+                ctx.sprung_mass,
+                ctx.tire_stiffness,
+            ))?;
+        }
         objectives.validate()?;
         Ok(RobustProblem {
             evaluator,
@@ -142,6 +149,9 @@ pub struct RobustOptimizeReport {
     pub normalisation: &'static str,
     /// The pick in each case.
     pub cases: Vec<CasePick>,
+    /// How far the pick can be trusted ([`crate::optimize::trust`]): a box bound it sits
+    /// on, a criterion whose robust HiFi re-check misses the prediction.
+    pub warnings: Vec<Warning>,
 }
 
 /// Every case's datum criteria: the datum design (the loaded car's own front spring and
@@ -198,6 +208,10 @@ pub fn robust_optimize_report(
     rule: PickRule,
 ) -> Result<RobustOptimizeReport> {
     objectives.validate()?;
+    match method {
+        Method::Stm(p) => p.check_runs(set.cases.len())?,
+        Method::Nsga2(p) => p.check_runs(set.cases.len())?,
+    }
     let mut models = Vec::with_capacity(set.cases.len());
     let mut hifis = Vec::with_capacity(set.cases.len());
     for c in &set.cases {
@@ -283,6 +297,7 @@ pub fn robust_optimize_report(
         });
     }
     Ok(RobustOptimizeReport {
+        warnings: pick_warnings(&picked, &hifi_recheck, design_box),
         study,
         datum,
         hifi_recheck,

@@ -31,6 +31,7 @@ pub mod adaptive;
 pub mod datafit;
 pub mod fit;
 pub mod gp;
+mod guard;
 pub mod infill;
 pub mod kriging;
 pub mod metrics;
@@ -158,6 +159,7 @@ impl Setting {
         car.validate()?;
         road.validate()?;
         design_box.validate()?;
+        design_box.check_on(&car.design_domain())?;
         Ok(Setting {
             lofi: LoFi {
                 car: car.clone(),

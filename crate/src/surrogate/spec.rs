@@ -9,6 +9,7 @@
 //! multiplicative polynomial RBA), and per criterion otherwise.
 //! Plans: `ae:N` (Audze-Eglais, N points), `grid:n` (n x n full factorial).
 
+use super::guard::Guarded;
 use super::datafit::DataFitParams;
 use super::fit::LmOptions;
 use super::gp::GpParams;
@@ -212,7 +213,7 @@ impl SurrogateSpec {
     ) -> Result<Box<dyn Surrogate>> {
         self.check(samples)?;
         let scheme = self.scheme;
-        Ok(match self.approach {
+        let fitted: Box<dyn Surrogate> = match self.approach {
             Approach::Rba { form, response } => Box::new(
                 RbaParams {
                     form,
@@ -239,7 +240,9 @@ impl SurrogateSpec {
             ),
             Approach::Data(response) => Box::new(DataFitParams { response }.fit(setting, samples)?),
             Approach::Gp => Box::new(GpParams.fit(setting, samples)?),
-        })
+        };
+        // Every prediction is checked: an RMS > 0, not too far beyond the fitted box.
+        Ok(Box::new(Guarded::new(fitted, setting.design_box)))
     }
 }
 

@@ -141,10 +141,18 @@ impl Damper {
                     ),
                 ));
             }
+            crate::domain::KNEE_VELOCITY.check("knee.velocity", k.velocity)?;
             rate("knee.bump", k.bump, true)?;
             rate("knee.rebound", k.rebound, true)?;
+            for (field, x) in [("knee.bump", k.bump), ("knee.rebound", k.rebound)] {
+                if x > crate::domain::DAMPER.max {
+                    crate::domain::DAMPER.check(field, x)?;
+                }
+            }
         }
-        Ok(())
+        // The two low-speed rates are dampers of a road vehicle ([`crate::domain::DAMPER`]).
+        crate::domain::DAMPER.check("bump", self.bump)?;
+        crate::domain::DAMPER.check("rebound", self.rebound)
     }
 }
 

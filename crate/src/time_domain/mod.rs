@@ -321,7 +321,15 @@ fn run(model: &LinearModel, road: &Road, opt: &TimeOptions, rate: f64) -> Result
         out.damper_rate
     };
     if out.rms.iter().any(|v| !v.is_finite()) {
-        return Err(RideError::Numerical("time-domain response diverged".into()));
+        // The step check keeps every linear mode stable; a law's knee can still excite
+        // more than it: the step is the cause a user can change.
+        return Err(RideError::field(
+            "dt",
+            format!(
+                "the response grew without bound at {} s steps: give a shorter step",
+                crate::domain::num(h)
+            ),
+        ));
     }
     Ok(out)
 }
@@ -393,6 +401,57 @@ impl Dynamics {
     }
 }
 
+/// Largest `|lambda| h` of the explicit RK4 steps a damper law runs with: RK4 is stable
+/// for `|lambda h|` up to about 2.6 to 2.8 around the left half-plane, so 2.5 keeps every
+/// mode inside.
+const RK4_REACH: f64 = 2.5;
+
+/// Refuses a step `h` (s) too long for RK4 with `law`: the model with its front dampers at
+/// the law's steepest slope has an eigenvalue `lambda` (1/s) with `|lambda| h > 2.5`, and
+/// the run would diverge. The error names `dt` and the step that works.
+fn check_explicit_step(dynamics: &Dynamics, law: &Damper, h: f64) -> Result<()> {
+    let slopes = [law.bump, law.rebound]
+        .into_iter()
+        .chain(law.knee.iter().flat_map(|k| [k.bump, k.rebound]));
+    let steepest = slopes.fold(0.0f64, f64::max);
+    let n = dynamics.k.nrows();
+    let mut c = dynamics.c_lin.clone();
+    for d in &dynamics.corners {
+        c += steepest * d * d.transpose();
+    }
+    let mut a = DMatrix::zeros(2 * n, 2 * n);
+    a.view_mut((0, n), (n, n)).fill_with_identity();
+    a.view_mut((n, 0), (n, n)).copy_from(&(-(&dynamics.minv * &dynamics.k)));
+    a.view_mut((n, n), (n, n)).copy_from(&(-(&dynamics.minv * c)));
+    let fastest = a
+        .complex_eigenvalues()
+        .iter()
+        .map(|l| l.norm())
+        .fold(0.0f64, f64::max);
+    if fastest * h <= RK4_REACH {
+        return Ok(());
+    }
+    let limit = RK4_REACH / fastest;
+    // A round step below the limit: 1, 2 or 5 times a power of ten.
+    let decade = 10f64.powf(limit.log10().floor());
+    let suggest = [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * decade)
+        .find(|s| *s <= limit)
+        .unwrap_or(decade);
+    Err(RideError::field(
+        "dt",
+        format!(
+            "{} s steps are too long for the damper law: at its steepest slope ({} N s/m) the car has a mode of {} 1/s, and the explicit steps a nonlinear damper needs stay stable only below {} s; give a step of {} s or less (or soften the law)",
+            crate::domain::num(h),
+            crate::domain::num(steepest),
+            crate::domain::num(fastest),
+            crate::domain::num(limit),
+            crate::domain::num(suggest)
+        ),
+    ))
+}
+
 /// One step of the state over `h` with a linear road ramp.
 enum Stepper {
     /// Exact first-order-hold discretisation of a linear model.
@@ -409,7 +468,8 @@ enum Stepper {
 
 impl Stepper {
     fn new(model: &LinearModel, h: f64, dynamics: &Dynamics) -> Result<Stepper> {
-        if dynamics.law.is_some() {
+        if let Some(law) = dynamics.law {
+            check_explicit_step(dynamics, &law, h)?;
             return Ok(Stepper::RungeKutta { h });
         }
         let ss = model.state_space()?;

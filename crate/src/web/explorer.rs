@@ -51,7 +51,13 @@ fn map_js(m: &ModelMap) -> Result<JsValue, JsValue> {
     let set = |k: &str, v: JsValue| Reflect::set(&out, &k.into(), &v);
     set("nx", (m.grid().ks.n as f64).into())?;
     set("ny", (m.grid().cs.n as f64).into())?;
-    set("values", Float64Array::from(m.planes().as_slice()).into())?;
+    let planes = m.planes();
+    if planes.iter().any(|v| !v.is_finite()) {
+        return Err(js_error(crate::error::RideError::Numerical(
+            "internal: a map holds a value that is not finite; it is not drawn (please report this with the page's link)".into(),
+        )));
+    }
+    set("values", Float64Array::from(planes.as_slice()).into())?;
     set("feasible", Uint8Array::from(m.feasible().as_slice()).into())?;
     set("broken", Uint8Array::from(m.broken()).into())?;
     set("feasibleCount", (m.dos.summary.feasible as f64).into())?;

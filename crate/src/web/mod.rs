@@ -40,7 +40,8 @@ fn js_error(e: RideError) -> JsValue {
         RideError::Json(_) => "car".into(),
         _ => String::new(),
     };
-    let err = js_sys::Error::new(&e.to_string());
+    // The page shows spring and damper rates in kN/m and kNs/m.
+    let err = js_sys::Error::new(&crate::domain::page_units(&e.to_string()));
     // Setting a property on a fresh Error object cannot fail.
     let _ = Reflect::set(&err, &"field".into(), &field.into());
     err.into()
@@ -58,7 +59,10 @@ fn js_error_verbatim(e: RideError) -> JsValue {
     err.into()
 }
 
+/// `v` as a JS value, once every number in it is known to be finite
+/// ([`crate::finite::check`]: no NaN or infinity reaches the screen).
 fn to_js<T: Serialize>(v: &T) -> Result<JsValue, JsValue> {
+    crate::finite::check(v).map_err(js_error)?;
     v.serialize(&serde_wasm_bindgen::Serializer::json_compatible())
         .map_err(|e| js_sys::Error::new(&format!("serialisation: {e}")).into())
 }

@@ -113,6 +113,23 @@ pub fn adaptive_study(
             ),
         ));
     }
+    options.stm.validate()?;
+    // Two fronts per row and the HiFi's own, each STM; the loop's infill predictions.
+    let rows = (options.max_runs - options.min_runs + 1) as u64;
+    let fronts = 2 * rows + 1;
+    let infill = (options.max_runs - options.initial) as u64
+        * (options.adaptive.candidates as u64).pow(2);
+    crate::budget::check(
+        fronts
+            .saturating_mul(crate::budget::stm_runs(options.stm.grid, options.stm.levels))
+            .saturating_add(infill),
+        "grid",
+        &format!(
+            "the adaptive study ({fronts} STM fronts on a {0} x {0} grid, runs {1}..{2})",
+            options.stm.grid, options.min_runs, options.max_runs
+        ),
+        "--grid or --max-runs",
+    )?;
     let design_box = DesignBox::default();
     let setting = Setting::new(car, road, &design_box)?;
     let hifi = HiFi::new(car, road)?;
