@@ -47,7 +47,7 @@ pub use profile::{
 pub use shaped::{ProfileTracks, ShapedRoad, ShapedSource};
 pub use shaping::{ShapingFilter, VelocityPsd, MAX_FILTER_ORDER};
 pub use spectral::{criteria_shaped_spectral, ShapedSpectrum};
-pub use synth::{synthesize, Slabs, Synthesis};
+pub use synth::{shipped_examples, synthesize, Slabs, Synthesis, EXAMPLE_DECIMALS};
 
 /// The temporal band, Hz, over which a profile's measured velocity PSD is used at a speed
 /// (clipped to what the profile resolves there): from below the body modes (about 1 Hz)

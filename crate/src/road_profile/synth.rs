@@ -149,6 +149,45 @@ impl Synthesis {
     }
 }
 
+/// The example profiles shipped in `assets/roads/` (written by
+/// `cargo run -p ridelab --example make_road_profiles`), by file name:
+///
+/// - `class-c-waviness-2.5.csv`: ISO class C (`Gd(n0) = 256e-6` m^3), waviness 2.5, 4 km at
+///   10 cm, two tracks with coherence `exp(-n / 0.2 cycle/m)`;
+/// - `concrete-slab-5m.csv`: ISO class B, waviness 2, with 5 m slabs (1.5 mm level RMS,
+///   1.5 mm curl), 3 km at 5 cm, one track.
+pub fn shipped_examples() -> [(&'static str, Synthesis); 2] {
+    [
+        (
+            "class-c-waviness-2.5.csv",
+            Synthesis {
+                gd_n0: RoadClass::C.gd_n0(),
+                waviness: 2.5,
+                length: 4000.0,
+                spacing: 0.1,
+                seed: 31,
+                coherence_n: Some(0.2),
+                ..Synthesis::default()
+            },
+        ),
+        (
+            "concrete-slab-5m.csv",
+            Synthesis {
+                gd_n0: RoadClass::B.gd_n0(),
+                waviness: 2.0,
+                length: 3000.0,
+                spacing: 0.05,
+                seed: 5,
+                slabs: Some(Slabs::default()),
+                ..Synthesis::default()
+            },
+        ),
+    ]
+}
+
+/// Decimals of the shipped examples' CSV: distance (m) and elevation (m, micrometres).
+pub const EXAMPLE_DECIMALS: (usize, usize) = (2, 6);
+
 /// A seeded profile realising `s` (see the module doc).
 pub fn synthesize(s: &Synthesis) -> Result<Profile> {
     s.validate()?;

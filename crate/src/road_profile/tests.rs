@@ -130,3 +130,40 @@ fn measured_tracks_span_correlated_to_independent() {
         }
     }
 }
+
+/// The shipped example profiles (`assets/roads/`) are what [`shipped_examples`]
+/// synthesises, to the file's micrometre rounding; they are read without notes, under
+/// 1.5 MB, the class C road describes as class C of waviness 2.5, and both shape at
+/// 20 m/s with their natural tracks.
+#[test]
+fn the_shipped_examples_are_the_stated_synthetic_roads() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/roads");
+    for (name, settings) in shipped_examples() {
+        let bytes = std::fs::read(dir.join(name)).unwrap();
+        assert!(bytes.len() < 1_500_000, "{name}: {} bytes", bytes.len());
+        let p = Profile::from_csv_bytes(&bytes).unwrap();
+        assert!(p.notes.is_empty(), "{name}: {:?}", p.notes);
+        let q = synthesize(&settings).unwrap();
+        assert_eq!(p.len(), q.len());
+        assert_eq!(p.tracks(), q.tracks());
+        for (a, b) in p
+            .left()
+            .iter()
+            .zip(q.left())
+            .chain(p.right().iter().zip(q.right()))
+        {
+            assert!((a - b).abs() <= 0.51e-6, "{name}: {a} vs {b}");
+        }
+        let d = describe(&p).unwrap();
+        if settings.slabs.is_none() {
+            assert_eq!(d.iso8608.class, RoadClass::C, "{name}: {:?}", d.iso8608);
+            assert!(
+                (d.iso8608.waviness - 2.5).abs() < 0.2,
+                "{name}: {:?}",
+                d.iso8608
+            );
+        }
+        let road = ShapedRoad::from_profile(&p, 20.0, ProfileTracks::default_for(&p)).unwrap();
+        assert!(road.fit_error().is_finite());
+    }
+}
