@@ -45,7 +45,9 @@ pub use profile::{
     MIN_SPACING, ROUGHNESS_WAVELENGTH, UNIFORM_TOLERANCE,
 };
 pub use shaped::{ProfileTracks, ShapedRoad, ShapedSource};
-pub use shaping::{ShapingFilter, VelocityPsd, MAX_FILTER_ORDER};
+pub use shaping::{
+    Extension, ShapingFilter, VelocityPsd, EXTENSION_SLOPE_OCTAVES, MAX_FILTER_ORDER,
+};
 pub use spectral::{criteria_shaped_spectral, ShapedSpectrum};
 pub use synth::{shipped_examples, synthesize, Slabs, Synthesis, EXAMPLE_DECIMALS};
 
