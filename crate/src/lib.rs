@@ -23,6 +23,7 @@ pub mod model;
 pub mod optimize;
 pub mod report;
 pub mod road;
+pub mod road_profile;
 pub mod robust;
 pub mod surrogate;
 pub mod time_domain;

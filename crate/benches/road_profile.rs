@@ -1,0 +1,57 @@
+//! Timings of a measured road profile's path: reading a 4 km profile at 5 cm (80 000
+//! samples, two tracks) from CSV text, describing it (Welch PSD of both tracks, coherence,
+//! ISO 8608 fit; the target is under 100 ms), shaping it at 20 m/s (Welch PSDs and the
+//! filter fits), and the criteria on the shaped road by the exact route (quarter car and
+//! full car) and by the frequency route on the raw PSD (full car, 1e-6).
+//!
+//! Run: `cargo bench -p ridelab --bench road_profile`.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use ridelab::model::{full_car, quarter_car};
+use ridelab::road_profile::{
+    criteria_shaped, criteria_shaped_spectral, describe, synthesize, Profile, ProfileTracks,
+    ShapedRoad, Synthesis,
+};
+use ridelab::Car;
+use std::hint::black_box;
+
+fn road_profile(c: &mut Criterion) {
+    let profile = synthesize(&Synthesis {
+        length: 4000.0,
+        spacing: 0.05,
+        waviness: 2.5,
+        coherence_n: Some(0.3),
+        ..Synthesis::default()
+    })
+    .unwrap();
+    assert_eq!(profile.len(), 80_001);
+    let text = profile.to_csv(2, 6);
+    let mut g = c.benchmark_group("road_profile");
+    g.sample_size(20);
+    g.bench_function("parse 80k samples, 2 tracks", |b| {
+        b.iter(|| Profile::from_csv(black_box(&text)).unwrap())
+    });
+    g.bench_function("describe 80k samples, 2 tracks", |b| {
+        b.iter(|| describe(black_box(&profile)).unwrap())
+    });
+    g.bench_function("shape at 20 m/s, measured tracks", |b| {
+        b.iter(|| ShapedRoad::from_profile(black_box(&profile), 20.0, ProfileTracks::Measured))
+    });
+    let road = ShapedRoad::from_profile(&profile, 20.0, ProfileTracks::Measured).unwrap();
+    let car = Car::datum();
+    let quarter = quarter_car(&car.quarter());
+    let full = full_car(&car);
+    g.bench_function("exact route, quarter car", |b| {
+        b.iter(|| criteria_shaped(black_box(&quarter), &road).unwrap())
+    });
+    g.bench_function("exact route, full car", |b| {
+        b.iter(|| criteria_shaped(black_box(&full), &road).unwrap())
+    });
+    g.bench_function("frequency route 1e-6, full car", |b| {
+        b.iter(|| criteria_shaped_spectral(black_box(&full), &road, 1e-6).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, road_profile);
+criterion_main!(benches);

@@ -1,0 +1,169 @@
+//! Cross-module tests: the two routes on shaped roads from synthesised profiles.
+
+use super::*;
+use crate::car::Car;
+use crate::model::{full_car, quarter_car, LinearModel};
+use crate::road::RoadClass;
+
+fn models() -> [LinearModel; 2] {
+    let car = Car::datum();
+    [quarter_car(&car.quarter()), full_car(&car)]
+}
+
+/// The filter route against the frequency route on the raw Welch PSD; returns the
+/// largest relative difference of the three criteria.
+fn routes(model: &LinearModel, road: &ShapedRoad) -> f64 {
+    let a = criteria_shaped(model, road).unwrap().to_array();
+    let b = criteria_shaped_spectral(model, road, 1e-6).unwrap();
+    assert!(b.converged(1e-6), "{}", b.relative_error);
+    a.iter()
+        .zip(b.criteria.to_array())
+        .map(|(x, y)| (x / y - 1.0).abs())
+        .fold(0.0, f64::max)
+}
+
+/// On profiles (an ISO road of waviness 2.5 with one track, correlated and independent;
+/// two measured tracks with falling coherence; a slab concrete road) the filter route is
+/// within the filter's stated error of the frequency route on the raw PSD, for the
+/// quarter and the full car (at 10, 20 and 30 m/s for two of them).
+#[test]
+fn the_filter_route_is_within_its_stated_error_on_profiles() {
+    let base = Synthesis {
+        gd_n0: RoadClass::C.gd_n0(),
+        waviness: 2.5,
+        length: 1500.0,
+        seed: 3,
+        ..Synthesis::default()
+    };
+    let two = synthesize(&Synthesis {
+        coherence_n: Some(0.3),
+        seed: 4,
+        ..base
+    })
+    .unwrap();
+    let slab = synthesize(&Synthesis {
+        gd_n0: RoadClass::B.gd_n0(),
+        waviness: 2.0,
+        slabs: Some(Slabs::default()),
+        seed: 5,
+        ..base
+    })
+    .unwrap();
+    let one = synthesize(&base).unwrap();
+    let cases: [(&str, &Profile, ProfileTracks, &[f64]); 4] = [
+        (
+            "one track, correlated",
+            &one,
+            ProfileTracks::Correlated,
+            &[10.0, 20.0, 30.0],
+        ),
+        (
+            "one track, independent",
+            &one,
+            ProfileTracks::Independent,
+            &[20.0],
+        ),
+        (
+            "two tracks, measured",
+            &two,
+            ProfileTracks::Measured,
+            &[20.0],
+        ),
+        (
+            "slabs",
+            &slab,
+            ProfileTracks::Correlated,
+            &[10.0, 20.0, 30.0],
+        ),
+    ];
+    for (name, profile, tracks, speeds) in cases {
+        for &speed in speeds {
+            let road = ShapedRoad::from_profile(profile, speed, tracks).unwrap();
+            let err = road.fit_error();
+            for model in models() {
+                let d = routes(&model, &road);
+                eprintln!(
+                    "{name:24} v {speed:4} dof {}: routes differ by {:.2} %, stated filter error {:.1} %",
+                    model.n(),
+                    100.0 * d,
+                    100.0 * err
+                );
+                assert!(d <= err, "{name} v {speed}: {d} > stated {err}");
+            }
+        }
+    }
+}
+
+/// Two measured tracks: with full coherence the measured road is the correlated one,
+/// with none it is the independent one (the difference source carries the roll).
+#[test]
+fn measured_tracks_span_correlated_to_independent() {
+    let full = Car::datum();
+    let model = full_car(&full);
+    let base = Synthesis {
+        length: 1000.0,
+        seed: 9,
+        ..Synthesis::default()
+    };
+    // Coherence exp(-n / 1e3) is 1 over the band; exp(-n / 1e-3) is 0.
+    for (nc, reference) in [
+        (1e3, ProfileTracks::Correlated),
+        (1e-3, ProfileTracks::Independent),
+    ] {
+        let p = synthesize(&Synthesis {
+            coherence_n: Some(nc),
+            ..base
+        })
+        .unwrap();
+        let measured = ShapedRoad::from_profile(&p, 20.0, ProfileTracks::Measured).unwrap();
+        let other = ShapedRoad::from_profile(&p, 20.0, reference).unwrap();
+        let a = criteria_shaped_spectral(&model, &measured, 1e-7)
+            .unwrap()
+            .criteria
+            .to_array();
+        let b = criteria_shaped_spectral(&model, &other, 1e-7)
+            .unwrap()
+            .criteria
+            .to_array();
+        for (x, y) in a.iter().zip(b) {
+            assert!((x / y - 1.0).abs() < 0.03, "{reference:?}: {x} vs {y}");
+        }
+    }
+}
+
+/// The shipped example profiles (`assets/roads/`) are what [`shipped_examples`]
+/// synthesises, to the file's micrometre rounding; they are read without notes, under
+/// 1.5 MB, the class C road describes as class C of waviness 2.5, and both shape at
+/// 20 m/s with their natural tracks.
+#[test]
+fn the_shipped_examples_are_the_stated_synthetic_roads() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/roads");
+    for (name, settings) in shipped_examples() {
+        let bytes = std::fs::read(dir.join(name)).unwrap();
+        assert!(bytes.len() < 1_500_000, "{name}: {} bytes", bytes.len());
+        let p = Profile::from_csv_bytes(&bytes).unwrap();
+        assert!(p.notes.is_empty(), "{name}: {:?}", p.notes);
+        let q = synthesize(&settings).unwrap();
+        assert_eq!(p.len(), q.len());
+        assert_eq!(p.tracks(), q.tracks());
+        for (a, b) in p
+            .left()
+            .iter()
+            .zip(q.left())
+            .chain(p.right().iter().zip(q.right()))
+        {
+            assert!((a - b).abs() <= 0.51e-6, "{name}: {a} vs {b}");
+        }
+        let d = describe(&p).unwrap();
+        if settings.slabs.is_none() {
+            assert_eq!(d.iso8608.class, RoadClass::C, "{name}: {:?}", d.iso8608);
+            assert!(
+                (d.iso8608.waviness - 2.5).abs() < 0.2,
+                "{name}: {:?}",
+                d.iso8608
+            );
+        }
+        let road = ShapedRoad::from_profile(&p, 20.0, ProfileTracks::default_for(&p)).unwrap();
+        assert!(road.fit_error().is_finite());
+    }
+}
