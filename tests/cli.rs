@@ -27,10 +27,53 @@ fn ridelab(args: &[&str]) -> (i32, String, String) {
     )
 }
 
+/// `ridelab ARGS --json` parsed, once its `units` object is known to name the unit of
+/// every numeric field (by the field's name, or `parent.name` where the name alone does
+/// not say, as for `positions.body_pitch_theta`).
 fn json(args: &[&str]) -> Value {
-    let (code, out, err) = ridelab(args);
+    let mut args = args.to_vec();
+    if !args.contains(&"--json") {
+        args.push("--json");
+    }
+    let (code, out, err) = ridelab(&args);
     assert_eq!(code, 0, "{args:?}: {err}");
-    serde_json::from_str(&out).expect("valid JSON")
+    let v: Value = serde_json::from_str(&out).expect("valid JSON");
+    let units = v["units"].as_object().unwrap_or_else(|| panic!("{args:?}: no units object"));
+    let mut missing = std::collections::BTreeSet::new();
+    numbers_without_units(&v, &mut Vec::new(), units, &mut missing);
+    assert!(missing.is_empty(), "{args:?}: no unit for {missing:?}");
+    v
+}
+
+fn numbers_without_units(
+    v: &Value,
+    path: &mut Vec<String>,
+    units: &serde_json::Map<String, Value>,
+    missing: &mut std::collections::BTreeSet<String>,
+) {
+    match v {
+        Value::Number(_) => {
+            let leaf = path.last().cloned().unwrap_or_default();
+            let qualified = match path.len() {
+                0 | 1 => leaf.clone(),
+                n => format!("{}.{leaf}", path[n - 2]),
+            };
+            if !units.contains_key(&leaf) && !units.contains_key(&qualified) {
+                missing.insert(path.join("."));
+            }
+        }
+        Value::Array(items) => items
+            .iter()
+            .for_each(|i| numbers_without_units(i, path, units, missing)),
+        Value::Object(map) => {
+            for (k, item) in map.iter().filter(|(k, _)| *k != "units") {
+                path.push(k.clone());
+                numbers_without_units(item, path, units, missing);
+                path.pop();
+            }
+        }
+        _ => {}
+    }
 }
 
 /// The page's maps (the explorer's session, cell centres of the design box) and the
@@ -177,12 +220,14 @@ fn assert_same_json(got: &Value, want: &Value, path: &str) {
             }
         }
         (Value::Object(a), Value::Object(b)) => {
-            let mut ka: Vec<&String> = a.keys().collect();
-            let mut kb: Vec<&String> = b.keys().collect();
+            // The CLI's `units` object is the CLI's own (issue #32).
+            let keep = |k: &&String| *k != "units";
+            let mut ka: Vec<&String> = a.keys().filter(keep).collect();
+            let mut kb: Vec<&String> = b.keys().filter(keep).collect();
             ka.sort();
             kb.sort();
             assert_eq!(ka, kb, "{path}: keys");
-            for (k, x) in a {
+            for (k, x) in a.iter().filter(|(k, _)| keep(k)) {
                 assert_same_json(x, &b[k], &format!("{path}.{k}"));
             }
         }
@@ -753,11 +798,24 @@ fn simulate_json_and_csv_equal_the_library() {
         let mut json_args = args.to_vec();
         json_args.push("--json");
         let v = json(&json_args);
-        assert_same_json(&v, &to_json(&lib), &format!("simulate {model}"));
-        assert_eq!(v["t"].as_array().unwrap().len(), 750 / 5);
-        for k in 0..3 {
-            assert!(v["rms"][k].as_f64().unwrap() > 0.0);
+        // The JSON names every series (issue #32); the numbers are the library's.
+        let series = |name: &str| -> Vec<f64> { serde_json::from_value(v["series"][name].clone()).unwrap() };
+        assert_eq!(series("t"), lib.t, "{model} t");
+        assert_eq!(series("road"), lib.road, "{model} road");
+        for (k, name) in ["bacc", "dtl", "sws"].iter().enumerate() {
+            assert_eq!(series(name), lib.outputs[k], "{model} {name}");
+            assert_eq!(v["rms"][name].as_f64(), Some(lib.rms[k]), "{model} rms {name}");
+            assert!(lib.rms[k] > 0.0);
         }
+        let dofs = kind.build(&car).dof_names;
+        for (d, name) in dofs.iter().enumerate() {
+            let key = name.replace([' ', '-'], "_");
+            let p: Vec<f64> = serde_json::from_value(v["positions"][&key].clone()).unwrap();
+            let a: Vec<f64> = serde_json::from_value(v["accelerations"][&key].clone()).unwrap();
+            assert_eq!((p, a), (lib.positions[d].clone(), lib.accelerations[d].clone()), "{model} {key}");
+        }
+        assert_eq!(v["t"], Value::Null);
+        assert_eq!(v["series"]["t"].as_array().unwrap().len(), 750 / 5);
         let mut csv_args = args.to_vec();
         csv_args.push("--csv");
         let (code, csv, err) = ridelab(&csv_args);
@@ -855,7 +913,7 @@ fn study_json_equals_the_library_and_its_rows_the_single_fits() {
 #[test]
 fn presets_list_every_preset_with_its_name_and_source() {
     let v = json(&["presets", "--json"]);
-    let cars = v.as_array().unwrap();
+    let cars = v["cars"].as_array().unwrap();
     assert_eq!(cars.len(), PRESETS.len());
     let (code, text, _) = ridelab(&["presets"]);
     assert_eq!(code, 0);
@@ -1080,7 +1138,7 @@ fn bad_input_is_one_line_naming_the_option_with_exit_code_2() {
         (&["eval", "--model", "full", "--ks", "inf"], "ks"),
         (&["frobnicate"], "command"),
         (&["report", "--ks-range", "40000:10000"], "ks-range"),
-        (&["optimize", "--dtl-margin", "0"], "dtl_margin"),
+        (&["optimize", "--dtl-margin", "0"], "dtl-margin"),
         (&["optimize", "--pick", "asf:2"], "pick"),
         (&["optimize", "--travel", "25"], "travel"),
         (
@@ -1694,4 +1752,107 @@ fn optimize_comfort_wk_picks_and_rechecks_with_the_weighted_measure() {
             "{text}"
         );
     }
+}
+
+/// The README's command table names every top-level field of each command's JSON (issue
+/// #32): a field added to an output without a word in the README fails here.
+#[test]
+fn readme_names_every_top_level_json_field() {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md"))
+        .expect("README.md");
+    let common = readme
+        .split("\n\n")
+        .find(|p| p.starts_with("Common JSON fields:"))
+        .expect("a 'Common JSON fields:' paragraph")
+        .to_string();
+    let grid = ["--ks-range", "10000:40000:3", "--cs-range", "500:4000:3"];
+    let runs: Vec<(&str, Vec<&str>)> = vec![
+        ("eval", vec!["eval", "--model", "quarter"]),
+        ("doe", vec!["doe", "--points", "5"]),
+        ("map", [&["map", "--model", "quarter"][..], &grid].concat()),
+        ("optimize", vec!["optimize", "--evaluator", "quarter", "--grid", "11", "--levels", "0"]),
+        ("surrogate", vec!["surrogate", "--approach", "vba-lts", "--plan", "ae:3", "--predict", "grid:3"]),
+        ("simulate", vec!["simulate", "--model", "quarter", "--duration", "1"]),
+        ("presets", vec!["presets"]),
+    ];
+    for (command, args) in runs {
+        let row = readme
+            .lines()
+            .find(|l| l.starts_with(&format!("| `{command} ")) || l.starts_with(&format!("| `{command}` ")))
+            .unwrap_or_else(|| panic!("no README row for {command}"));
+        let v = json(&args);
+        let keys: Vec<String> = match &v {
+            Value::Object(m) => m.keys().cloned().collect(),
+            _ => panic!("{command}: not an object"),
+        };
+        let missing: Vec<&String> = keys
+            .iter()
+            .filter(|k| {
+                let quoted = format!("`{k}`");
+                !row.contains(&quoted) && !common.contains(&quoted)
+            })
+            .collect();
+        assert!(missing.is_empty(), "README row of {command} does not name {missing:?}");
+    }
+}
+
+/// `ridelab completions SHELL` prints a script naming every command.
+#[test]
+fn completions_generate_for_each_shell() {
+    for shell in ["bash", "zsh", "fish"] {
+        let (code, out, err) = ridelab(&["completions", shell]);
+        assert_eq!(code, 0, "{shell}: {err}");
+        for command in ["eval", "map", "optimize", "simulate", "report"] {
+            assert!(out.contains(command), "{shell}: {command} missing");
+        }
+        assert!(out.contains("ks-range"), "{shell}: options missing");
+    }
+}
+
+/// Text is the default output of every command; JSON only when asked.
+#[test]
+fn text_is_the_default_output() {
+    let grid = ["--ks-range", "10000:40000:3", "--cs-range", "500:4000:3"];
+    for args in [
+        vec!["eval", "--model", "quarter"],
+        [&["map", "--model", "quarter"][..], &grid].concat(),
+        vec!["surrogate", "--approach", "vba-lts", "--plan", "ae:3", "--predict", "grid:3"],
+        vec!["simulate", "--model", "quarter", "--duration", "1"],
+        vec!["optimize", "--evaluator", "quarter", "--grid", "11", "--levels", "0"],
+        vec!["presets"],
+    ] {
+        let (code, out, err) = ridelab(&args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        assert!(
+            serde_json::from_str::<Value>(&out).is_err() && !out.trim_start().starts_with('{'),
+            "{args:?} printed JSON by default: {}",
+            &out[..out.len().min(200)]
+        );
+        assert!(!out.contains("NaN") && !out.contains("inf "), "{args:?}: {out}");
+    }
+    // The map's text names the units it shows.
+    let (_, out, _) = ridelab(&[&["map", "--model", "quarter"][..], &grid].concat());
+    for unit in ["kN/m", "kNs/m", "m/s^2", "mm", "feasible:"] {
+        assert!(out.contains(unit), "map text lacks {unit}: {out}");
+    }
+}
+
+/// `simulate --json`: every series named, the step stated, positions by coordinate.
+#[test]
+fn simulate_json_names_its_series() {
+    let v = json(&["simulate", "--model", "full", "--duration", "1", "--decimate", "5"]);
+    assert_eq!(v["dt"].as_f64(), Some(ridelab::time_domain::TimeOptions::default().dt));
+    assert!((v["sample_interval"].as_f64().unwrap() - 5.0 * v["dt"].as_f64().unwrap()).abs() < 1e-15);
+    let n = v["series"]["t"].as_array().unwrap().len();
+    for k in ["road", "bacc", "dtl", "sws"] {
+        assert_eq!(v["series"][k].as_array().unwrap().len(), n, "{k}");
+        assert!(v["rms"][k].as_f64().is_some() || k == "road", "{k}");
+    }
+    for dof in ["body_heave_z", "body_pitch_theta", "body_roll_phi", "wheel_hop_front_right"] {
+        assert_eq!(v["positions"][dof].as_array().unwrap().len(), n, "{dof}");
+        assert_eq!(v["accelerations"][dof].as_array().unwrap().len(), n, "{dof}");
+    }
+    assert_eq!(v["units"]["positions.body_pitch_theta"], "rad");
+    assert_eq!(v["units"]["accelerations.body_heave_z"], "m/s^2");
+    assert_eq!(v["units"]["sws"], "m");
 }

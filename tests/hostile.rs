@@ -158,6 +158,8 @@ fn cases() -> Vec<Case> {
         (&["map", "--model", "quarter"][..], "cs-range", &["1:4000:5", "500:1e9:5", "NaN:4000:5", ""][..]),
         (&["report", "--out", "/nonexistent/x"][..], "ks-range", &["1e3:1e12", "10000", "-1:5"][..]),
         (&["map", "--model", "quarter"][..], "travel", &["0.02", "0:3", "0.025:0", "1e300:3", "x:y"][..]),
+        (&["map", "--model", "quarter"][..], "bounce-band", &["-1:1.5", "1.5:0.8", "0.8:100", "x:y", "1"][..]),
+        (&["optimize", "--evaluator", "quarter", "--grid", "21"][..], "damping-band", &["-1:0.5", "0.5:0.2", "0.2:50"][..]),
     ] {
         for v in values {
             let mut args: Vec<&str> = base.to_vec();
@@ -177,6 +179,8 @@ fn cases() -> Vec<Case> {
         (&["surrogate", "--approach", "rba-mul-rbf-mq", "--plan", "grid:1"][..], "plan"),
         (&["surrogate", "--approach", "rba-mul-rbf-mq", "--predict", "grid:101"][..], "predict"),
         (&["frobnicate"][..], "command"),
+        (&["map", "--model", "quarter", "--no-worse", "comfort"][..], "no-worse"),
+        (&["completions", "tcsh"][..], "shell"),
     ] {
         cs.push(case(args, refused(&[option])));
     }

@@ -513,8 +513,11 @@ pub struct Report {
     pub route: &'static str,
     /// The frequency route's values, for comparison.
     pub spectral: Criteria,
-    /// Largest relative difference between the routes.
-    pub route_difference: f64,
+    /// Largest relative difference between the exact and the frequency route; `None`
+    /// (left out of the JSON) when the frequency route is the only one (road warp), so
+    /// that nothing reads as a check that was not made.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub route_difference: Option<f64>,
     /// The frequency route's own error estimate relative to the variance (at most its
     /// tolerance 1e-8 unless its panel splits ran out, as for some road warps).
     pub spectral_error_estimate: f64,
@@ -569,7 +572,7 @@ pub fn report(kind: ModelKind, car: &Car, road: &Road) -> Result<Report> {
         dtl_relative: values.dtl / car.front_wheel_load(),
         route,
         spectral: spectral.criteria,
-        route_difference: diff,
+        route_difference: (route == "exact").then_some(diff),
         spectral_error_estimate: spectral.relative_error,
         low_cutoff_hz: spectral.low_cutoff_hz,
         modes: model.modes()?,

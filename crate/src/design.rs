@@ -97,6 +97,8 @@ impl DesignBox {
         let example = match field {
             "cs-range" => "500:4000",
             "travel" => "0.025:3",
+            "bounce-band" => "0.8:1.5",
+            "damping-band" => "0.2:0.5",
             _ => "10000:40000",
         };
         let shape = if field == "travel" {

@@ -122,7 +122,7 @@ test('every shipped lesson: its steps load, every placeholder resolves, one numb
   // 4. Why a surrogate: its largest BAcc error on the HiFi grid, as `ridelab surrogate` says.
   const s2 = seen.surrogate[1];
   const fit = cli(['surrogate', '--approach', 'rba-mul-rbf-mq', '--plan', 'ae:10', '--car', CAR, '--class', 'B', '--speed', '20']);
-  assert.ok(close(Number(s2.values['fit.rte.bacc']), fit.metrics.bacc.rte_max / 100, 1e-7), `surrogate: {fit.rte.bacc} ${s2.values['fit.rte.bacc']} vs ${fit.metrics.bacc.rte_max} %`);
+  assert.ok(close(Number(s2.values['fit.rte.bacc']), fit.metrics.bacc.rte_max_percent / 100, 1e-7), `surrogate: {fit.rte.bacc} ${s2.values['fit.rte.bacc']} vs ${fit.metrics.bacc.rte_max_percent} %`);
   assert.equal(Number(seen.surrogate[0].values.samples), fit.samples.length);
 
   // 5. Choosing one design: the pick's HiFi re-check equals `ridelab eval --model full` at the pick.

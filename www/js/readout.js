@@ -96,9 +96,11 @@ export function feasibilityText(lofi, hifi, swsLimit) {
 export function routeNote(l, h) {
   if (!h) return `LoFi computed by the ${l.route} route; the HiFi full car is being computed.`;
   const gap = (k) => fmtPct(h[k] / l[k] - 1);
-  const check = h.route_difference === undefined
-    ? 'checking it against the frequency-domain route…'
-    : `the frequency-domain route agrees to ${fmtSmall(Math.max(h.route_difference, l.route_difference))} (relative).`;
+  const check = h.route === 'spectral'
+    ? `no exact route with road warp to check it against (its own error estimate ${fmtSmall(h.spectral_error_estimate)}).`
+    : h.route_difference === undefined
+      ? 'checking it against the frequency-domain route…'
+      : `the frequency-domain route agrees to ${fmtSmall(Math.max(h.route_difference, l.route_difference ?? 0))} (relative).`;
   const parts = [
     `Fidelity gap HiFi vs LoFi: BAcc ${gap('bacc')}, DTL ${gap('dtl')}, SWS ${gap('sws')}.`,
     `Computed by the ${h.route} route; ${check}`,

@@ -102,9 +102,9 @@ export function renderMetrics(table, report) {
     const cells = [
       ['r2', fmt(m.r2, 6)],
       ['rmse', fmt(m.rmse * f, 3)],
-      ['mae', fmt(m.mae * f, 3)],
-      ['rte_max', fmt(m.rte_max, 3)],
-      ['rte_mean', fmt(m.rte_mean, 3)],
+      ['max_abs_error', fmt(m.max_abs_error * f, 3)],
+      ['rte_max_percent', fmt(m.rte_max_percent, 3)],
+      ['rte_mean_percent', fmt(m.rte_mean_percent, 3)],
     ];
     for (const [k, text] of cells) {
       const td = tr.insertCell();

@@ -48,11 +48,14 @@ pub struct Metrics {
     pub r2: f64,
     /// Root-mean-square error, units of the criterion.
     pub rmse: f64,
-    /// Maximum absolute error, units of the criterion.
+    /// Maximum absolute error, units of the criterion (JSON `max_abs_error`).
+    #[serde(rename = "max_abs_error")]
     pub mae: f64,
-    /// Largest relative true error, %.
+    /// Largest relative true error, % (JSON `rte_max_percent`).
+    #[serde(rename = "rte_max_percent")]
     pub rte_max: f64,
-    /// Mean relative true error, %.
+    /// Mean relative true error, % (JSON `rte_mean_percent`).
+    #[serde(rename = "rte_mean_percent")]
     pub rte_mean: f64,
 }
 

@@ -246,7 +246,9 @@ impl Fitted {
 pub struct FittedRow {
     /// Quality on the validation grid.
     pub metrics: ByCriterion<Metrics>,
-    /// Largest max RTE over the criteria, %: the ranking measure.
+    /// Largest max RTE over the criteria, %: the ranking measure (JSON
+    /// `worst_rte_max_percent`).
+    #[serde(rename = "worst_rte_max_percent")]
     pub worst_rte_max: f64,
     /// Least R^2 over the criteria.
     pub min_r2: f64,

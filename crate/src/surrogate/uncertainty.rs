@@ -365,11 +365,6 @@ impl Uncertain {
     pub fn loo_errors(&self) -> Option<&[[f64; 3]]> {
         self.loo.as_ref().map(|(e, _)| e.as_slice())
     }
-
-    /// The leave-one-out field (LOO method only).
-    pub fn loo_field(&self) -> Option<&LooField> {
-        self.loo.as_ref().map(|(_, f)| f)
-    }
 }
 
 /// How well an uncertainty estimate predicts the true error on a validation grid.

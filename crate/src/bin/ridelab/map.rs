@@ -1,0 +1,119 @@
+//! `ridelab map`: the design criteria and objective maps over a Ks x Cs grid.
+
+use crate::args::{car_loads_road, count, json, svg_target, write_svg, CarRoad, CasesArgs, ObjectiveArgs};
+use clap::Args;
+use ridelab::analysis::ModelKind;
+use ridelab::chart::{map_chart_svg, map_report_charts};
+use ridelab::comfort::Comfort;
+use ridelab::error::{Result, RideError};
+use ridelab::gpu::Compute;
+use ridelab::maps::{map_csv, map_report_on, Axis, Grid, MapSettings, Scale};
+use ridelab::robust::{case_map_report, robust_map_report, CaseSet, Combine};
+use std::path::Path;
+
+#[derive(Args)]
+pub(crate) struct MapArgs {
+    /// quarter (LoFi) or full (HiFi).
+    #[arg(long)]
+    pub(crate) model: ModelKind,
+    /// Ks axis, min:max:points (N/m).
+    #[arg(long, default_value = "10000:40000:41", allow_hyphen_values = true, value_parser = |s: &str| Axis::parse("ks-range", s))]
+    pub(crate) ks_range: Axis,
+    /// Cs axis, min:max:points (N s/m).
+    #[arg(long, default_value = "500:4000:41", allow_hyphen_values = true, value_parser = |s: &str| Axis::parse("cs-range", s))]
+    pub(crate) cs_range: Axis,
+    /// Criteria relative to the datum car's.
+    #[arg(long)]
+    pub(crate) relative: bool,
+    /// The comfort field: bacc (RMS body acceleration) or wk (ISO 2631-1 Wk-weighted),
+    /// m/s^2; the JSON's `comfort` says "wk" when it is weighted.
+    #[arg(long, default_value = "bacc")]
+    pub(crate) comfort: Comfort,
+    /// Where the HiFi map is computed: gpu, cpu, or auto (a hardware GPU when there is
+    /// one, else the CPU); the JSON's `compute` says which ran.
+    #[arg(long, default_value = "auto")]
+    pub(crate) compute: Compute,
+    #[command(flatten)]
+    pub(crate) car: CarRoad,
+    #[command(flatten)]
+    pub(crate) cases: CasesArgs,
+    /// The map of case K alone (its loaded car on its road, its own datum) instead of
+    /// the robust map; cases are numbered load-case-major from 0.
+    #[arg(long, value_name = "K", value_parser = count, allow_negative_numbers = true)]
+    pub(crate) case: Option<usize>,
+    /// The whole map as JSON (SI units, with a `units` object) instead of the text summary.
+    #[arg(long, conflicts_with = "csv")]
+    pub(crate) json: bool,
+    /// One row per grid point (CSV) instead of the text summary.
+    #[arg(long)]
+    pub(crate) csv: bool,
+    /// Also write PREFIX-bacc.svg, PREFIX-dtl.svg and PREFIX-sws.svg.
+    #[arg(long, value_name = "PREFIX")]
+    pub(crate) svg: Option<String>,
+    #[command(flatten)]
+    pub(crate) objectives: ObjectiveArgs,
+}
+
+pub(crate) fn map_cmd(a: MapArgs) -> Result<String> {
+    let svg = svg_target(a.svg.as_deref())?;
+    let (car, loads, road) = car_loads_road(&a.car)?;
+    let set = a.cases.set(&car, &loads, &road)?;
+    let settings = MapSettings {
+        grid: Grid::new(a.ks_range, a.cs_range)?,
+        scale: if a.relative {
+            Scale::Relative
+        } else {
+            Scale::Absolute
+        },
+        objectives: a.objectives.objectives()?,
+        comfort: a.comfort,
+        ..MapSettings::default()
+    };
+    if set.is_some() && a.compute == Compute::Gpu {
+        return Err(RideError::field(
+            "compute",
+            "gpu: the robust maps' cases are evaluated on the CPU; use --compute cpu or auto",
+        ));
+    }
+    let (r, json_text) = match (set, a.case) {
+        (None, None) => {
+            let r = map_report_on(a.model, &car, &road, &settings, a.compute)?;
+            let text = if a.json { json(&r)? } else { String::new() };
+            (r, text)
+        }
+        (set, Some(k)) => {
+            let set = match set {
+                Some(s) => s,
+                None => CaseSet::new(&car, &road, &[], &[], Combine::Worst)?,
+            };
+            let r = case_map_report(a.model, &set, k, &settings, a.compute)?;
+            let text = if a.json { json(&r)? } else { String::new() };
+            (r.map, text)
+        }
+        (Some(set), None) => {
+            let r = robust_map_report(a.model, &car, &road, &set, &settings, a.compute)?;
+            let text = if a.json { json(&r)? } else { String::new() };
+            (r.map, text)
+        }
+    };
+    if let Some(prefix) = svg {
+        ridelab::finite::check(&r)?;
+        let prefix = prefix.to_string_lossy();
+        let prefix = prefix.strip_suffix(".svg").unwrap_or(&prefix);
+        for (key, chart) in map_report_charts(&r) {
+            write_svg(
+                Path::new(&format!("{prefix}-{key}.svg")),
+                &map_chart_svg(&chart)?,
+            )?;
+        }
+    }
+    if a.csv {
+        ridelab::finite::check(&r)?;
+        Ok(map_csv(&r))
+    } else if a.json {
+        Ok(json_text)
+    } else {
+        ridelab::finite::check(&r)?;
+        Ok(crate::text::map_text(&r))
+    }
+}

@@ -1,0 +1,306 @@
+//! `ridelab optimize`: the front, its pick and the pick's HiFi re-check.
+
+use crate::args::{
+    car_loads_road, count, count_u64, json, svg_target, warning_lines, write_svg, AdaptiveArgs,
+    BoxArgs, CarRoad, CasesArgs, ObjectiveArgs,
+};
+use clap::Args;
+use ridelab::chart::{front_chart, line_chart_svg};
+use ridelab::comfort::Comfort;
+use ridelab::error::{Result, RideError};
+use ridelab::gpu::{Compute, ComputePath};
+use ridelab::optimize::{
+    optimize_report_on, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, PickRule, StmParams,
+};
+use ridelab::robust::{robust_optimize_report, RobustOptimizeReport};
+use ridelab::surrogate::adaptive;
+use ridelab::surrogate::PlanSpec;
+
+#[derive(Args)]
+pub(crate) struct OptimizeArgs {
+    /// quarter, full or a surrogate name (see `ridelab surrogate`).
+    #[arg(long, default_value = "full")]
+    pub(crate) evaluator: EvaluatorSpec,
+    /// The surrogate's HiFi sampling plan: ae:N or grid:n.
+    #[arg(long, default_value = "ae:10")]
+    pub(crate) plan: PlanSpec,
+    /// stm (space transformation) or nsga2.
+    #[arg(long, default_value = "stm", value_parser = ["stm", "nsga2"])]
+    pub(crate) method: String,
+    #[command(flatten)]
+    pub(crate) design_box: BoxArgs,
+    #[command(flatten)]
+    pub(crate) objectives: ObjectiveArgs,
+    /// The pick: minmax (the thesis's), knee, or asf:W (weighted, comfort weight W in 0..1).
+    #[arg(long, default_value = "minmax")]
+    pub(crate) pick: PickRule,
+    /// The comfort objective: bacc (RMS body acceleration) or wk (ISO 2631-1
+    /// Wk-weighted), m/s^2; wk needs --evaluator quarter or full.
+    #[arg(long, default_value = "bacc")]
+    pub(crate) comfort: Comfort,
+    /// STM grid points per variable, 2..2001; the work is bounded too: grid^2 +
+    /// 12 (grid - 1) 2^levels model runs (times the cases) at most 4 000 000, so at
+    /// --levels 3 the largest grid is 1952.
+    #[arg(long, default_value_t = StmParams::default().grid, value_parser = count, allow_negative_numbers = true)]
+    pub(crate) grid: usize,
+    /// Where STM's grid on the full car is evaluated: gpu, cpu, or auto (a hardware GPU
+    /// when there is one, else the CPU) [default: auto]; given, the JSON's `compute` says
+    /// which ran.
+    #[arg(long)]
+    pub(crate) compute: Option<Compute>,
+    /// STM refinement levels, 0..10 (the page's objective plane: --grid 61 --levels 2).
+    #[arg(long, default_value_t = StmParams::default().levels, value_parser = count, allow_negative_numbers = true)]
+    pub(crate) levels: usize,
+    /// NSGA-II population, an even number 4..10000.
+    #[arg(long, default_value_t = Nsga2Params::default().population, value_parser = count, allow_negative_numbers = true)]
+    pub(crate) population: usize,
+    /// NSGA-II generations, 1..10000.
+    #[arg(long, default_value_t = Nsga2Params::default().generations, value_parser = count, allow_negative_numbers = true)]
+    pub(crate) generations: usize,
+    /// NSGA-II seed.
+    #[arg(long, default_value_t = Nsga2Params::default().seed, value_parser = count_u64, allow_negative_numbers = true)]
+    pub(crate) seed: u64,
+    #[command(flatten)]
+    pub(crate) adaptive: AdaptiveArgs,
+    #[command(flatten)]
+    pub(crate) car: CarRoad,
+    #[command(flatten)]
+    pub(crate) cases: CasesArgs,
+    /// The front, pick and re-check as JSON (SI units, with a `units` object) instead of
+    /// the text summary.
+    #[arg(long)]
+    pub(crate) json: bool,
+    /// Also write the front in the BAcc-DTL plane as an SVG file.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) svg: Option<String>,
+}
+
+pub(crate) fn optimize(a: OptimizeArgs) -> Result<String> {
+    let svg = svg_target(a.svg.as_deref())?;
+    let (car, loads, road) = car_loads_road(&a.car)?;
+    let set = a.cases.set(&car, &loads, &road)?;
+    let objectives = a.objectives.objectives()?;
+    let method = if a.method == "stm" {
+        Method::Stm(StmParams {
+            grid: a.grid,
+            levels: a.levels,
+        })
+    } else {
+        Method::Nsga2(Nsga2Params {
+            population: a.population,
+            generations: a.generations,
+            seed: a.seed,
+            ..Nsga2Params::default()
+        })
+    };
+    let design_box = a.design_box.design_box()?;
+    if let Some(set) = set {
+        if a.compute == Some(Compute::Gpu) {
+            return Err(RideError::field(
+                "compute",
+                "gpu: the robust design's cases are evaluated on the CPU; use --compute cpu or auto",
+            ));
+        }
+        if a.adaptive.adaptive.is_some() {
+            return Err(RideError::field(
+                "adaptive",
+                "the adaptive loop runs on one case: leave out --cases (and the car file's load_cases)",
+            ));
+        }
+        let out = robust_optimize_report(
+            &set,
+            &design_box,
+            a.evaluator,
+            a.plan,
+            &method,
+            objectives,
+            a.comfort,
+            a.pick,
+        )?;
+        if let Some(path) = &svg {
+            ridelab::finite::check(&out)?;
+            let mut chart = front_chart(&out.study, &out.datum, Some(&out.hifi_recheck));
+            chart.title = format!("Robust {}", chart.title);
+            if out.comfort == Comfort::Wk {
+                chart.title = chart.title.replacen("BAcc", out.comfort.label(), 1);
+                chart.x_label = format!("{} [m/s^2]", out.comfort.label());
+            }
+            write_svg(path, &line_chart_svg(&chart)?)?;
+        }
+        return if a.json {
+            json(&out)
+        } else {
+            Ok(robust_optimize_text(&out))
+        };
+    }
+    let (mut out, looped) = match a.adaptive.options() {
+        None => (
+            optimize_report_on(
+                &car,
+                &road,
+                &design_box,
+                a.evaluator,
+                a.plan,
+                &method,
+                objectives,
+                a.comfort,
+                a.compute,
+            )?,
+            None,
+        ),
+        Some(_) if a.compute == Some(Compute::Gpu) => {
+            return Err(RideError::field(
+                "compute",
+                "gpu: the adaptive loop's HiFi runs are single designs on the CPU; use --compute cpu or auto",
+            ))
+        }
+        Some(_) if a.comfort == Comfort::Wk => {
+            return Err(RideError::field(
+                "comfort",
+                "wk needs --evaluator quarter or full: the adaptive loop's surrogates are fitted to the unweighted BAcc",
+            ))
+        }
+        Some(options) => {
+            let r = adaptive::optimize_report(
+                &car,
+                &road,
+                &design_box,
+                a.evaluator,
+                a.plan,
+                &method,
+                objectives,
+                options,
+            )?;
+            let mut out = r.optimize;
+            out.compute = a.compute.map(|_| ComputePath::Cpu);
+            (out, Some(r.adaptive))
+        }
+    };
+    if a.pick != PickRule::MinMax {
+        out.repick(a.pick, &car, &road, &design_box)?;
+    }
+    if let Some(path) = &svg {
+        ridelab::finite::check(&out)?;
+        let mut chart = front_chart(&out.study, &out.datum, Some(&out.hifi_recheck));
+        if out.comfort == Comfort::Wk {
+            chart.title = chart.title.replacen("BAcc", out.comfort.label(), 1);
+            chart.x_label = format!("{} [m/s^2]", out.comfort.label());
+        }
+        write_svg(path, &line_chart_svg(&chart)?)?;
+    }
+    if let Some(looped) = looped {
+        let report = adaptive::AdaptiveOptimizeReport {
+            optimize: out,
+            adaptive: looped,
+        };
+        if a.json {
+            return json(&report);
+        }
+        return Ok(optimize_text(&report.optimize) + &adaptive_text(&report.adaptive));
+    }
+    if a.json {
+        return json(&out);
+    }
+    Ok(optimize_text(&out))
+}
+
+/// The loop's added runs, one line each.
+pub(crate) fn adaptive_text(r: &adaptive::AdaptiveReport) -> String {
+    let mut s = format!(
+        "adaptive: {} + {} HiFi runs ({}, {} uncertainty)\n",
+        r.plan,
+        r.added.len(),
+        r.options.criterion.name(),
+        r.uncertainty.name()
+    );
+    for a in &r.added {
+        s += &format!(
+            "  run {:>3}: Ks {:.1} N/m, Cs {:.1} N s/m: {}\n",
+            a.run, a.sample.ks, a.sample.cs, a.reason
+        );
+    }
+    s
+}
+
+pub(crate) fn optimize_text(out: &OptimizeReport) -> String {
+    let (study, check) = (&out.study, &out.hifi_recheck);
+    let p = &study.pick;
+    let bacc = out.comfort.label();
+    let mut text = format!(
+        "front: {} points on {} ({} evaluations), hypervolume {:.4} (m/s^2) N against [{:.4}, {:.2}]\n\
+         {} pick: Ks {:.1} N/m, Cs {:.1} N s/m (pseudo-weights comfort {:.2}, road holding {:.2})\n  {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} % against the datum\n\
+         HiFi re-check: {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} % (prediction error {:.3} / {:.3} / {:.3} %)\n",
+        study.front.len(),
+        study.evaluator,
+        study.evaluations,
+        study.hypervolume,
+        study.reference_point[0],
+        study.reference_point[1],
+        p.rule,
+        p.ks,
+        p.cs,
+        p.pseudo_weights[0],
+        p.pseudo_weights[1],
+        p.change_percent[0],
+        p.change_percent[1],
+        p.change_percent[2],
+        check.rechecked_change_percent[0],
+        check.rechecked_change_percent[1],
+        check.rechecked_change_percent[2],
+        check.error_percent[0],
+        check.error_percent[1],
+        check.error_percent[2],
+    );
+    text += &warning_lines(&out.warnings);
+    match (out.compute, &out.adapter) {
+        (Some(ComputePath::Gpu), Some(a)) => text += &format!("compute: gpu ({a})\n"),
+        (Some(ComputePath::Gpu), None) => text += "compute: gpu\n",
+        (Some(ComputePath::Cpu), _) => text += "compute: cpu\n",
+        (None, _) => {}
+    }
+    text
+}
+
+/// The robust optimisation: the front and pick as [`optimize_text`], then each case.
+pub(crate) fn robust_optimize_text(out: &RobustOptimizeReport) -> String {
+    let single = OptimizeReport {
+        study: out.study.clone(),
+        datum: out.datum,
+        hifi_recheck: out.hifi_recheck.clone(),
+        comfort: out.comfort,
+        compute: None,
+        adapter: None,
+        warnings: out.warnings.clone(),
+    };
+    let bacc = out.comfort.label();
+    let mut s = format!(
+        "robust over {} cases ({:?}; each case against its own datum, scaled to case 0's)\n",
+        out.cases.len(),
+        out.combine
+    );
+    s += &optimize_text(&single);
+    for c in &out.cases {
+        let (p, h) = (
+            &c.hifi_recheck.predicted_change_percent,
+            &c.hifi_recheck.rechecked_change_percent,
+        );
+        s += &format!(
+            "  case {} {}: {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} %; HiFi {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} %{}\n",
+            c.case.index,
+            c.case.name,
+            p[0],
+            p[1],
+            p[2],
+            h[0],
+            h[1],
+            h[2],
+            if c.broken.is_empty() {
+                String::new()
+            } else {
+                let b: Vec<&str> = c.broken.iter().map(|o| o.label()).collect();
+                format!(" (HiFi breaks {})", b.join(", "))
+            }
+        );
+    }
+    s
+}

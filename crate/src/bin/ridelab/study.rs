@@ -1,0 +1,74 @@
+//! `ridelab study`: the fidelity study, or the adaptive study of one surrogate.
+
+use crate::args::{car_and_road, count, json, CarRoad};
+use clap::Args;
+use ridelab::error::{Result, RideError};
+use ridelab::optimize::StmParams;
+use ridelab::surrogate::adaptive::{adaptive_study, StudyOptions};
+use ridelab::surrogate::{study, SurrogateSpec};
+
+#[derive(Args)]
+pub(crate) struct StudyArgs {
+    /// The adaptive study of this surrogate instead of the fidelity study: for every
+    /// total of HiFi runs, Audze-Eglais + adaptive runs against an Audze-Eglais plan of
+    /// that size, judged on the HiFi.
+    #[arg(long, value_name = "SURROGATE")]
+    pub(crate) adaptive: Option<SurrogateSpec>,
+    /// Audze-Eglais points of the adaptive study's initial plan, 2.. [default: 5].
+    #[arg(long, value_parser = count, requires = "adaptive", allow_negative_numbers = true)]
+    pub(crate) initial: Option<usize>,
+    /// Smallest total of HiFi runs of the adaptive study [default: 6].
+    #[arg(long, value_parser = count, requires = "adaptive", allow_negative_numbers = true)]
+    pub(crate) min_runs: Option<usize>,
+    /// Largest total of HiFi runs of the adaptive study, ..100 [default: 20].
+    #[arg(long, value_parser = count, requires = "adaptive", allow_negative_numbers = true)]
+    pub(crate) max_runs: Option<usize>,
+    /// STM grid points per variable of every front of the adaptive study (the HiFi's own
+    /// included), 2..2001 [default: 201].
+    #[arg(long, value_parser = count, requires = "adaptive", allow_negative_numbers = true)]
+    pub(crate) grid: Option<usize>,
+    #[command(flatten)]
+    pub(crate) car: CarRoad,
+    /// The whole study as JSON (SI units, with a `units` object) instead of the text table.
+    #[arg(long, conflicts_with = "markdown")]
+    pub(crate) json: bool,
+    /// The study as a Markdown table instead of the text table.
+    #[arg(long)]
+    pub(crate) markdown: bool,
+}
+
+pub(crate) fn study_cmd(a: StudyArgs) -> Result<String> {
+    let (car, road) = car_and_road(&a.car)?;
+    if let Some(spec) = a.adaptive {
+        let d = StudyOptions::default();
+        let options = StudyOptions {
+            initial: a.initial.unwrap_or(d.initial),
+            min_runs: a.min_runs.unwrap_or(d.min_runs),
+            max_runs: a.max_runs.unwrap_or(d.max_runs),
+            stm: StmParams {
+                grid: a.grid.unwrap_or(d.stm.grid),
+                ..d.stm.clone()
+            },
+            ..d
+        };
+        let r = adaptive_study(&car, &road, spec, &options).map_err(|e| match e {
+            RideError::Field { field, reason } => RideError::field(field.replace('_', "-"), reason),
+            other => other,
+        })?;
+        return if a.json {
+            json(&r)
+        } else if a.markdown {
+            Ok(r.to_markdown())
+        } else {
+            Ok(crate::text::plain_table(&r.to_markdown()))
+        };
+    }
+    let r = study(&car, &road)?;
+    if a.json {
+        json(&r)
+    } else if a.markdown {
+        Ok(r.to_markdown())
+    } else {
+        Ok(crate::text::plain_table(&r.to_markdown()))
+    }
+}

@@ -1,0 +1,95 @@
+#!/usr/bin/env python3
+"""Regenerates the README's "Figures" table (between the figures:begin and figures:end
+markers) from runs of the release CLI on this machine: run it, paste nothing by hand.
+
+    python3 scripts/readme-figures.py            # builds target/release/ridelab first
+
+Each timing is the median wall time of 3 runs of the whole process; the machine, the date
+and the load average are written with them. Counts (model runs) come from the commands'
+own JSON. The wasm size is read from dist/ when a page build is there.
+"""
+import gzip
+import json
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+CLI = ROOT / "target" / "release" / "ridelab"
+CAR = "assets/examples/sedan-laden.json"
+CASES = "assets/examples/cases-b-10-20-30.json"
+
+
+def run(args, runs=3):
+    """(median wall seconds, parsed JSON of the last run or None)."""
+    times, out = [], None
+    for _ in range(runs):
+        t = time.perf_counter()
+        p = subprocess.run([str(CLI), *args], cwd=ROOT, capture_output=True, text=True, check=True)
+        times.append(time.perf_counter() - t)
+        out = p.stdout
+    try:
+        data = json.loads(out)
+    except ValueError:
+        data = None
+    return statistics.median(times), data
+
+
+def machine():
+    model = "unknown CPU"
+    try:
+        for line in open("/proc/cpuinfo"):
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    load = os.getloadavg()[0]
+    return f"{os.cpu_count()} cores ({model}), {platform.system()}, load average {load:.1f} at the start"
+
+
+def rows():
+    out = []
+    with tempfile.TemporaryDirectory() as d:
+        t, rep = run(["report", "--out", d, "--json"])
+        sections = ", ".join(f"{s['name']} {s['seconds']:.2f} s" for s in rep["sections"])
+        out.append(("`ridelab report` (the default car), whole process", f"{t:.2f} s", f"sections: {sections}"))
+    t, o = run(["optimize", "--evaluator", "full", "--method", "stm", "--json"])
+    out.append(("`ridelab optimize --evaluator full --method stm` (STM 201, 3 levels)", f"{t:.2f} s", f"{o['evaluations']} HiFi runs"))
+    t, o = run(["optimize", "--evaluator", "full", "--grid", "61", "--levels", "2", "--json"])
+    out.append(("`ridelab optimize --evaluator full --grid 61 --levels 2` (the page's HiFi front)", f"{t:.2f} s", f"{o['evaluations']} HiFi runs"))
+    t, o = run(["optimize", "--evaluator", "full", "--grid", "61", "--levels", "2", "--car", CAR, "--cases", CASES, "--json"])
+    out.append(("the same on the laden sedan's 6 cases (class B at 10, 20, 30 m/s)", f"{t:.2f} s", f"{o['evaluations']} HiFi runs"))
+    for tracks in ["correlated", "independent"]:
+        t, _ = run(["map", "--model", "full", "--ks-range", "10000:40000:160", "--cs-range", "500:4000:120", "--compute", "cpu", "--tracks", tracks, "--json"])
+        out.append((f"`ridelab map --model full` 160 x 120, {tracks} tracks", f"{t:.2f} s", ""))
+    wasm = sorted((ROOT / "dist").glob("*.wasm"))
+    if wasm:
+        raw = wasm[0].read_bytes()
+        out.append(("the page's wasm (dist/, release build)", f"{len(raw):,} bytes".replace(",", " "), f"{len(gzip.compress(raw, 9)):,} gzipped (level 9)".replace(",", " ")))
+    return out
+
+
+def main():
+    subprocess.run(["cargo", "build", "--release", "-p", "ridelab"], cwd=ROOT, check=True)
+    head = f"Measured {time.strftime('%Y-%m-%d')} by `python3 scripts/readme-figures.py` on {machine()}; median of 3 wall times, release build."
+    table = ["| what | time or size | notes |", "|---|---|---|"]
+    table += [f"| {a} | {b} | {c} |" for a, b, c in rows()]
+    block = "\n".join([head, "", *table])
+    readme = (ROOT / "README.md").read_text()
+    begin, end = "<!-- figures:begin -->", "<!-- figures:end -->"
+    if begin not in readme or end not in readme:
+        sys.exit("README.md lacks the figures markers")
+    before, rest = readme.split(begin, 1)
+    _, after = rest.split(end, 1)
+    (ROOT / "README.md").write_text(f"{before}{begin}\n{block}\n{end}{after}")
+    print(block)
+
+
+if __name__ == "__main__":
+    main()
