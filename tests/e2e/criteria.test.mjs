@@ -185,9 +185,11 @@ test('the knee and asf:0.3 picks equal `ridelab optimize --pick` on the same sur
   await settle(page);
   const sel = await page.evaluate(() => window.__ridelab.objPlane.selected);
   // Neighbouring front points can lie within a pixel of each other: the click selects
-  // the point nearest the clicked pixel, which is the aimed one or one on top of it.
+  // the point nearest the clicked pixel, which is the aimed one or one on top of it. The
+  // click lands on a whole pixel and the plane's overlay maps it back through its own
+  // rounded box: within 2 px of the aim.
   const off = Math.hypot(allAt[sel.index][0] - at[0], allAt[sel.index][1] - at[1]);
-  assert.ok(off <= 1.5, `the clicked front point ${sel.index} lay ${off.toFixed(2)} px from the aimed ${k} (1.5 px)`);
+  assert.ok(off <= 2, `the clicked front point ${sel.index} lay ${off.toFixed(2)} px from the aimed ${k} (2 px)`);
   const j = sel.index;
   const status = await page.textContent('#op-status');
   const pw = asf.pseudoWeights[j];

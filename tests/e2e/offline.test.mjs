@@ -99,6 +99,8 @@ test('offline: load once, stop the server, reload: the page works and computes; 
   assert.deepEqual(both, [`ridelab-${id1}`, `ridelab-${id2}`].sort(), 'the new build cached beside the old one');
   await Promise.all([page.waitForEvent('load'), page.click('#banner-action')]);
   await page.waitForFunction(() => window.__ridelab && window.__ridelab.ready, null, { timeout: 30_000 });
+  // The old build's cache goes once the new page has booted (it tells its worker).
+  await page.waitForFunction(async () => (await caches.keys()).filter((k) => k.startsWith('ridelab-')).length === 1, null, { timeout: 10_000 });
   const names = await page.evaluate(async () => (await caches.keys()).filter((k) => k.startsWith('ridelab-')));
   assert.deepEqual(names, [`ridelab-${id2}`], 'the new build\'s cache replaced the old one');
   const js = await page.evaluate(() => fetch('js/format.js').then((r) => r.text()));

@@ -5,12 +5,14 @@
 //   js/controller.js  the update queue: what to recompute when
 //   js/render.js      store -> views (each view takes plain data)
 //   js/testhooks.js   window.__ridelab for the browser tests
+//   js/restore.js     links and session files: what of them applies
+//   js/timecontrols.js, js/offline.js  the Time tab's fields; the service worker
 // "?engine=main" runs everything on the main thread.
 
 import init, * as api from '../ridelab.js';
 import { createEngine, deferredEngine } from './engine.js';
 import { Compute } from './compute.js';
-import { Store, readSession, setKeyFields } from './store.js';
+import { Store, scenarioKey, setKeyFields } from './store.js';
 import { Controller } from './controller.js';
 import { Render } from './render.js';
 import { Controls, plainWords } from './controls.js';
@@ -18,7 +20,7 @@ import { MapView, CRITERIA } from './mapview.js';
 import { ObjectivePlane, frontPointText } from './plane.js';
 import { Plot } from './plot.js';
 import { SpectraPanel } from './spectra.js';
-import { TimePanel, DamperChart, DAMPER_V_MAX } from './timepanel.js';
+import { TimePanel, DamperChart } from './timepanel.js';
 import { CarEditor, carFieldMessage } from './careditor.js';
 import { Guide } from './guide.js';
 import { Workbench, bindShortcuts } from './workbench.js';
@@ -28,15 +30,18 @@ import { adaptivePlane } from './chartspecs.js';
 import { currentHifiFront } from './hififront.js';
 import { loadTables } from './colormap.js';
 import { keyStep } from './steps.js';
-import { fmt, fmtInput, parseNumber } from './format.js';
-import { download, mapsCsv, frontCsv, slidePng, zip } from './exports.js';
-import { allSvgs, exportCharts, objectiveChart } from './svgexport.js';
+import { fmt, parseNumber } from './format.js';
+import { download, mapsCsv, frontCsv, slidePng, slidePngs, zip } from './exports.js';
+import { allSvgs, carSlug, exportCharts, objectiveChart } from './svgexport.js';
 import { installTestHooks } from './testhooks.js';
 import { pathText, computeMode } from './gpupath.js';
 import { keepDesign, renderCompare, savedEntry, MAX_SAVED } from './compare.js';
 import { LessonPanel } from './lessonpanel.js';
 import { isLessonHash } from './lessons.js';
 import { RobustPanel, withLoadCases } from './robustpanel.js';
+import { fromSession } from './restore.js';
+import { fieldName, wireTime } from './timecontrols.js';
+import { registerServiceWorker } from './offline.js';
 
 /** ISO 8608 wording of the classes. */
 const CLASS_WORDS = {
@@ -59,7 +64,7 @@ function numberField(controls, store, id, field, toState) {
   el.addEventListener('change', () => {
     const p = parseNumber(el.value);
     if (p.error) {
-      controls.setMsg(field, p.error);
+      controls.setMsg(field, `${fieldName(el)}: ${p.error}`);
       return;
     }
     toState(p.value);
@@ -72,33 +77,9 @@ function numberField(controls, store, id, field, toState) {
   });
 }
 
-/** A number field of the time panel: `{value}` (undefined when empty and `optional`) or null after a message. */
-function readField(controls, id, field, { optional = false, integer = false, zeroOk = false } = {}) {
-  const text = $(id).value.trim();
-  if (optional && text === '') {
-    controls.setMsg(field, '');
-    return { value: undefined };
-  }
-  const p = parseNumber(text);
-  if (p.error) {
-    controls.setMsg(field, p.error);
-    return null;
-  }
-  if (integer && !(Number.isInteger(p.value) && p.value >= 0 && p.value <= 2 ** 32)) {
-    controls.setMsg(field, 'must be a whole number ≥ 0');
-    return null;
-  }
-  if (!integer && !(p.value > 0 || (zeroOk && p.value === 0))) {
-    controls.setMsg(field, zeroOk ? 'must be ≥ 0' : 'must be > 0');
-    return null;
-  }
-  controls.setMsg(field, '');
-  return p;
-}
-
-/** "sedan-B-20ms": the stem of export file names. */
+/** "sedan-B-20ms" ("my-van-B-20ms" for a custom car named "My van"): the stem of export file names. */
 function stamp(state) {
-  return `${state.car}-${state.class}-${state.speed}ms`;
+  return `${carSlug(state)}-${state.class}-${state.speed}ms`;
 }
 
 function buildSelects(store) {
@@ -248,14 +229,17 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
       cs: st.desc.datumCs,
       lofi: st.lofi.datum,
       hifi: st.hifiDatumCurrent() ? st.hifi.datum : null,
-    }));
+    }, scenarioKey(st.state)));
     showSaved();
     st.scheduleUrl();
     $('compare-hint').textContent = `${st.saved.length} of ${MAX_SAVED} designs kept; "Keep" again adds the current one (the oldest goes).`;
+    $('compare-hint').classList.remove('bad');
   };
-  ctl.onSavedChanged = () => {
+  ctl.onSavedChanged = (note, bad = false) => {
     showSaved();
-    $('compare-hint').textContent = `${st.saved.length} of ${MAX_SAVED} designs kept, from the link, evaluated on its car and road; "Keep" adds the current one (the oldest goes).`;
+    $('compare-hint').textContent = `${note} "Keep" adds the current design (the oldest goes).`;
+    $('compare-hint').classList.toggle('bad', bad);
+    if (bad) controls.banner(note);
   };
   $('keep').addEventListener('click', keep);
   $('map-scale').addEventListener('change', (ev) => ctl.setView({ scale: ev.target.value }));
@@ -263,6 +247,8 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
   $('map-palette').addEventListener('change', (ev) => ctl.setView({ palette: ev.target.value }));
   $('show-plan').addEventListener('change', (ev) => ctl.setView({ plan: ev.target.checked }));
   $('op-scale').addEventListener('change', (ev) => ctl.setView({ ratio: ev.target.value === 'ratio' }));
+  // The plane's zoom (wheel, drag, keys, reset; js/plane.js) goes into the link as pz=.
+  $('op-overlay').addEventListener('planezoom', (ev) => ctl.setView({ planeZoom: ev.detail }));
   $('projector').addEventListener('change', (ev) => ctl.setView({ projector: ev.target.checked }));
   $('op-nsga').addEventListener('click', () => ctl.requestNsga());
   $('ad-next').addEventListener('click', () => ctl.runAdaptive(1));
@@ -291,13 +277,13 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
         return;
       }
       if (a === '' || b === '') {
-        controls.setMsg(field, 'give both ends of the band, or leave both empty to switch it off');
+        controls.setMsg(field, `${field === 'bounceBand' ? 'Body-bounce band (Hz)' : 'Damping-ratio band'}: give both ends, or leave both empty to switch it off`);
         return;
       }
       const pa = parseNumber(a);
       const pb = parseNumber(b);
       if (pa.error || pb.error) {
-        controls.setMsg(field, pa.error || pb.error);
+        controls.setMsg(field, `${fieldName($(pa.error ? lo : hi))}: ${pa.error || pb.error}`);
         return;
       }
       ctl.changeScenario({ [field]: [pa.value, pb.value] }, field);
@@ -365,85 +351,6 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
   window.addEventListener('resize', later);
 }
 
-/** The page's field of each field of the core's damper law. */
-const LAW_FIELDS = { bump: 'tpBump', rebound: 'tpRebound', 'knee.velocity': 'tpKnee', 'knee.bump': 'tpBumpHigh', 'knee.rebound': 'tpReboundHigh' };
-
-/** A core message on the damper law in the page's units (kNs/m rather than N s/m). */
-function lawMessage(msg) {
-  return msg
-    .replace(/^[\w.]+: /, '')
-    .replace(/([-\d.e+]+) N s\/m/g, (_, x) => `${fmtInput(Number(x) / 1000, 4)} kNs/m`)
-    .replace(/\(got ([-\d.e+]+)\)$/, (m, x) => (/N s\/m|kNs\/m/.test(msg) ? `(got ${fmtInput(Number(x) / 1000, 4)} kNs/m)` : m));
-}
-
-/**
- * The time panel's damper fields as the core's law (N s/m, m/s): `{law}` with `law`
- * null for the design's linear damper, or null after a message beside the field.
- * `live` (while the fields are being filled in): a law still incomplete is no error yet.
- */
-function damperLaw(controls, { live = false } = {}) {
-  const bump = readField(controls, 'tp-bump', 'tpBump', { optional: true });
-  const rebound = readField(controls, 'tp-rebound', 'tpRebound', { optional: true });
-  const knee = readField(controls, 'tp-knee', 'tpKnee', { optional: true });
-  const bumpHigh = readField(controls, 'tp-bump-high', 'tpBumpHigh', { optional: true, zeroOk: true });
-  const reboundHigh = readField(controls, 'tp-rebound-high', 'tpReboundHigh', { optional: true, zeroOk: true });
-  if (!bump || !rebound || !knee || !bumpHigh || !reboundHigh) return null;
-  if ((bump.value === undefined) !== (rebound.value === undefined)) {
-    if (!live) controls.setMsg(bump.value === undefined ? 'tpBump' : 'tpRebound', 'give both bump and rebound, or neither');
-    return null;
-  }
-  const high = [knee, bumpHigh, reboundHigh];
-  const given = high.filter((f) => f.value !== undefined).length;
-  if (given && (given < 3 || bump.value === undefined)) {
-    if (live) return null;
-    const field = bump.value === undefined ? 'tpBump' : ['tpKnee', 'tpBumpHigh', 'tpReboundHigh'][high.findIndex((f) => f.value === undefined)];
-    controls.setMsg(field, 'a knee needs the knee speed, both slopes above it, and bump and rebound');
-    return null;
-  }
-  if (bump.value === undefined) return { law: null };
-  const law = { bump: bump.value * 1000, rebound: rebound.value * 1000, knee: null };
-  if (given) law.knee = { velocity: knee.value, bump: bumpHigh.value * 1000, rebound: reboundHigh.value * 1000 };
-  return { law };
-}
-
-function wireTime({ store, controller: ctl, controls, compute, ui }) {
-  /** The force-velocity chart of the fields' law (the design's Cs when empty); false when there is none to draw. */
-  const showDamper = ({ live = false } = {}) => {
-    const d = damperLaw(controls, { live });
-    if (!d) return false;
-    const law = d.law || { bump: store.state.cs, rebound: store.state.cs, knee: null };
-    try {
-      ui.damper.draw(compute.damperCurve(law, DAMPER_V_MAX), !d.law);
-      return true;
-    } catch (e) {
-      controls.setMsg(LAW_FIELDS[e.field] || 'tpBump', lawMessage(e.message || String(e)));
-      return false;
-    }
-  };
-  ui.damper.refresh = () => showDamper({ live: true });
-  for (const id of ['tp-bump', 'tp-rebound', 'tp-knee', 'tp-bump-high', 'tp-rebound-high']) $(id).addEventListener('change', ui.damper.refresh);
-  $('tp-run').addEventListener('click', () => {
-    const seed = readField(controls, 'tp-seed', 'tpSeed', { integer: true });
-    if (!seed || !showDamper()) return;
-    const { law } = damperLaw(controls);
-    const opts = { seed: seed.value };
-    // With a bump / rebound law the run's Cs is their mean (the core's rule, as in `ridelab simulate`).
-    if (law) opts.damper = law;
-    const kns = (x) => fmtInput(x / 1000, 4);
-    const what = law
-      ? `${law.knee ? 'digressive' : 'asymmetric'} damper ${kns(law.bump)} / ${kns(law.rebound)} kNs/m` +
-        `${law.knee ? ` to ${fmtInput(law.knee.velocity, 4)} m/s, ${kns(law.knee.bump)} / ${kns(law.knee.rebound)} kNs/m above` : ''}` +
-        `, so Cs = their mean ${kns((law.bump + law.rebound) / 2)} kNs/m`
-      : 'linear damper';
-    ctl.runTime(opts, `${what}, seed ${seed.value}`);
-  });
-  $('tp-play').addEventListener('click', () => ui.time.toggle());
-  $('tp-rate').addEventListener('change', (ev) => {
-    ui.time.rate = Number(ev.target.value);
-    ui.time.drawFrame();
-  });
-}
-
 /** The data of the chart exports (js/svgexport.js `exportCharts`). */
 function exportDataOf(store, ui) {
   const st = store;
@@ -490,10 +397,8 @@ function wireExports({ store: st, controller: ctl, controls, ui, compute }) {
   // Every chart in one download: a burst of downloads trips the browser's guard.
   $('png-all').addEventListener('click', async () => {
     try {
-      status('Drawing the charts at slide size…');
       const charts = exportCharts(exportDataOf(st, ui));
-      const files = [];
-      for (const c of charts) files.push({ name: `ridelab-${c.name}-${stamp(st.state)}.png`, data: await slidePng(c) });
+      const files = await slidePngs(charts, (c) => `ridelab-${c.name}-${stamp(st.state)}.png`, (n, total) => status(`Drawing the charts at slide size: ${n} of ${total}…`));
       download(`ridelab-charts-png-${stamp(st.state)}.zip`, await zip(files));
       status(`${files.length} PNGs (1600 px wide) in one zip.`);
     } catch (e) {
@@ -536,14 +441,15 @@ function wireExports({ store: st, controller: ctl, controls, ui, compute }) {
     input.value = '';
     let session;
     try {
-      session = readSession(await file.text());
-      await compute.checkState(session.state);
+      session = await fromSession(compute, st.defaults, await file.text());
     } catch (e) {
       controls.setMsg('session', `${file.name}: ${plainWords(e.message || e)}`);
       return;
     }
     controls.setMsg('session', '');
-    await ctl.enqueue(async () => ctl.load(session, 'session'));
+    const shown = await ctl.enqueue(async () => ctl.load(session, 'session'));
+    if (!shown) controls.setMsg('session', `${file.name}: not loaded, it cannot be computed (the banner says why); the current view stays.`);
+    else if (session.problems.length) controls.setMsg('session', `${file.name}: ${session.problems.join('; ')}; the rest is loaded.`);
   });
 }
 
@@ -555,8 +461,14 @@ async function main() {
   // Two workers, started first (they load their own copy of the module): one answers
   // the HiFi readout of each design (a few ms) and is never busy with long jobs; the
   // other runs those, so a slider move never waits behind them.
-  const worker = kind === 'worker' ? createEngine(api, 'worker') : null;
-  const heavy = kind === 'worker' ? createEngine(api, 'worker', { gpu: computeMode(location.search) }) : null;
+  // A crashed worker is replaced and its requests run again (js/engine.js); the page says so.
+  const onRestart = (name) => ({ reason, retried, failed }) => controls.banner(
+    `The ${name} worker stopped (${reason}) and was restarted.` +
+    `${retried ? ` ${retried} request${retried === 1 ? ' was' : 's were'} run again.` : ''}` +
+    `${failed ? ` ${failed} request${failed === 1 ? '' : 's'} crashed it twice and ${failed === 1 ? 'was' : 'were'} given up (its panel says so).` : ''}`,
+    failed ? 'error' : 'warn');
+  const worker = kind === 'worker' ? createEngine(api, 'worker', { onRestart: onRestart('HiFi') }) : null;
+  const heavy = kind === 'worker' ? createEngine(api, 'worker', { gpu: computeMode(location.search), onRestart: onRestart('background') }) : null;
   worker?.catch(() => {}); // handled by deferredEngine (falls back to the main thread)
   heavy?.catch(() => {});
   try {
@@ -625,8 +537,10 @@ async function main() {
     carEditor: new CarEditor($('car-fields')),
     robust: new RobustPanel({
       load: $('rb-load'), operating: $('rb-op'), addLoad: $('rb-add-load'), addOp: $('rb-add-op'), combine: $('rb-combine'),
-      text: $('rb-text'), apply: $('rb-apply'), clear: $('rb-clear'), caseSelect: $('rb-case'), msg: $('msg-cases'), count: $('rb-count'),
+      text: $('rb-text'), apply: $('rb-apply'), pending: $('rb-pending'), clear: $('rb-clear'), caseSelect: $('rb-case'), msg: $('msg-cases'), count: $('rb-count'),
     }, {
+      // The core's own limits, on the state as it is with these cases.
+      check: (text) => compute.checkState({ ...store.state, cases: text, case: null }).then(() => null, (e) => e),
       // A refused text leaves the last good state; the core's message names the field.
       apply: async (text) => {
         let failure = null;
@@ -668,37 +582,7 @@ async function main() {
   if (lessonLink) lessons.openLink(lessonLink);
   else guide.showIfNew();
   document.documentElement.dataset.ready = '1';
-  registerServiceWorker(controls);
-}
-
-/**
- * Offline after the first visit: the service worker (sw.js) caches the page, the wasm and
- * the workers. Registered once the page is ready (its install fetches every file of the
- * build once). A new build's worker installs and waits (the browser looks for a new
- * sw.js on every visit): the page says so and switches to it when asked.
- */
-function registerServiceWorker(controls) {
-  if (!('serviceWorker' in navigator) || location.protocol === 'file:') return;
-  const sw = navigator.serviceWorker;
-  const offer = (reg) => {
-    if (!reg.waiting || !sw.controller) return;
-    controls.banner('A new version of RideLab is ready.', 'warn', {
-      label: 'Use it now (reload)',
-      run: () => {
-        sw.addEventListener('controllerchange', () => location.reload());
-        reg.waiting.postMessage({ ridelab: 'take-over' });
-      },
-    });
-  };
-  sw.register(new URL('../sw.js', import.meta.url), { scope: new URL('../', import.meta.url).pathname })
-    .then((reg) => {
-      offer(reg);
-      reg.addEventListener('updatefound', () => {
-        const w = reg.installing;
-        w?.addEventListener('statechange', () => w.state === 'installed' && offer(reg));
-      });
-    })
-    .catch((e) => console.warn(`RideLab: no offline copy (${e && e.message ? e.message : e})`));
+  registerServiceWorker(controls, (what) => lessons.own.mayLeave(what));
 }
 
 main();

@@ -123,7 +123,10 @@ export class CarEditor {
       const path = input.dataset.path;
       if (!Number.isFinite(v)) return { error: `${FIELDS.get(path)[1]}: '${input.value}' is not a number`, path };
       const factor = FIELDS.get(path)[3];
-      set(car, path, factor === 1 ? v : Math.round(v * factor * 1e6) / 1e6);
+      const si = factor === 1 ? v : Math.round(v * factor * 1e6) / 1e6;
+      // No infinity reaches the core (it would arrive as null).
+      if (!Number.isFinite(si)) return { error: `${FIELDS.get(path)[1]}: '${input.value}' is too large a number`, path };
+      set(car, path, si);
     }
     if (!/\(edited\)$/.test(car.name)) car.name = `${car.name} (edited)`;
     return { car };

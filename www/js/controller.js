@@ -13,12 +13,12 @@
 
 import { latestOnly } from './engine.js';
 import { DEFAULT_VIEW, MODEL_NAMES, datumStateOf, fitKeyOf, keyOf, scenarioKey } from './store.js';
-import { decodeHash } from './urlstate.js';
+import { fromLink } from './restore.js';
 import { FIELD_INPUT, explain, plainWords } from './controls.js';
 import { HIFI_GRID, VALIDATION_LEVELS } from './compute.js';
 import { fmt } from './format.js';
 import { designText } from './chartspecs.js';
-import { savedEntry } from './compare.js';
+import { MAX_SAVED, evaluateKept, pendingEntry } from './compare.js';
 
 /** How long a design rests before its HiFi readout is checked by the full report, ms. */
 const CHECK_AFTER_MS = 120;
@@ -64,7 +64,10 @@ export class Controller {
     this.adaptiveBusy = false;
     /** Called after the views show something new (a design, the HiFi column, the fit, the maps): the lesson panel re-reads its numbers. */
     this.onViewsChanged = () => {};
-    /** Called when a link or session file replaced the kept designs (app.js redraws them). */
+    /**
+     * Called when the kept designs changed under the user (a link or session file, a new
+     * scenario): `(note, bad)`, app.js redraws them and shows the note (`bad`: some dropped).
+     */
     this.onSavedChanged = () => {};
     /** The timer that asks for the full HiFi report once a slider move has rested. */
     this.checkTimer = null;
@@ -188,6 +191,7 @@ export class Controller {
     if (this.store.view.nsga) this.requestNsga();
     this.requestHifiFront();
     this.requestFit();
+    this.refreshKept();
     this.designChanged();
   }
 
@@ -578,102 +582,93 @@ export class Controller {
 
   // ------------------------------------------------------------ links and sessions
 
-  /** The state and view a hash asks for, validated; the defaults (and a message) if not. */
+  /**
+   * The state, view and kept designs a hash asks for, as far as they can be used
+   * (js/restore.js: each bad key named in `problems`); the defaults when none of it can.
+   */
   async fromHash(hash) {
     const st = this.store;
-    const d = decodeHash(hash);
-    const fallback = (why) => {
-      this.controls.banner(`This link's view could not be restored (${why}); showing the default view instead.`);
-      return { state: { ...st.defaults }, view: {} };
-    };
-    if (d.problems.length) return fallback(d.problems.join('; '));
-    const kept = d.kept;
-    const s = { ...st.defaults, ...d.state };
-    if (s.car !== 'custom') s.carJson = null;
-    // A bad comfort measure or pick rule keeps its default, the rest of the link applies.
-    const defaulted = await this.criteriaDefaults(s);
-    if (defaulted.length) this.controls.banner(`This link's ${defaulted.join('; ')}: kept the default.`);
     try {
-      // A link without ks or cs means the car's own (datum) front spring or damper.
-      if (d.state.ks === undefined || d.state.cs === undefined) {
-        const desc = await this.compute.describe({ ...s, ks: st.defaults.ks, cs: st.defaults.cs });
-        if (d.state.ks === undefined) s.ks = desc.datumKs;
-        if (d.state.cs === undefined) s.cs = desc.datumCs;
-      }
-      await this.compute.describe(s);
+      return await fromLink(this.compute, st.defaults, hash);
     } catch (e) {
-      return fallback(explain(e, e.field));
+      return { state: { ...st.defaults }, view: {}, kept: null, problems: [`it cannot be used (${explain(e, e.field)}), so the default view is shown`] };
     }
-    return { state: s, view: d.view, kept };
   }
 
   /**
-   * Puts the defaults into `s`'s `comfort` and `pick` where the core refuses them: the
-   * core's messages of those refused, in the page's words.
+   * Shows `state`, `view` and the `kept` designs in place of the current ones; the
+   * `problems` (what of the link or file was left out, each with its reason) and any kept
+   * design that cannot be evaluated are named in the banner. `origin` ('link' or
+   * 'session') names where they came from. A state the engine cannot compute is refused
+   * with the reason and the current state stays (at start-up, with none yet, the
+   * defaults are shown). Resolves true when shown.
    */
-  async criteriaDefaults(s) {
-    const said = [];
-    for (let tries = 0; tries < 2; tries++) {
-      try {
-        await this.compute.checkState(s);
-        break;
-      } catch (e) {
-        if (e.field !== 'comfort' && e.field !== 'pick') break;
-        said.push(explain(e, e.field));
-        s[e.field] = this.store.defaults[e.field];
-      }
-    }
-    return said;
-  }
-
-  /**
-   * Shows `state` and `view` in place of the current ones; `origin` ('link' or
-   * 'session') names where a custom car came from.
-   */
-  async load({ state, view, kept = null }, origin = 'link') {
+  async load({ state, view, kept = null, problems = [] }, origin = 'link') {
     const st = this.store;
+    const what = origin === 'session' ? 'This session file' : 'This link';
     let r;
     try {
       r = await this.compute.scenario(state);
     } catch (e) {
-      // Valid but not computable (a numerical failure): the defaults always are.
-      this.controls.banner(`This view could not be computed (${plainWords(e.message)}); showing the default view instead.`);
-      state = { ...st.defaults };
+      const why = plainWords(e.message || String(e));
+      if (st.state) {
+        this.controls.banner(`${what} cannot be computed (${why}); nothing of it was applied, the current view stays.`, 'error');
+        return false;
+      }
+      problems = [...problems, `it cannot be computed (${why}), so the default view is shown`];
+      [state, view, kept] = [{ ...st.defaults }, {}, null];
       r = await this.compute.scenario(state);
     }
     if (state.car === 'custom') st.custom = { json: state.carJson, ks: r.desc.datumKs, cs: r.desc.datumCs, origin, name: r.desc.car.name };
     const projector = st.view.projector;
     st.view = { ...DEFAULT_VIEW, ...view };
     st.nsga = null;
+    if (kept) st.saved = [];
     this.adopt(state, r);
     this.controls.clearAll();
     if (st.view.projector !== projector) this.render.projector();
     this.scenarioChanged();
     this.requestHifi(performance.now());
-    if (kept) await this.restoreKept(kept);
+    const failed = kept ? await this.restoreKept(kept) : [];
+    const said = [...problems, ...failed.map((f) => `kept design ${f}: cannot be evaluated (left out)`)];
+    if (said.length) this.controls.banner(`${what}: ${said.join('; ')}. Each of these kept the default or was left out; the rest applies.`);
+    return true;
   }
 
   /**
    * The kept designs of a link or session file (`[[ks N/m, cs N s/m], ...]`), evaluated
-   * on the current scenario (LoFi and HiFi reports, and the datum's), in place of the kept
-   * list; a design that cannot be evaluated is left out and named in a banner.
+   * on the current scenario, in place of the kept list; resolves to the designs that
+   * cannot be evaluated, each named with its reason.
    */
   async restoreKept(kept) {
     const st = this.store;
-    const s0 = st.state;
-    const evaluate = (ks, cs) => this.compute.design({ ...s0, ks, cs }, st.desc, true).catch((e) => ({ error: e }));
-    const datum = await evaluate(st.desc.datumKs, st.desc.datumCs);
-    const out = [];
-    const failed = [];
-    for (const [ks, cs] of kept) {
-      const r = await evaluate(ks, cs);
-      if (r.error || datum.error) failed.push(`Ks ${fmt(ks / 1000, 4)} kN/m, Cs ${fmt(cs / 1000, 4)} kNs/m (${explain(r.error || datum.error, 'ks')})`);
-      else out.push(savedEntry(ks, cs, r.lofi, r.hifi, { ks: st.desc.datumKs, cs: st.desc.datumCs, lofi: datum.lofi, hifi: datum.hifi }));
-    }
-    st.saved = out;
-    if (failed.length) this.controls.banner(`The link's kept designs ${failed.join('; ')} could not be evaluated; the others are kept.`);
-    this.onSavedChanged();
+    const { entries, failed } = await evaluateKept(this.compute, st.state, st.desc, kept, scenarioKey(st.state));
+    st.saved = entries;
+    this.onSavedChanged(`${entries.length} of ${MAX_SAVED} designs kept, evaluated on this car and road.`);
     st.scheduleUrl();
+    return failed;
+  }
+
+  /**
+   * The kept designs after a scenario change: those evaluated for another scenario are
+   * shown pending at once (never with the old car's numbers), then evaluated again on
+   * this one in the queue; one that cannot be is dropped, and the note says why.
+   */
+  refreshKept() {
+    const st = this.store;
+    const key = scenarioKey(st.state);
+    if (!st.saved.some((e) => e.key !== key)) return;
+    st.saved = st.saved.map((e) => (e.key === key ? e : pendingEntry(e)));
+    this.onSavedChanged('Evaluating the kept designs on the new car and road…');
+    this.enqueue(async () => {
+      if (scenarioKey(st.state) !== key || !st.saved.some((e) => e.key !== key)) return;
+      const { entries, failed } = await evaluateKept(this.compute, st.state, st.desc, st.saved.map((e) => [e.ks, e.cs]), key);
+      if (scenarioKey(st.state) !== key) return;
+      st.saved = entries;
+      const dropped = failed.length ? ` Dropped, as they cannot be evaluated on it: ${failed.join('; ')}.` : '';
+      this.onSavedChanged(`The kept designs were evaluated again on the new car and road.${dropped}`, failed.length > 0);
+      st.scheduleUrl();
+    });
   }
 
   /** Loads a hash (a link, or the address bar's after a hash change). */

@@ -2,6 +2,9 @@
 // cares whether the models run on the main thread ("main", the default: a HiFi report
 // takes a few milliseconds) or in a Web Worker ("worker": same module, same numbers).
 // Errors are always `{message, field}` objects; `field` names the state field at fault.
+// A worker that crashes (an uncaught error) or whose core traps (a WebAssembly trap: its
+// memory can no longer be trusted, so it closes itself) is replaced by a fresh one, the
+// requests it held are run again there (once), and the page is told (`onRestart`).
 
 import { scenarioKey } from './store.js';
 import { GpuPath } from './gpupath.js';
@@ -243,13 +246,40 @@ class MainEngine {
   }
 }
 
+/** How many times a request is sent to a worker before a crash while it waits is reported instead. */
+const MAX_SENDS = 2;
+/** How many crashed workers are replaced; after that (a worker that cannot even start) every call is refused. */
+const MAX_RESTARTS = 5;
+
 class WorkerEngine {
-  constructor(worker) {
-    this.worker = worker;
+  /**
+   * `make()`: a new Worker of this engine's module and URL; `onRestart({reason, retried,
+   * failed})`: called after a crashed worker was replaced (`retried`: the requests sent
+   * again, `failed`: those rejected after crashing it twice).
+   */
+  constructor(make, onRestart) {
+    this.make = make;
+    this.onRestart = onRestart;
     this.kind = 'worker';
     this.next = 1;
+    /** Requests in flight: id -> `{resolve, reject, msg, sends}`. */
     this.pending = new Map();
+    /** Workers replaced after a crash. */
+    this.restarts = 0;
+    /** Why the worker is given up (after MAX_RESTARTS), or null. */
+    this.dead = null;
+    this.attach(make());
+  }
+
+  /** Takes `worker` as this engine's thread. */
+  attach(worker) {
+    this.worker = worker;
     worker.onmessage = ({ data }) => {
+      if (worker !== this.worker) return;
+      if (data.trap) {
+        this.crashed(`its core stopped: ${data.error.message}`);
+        return;
+      }
       const p = this.pending.get(data.id);
       if (!p) return;
       this.pending.delete(data.id);
@@ -257,16 +287,48 @@ class WorkerEngine {
       else p.reject(data.error);
     };
     worker.onerror = (ev) => {
-      const err = { message: `worker failed: ${ev.message || 'unknown error'}`, field: '' };
-      for (const p of this.pending.values()) p.reject(err);
-      this.pending.clear();
+      ev.preventDefault();
+      if (worker === this.worker) this.crashed(ev.message || 'an error it did not catch');
+    };
+    worker.onmessageerror = () => {
+      if (worker === this.worker) this.crashed('an answer that could not be read');
     };
   }
+
+  /** The worker crashed: a fresh one takes its place and gets the requests it held (each sent at most MAX_SENDS times). */
+  crashed(reason) {
+    this.worker.terminate();
+    if (this.restarts >= MAX_RESTARTS) {
+      this.dead = `the worker crashed ${this.restarts + 1} times and is not started again (${reason})`;
+      for (const p of this.pending.values()) p.reject({ message: this.dead, field: '' });
+      this.pending.clear();
+      return;
+    }
+    this.restarts++;
+    this.attach(this.make());
+    let retried = 0;
+    let failed = 0;
+    for (const [id, p] of [...this.pending]) {
+      if (p.sends >= MAX_SENDS) {
+        this.pending.delete(id);
+        p.reject({ message: `the worker crashed twice on this request (${reason})`, field: '' });
+        failed++;
+      } else {
+        p.sends++;
+        this.worker.postMessage(p.msg);
+        retried++;
+      }
+    }
+    this.onRestart({ reason, retried, failed });
+  }
+
   call(method, ...args) {
+    if (this.dead) return Promise.reject({ message: this.dead, field: '' });
     const id = this.next++;
+    const msg = { id, method, args };
     return new Promise((resolve, reject) => {
-      this.pending.set(id, { resolve, reject });
-      this.worker.postMessage({ id, method, args });
+      this.pending.set(id, { resolve, reject, msg, sends: 1 });
+      this.worker.postMessage(msg);
     });
   }
 }
@@ -274,12 +336,13 @@ class WorkerEngine {
 /**
  * An engine of the given kind ("main" or "worker"); the worker answers a ping first.
  * `gpu` ("auto", "gpu" or "cpu", js/gpupath.js `computeMode`): the worker draws the HiFi
- * maps on the GPU path where its mode finds an adapter (`GPU_METHODS`).
+ * maps on the GPU path where its mode finds an adapter (`GPU_METHODS`). `onRestart`: see
+ * WorkerEngine (a crashed worker replaced).
  */
-export async function createEngine(api, kind = 'main', { gpu = null } = {}) {
+export async function createEngine(api, kind = 'main', { gpu = null, onRestart = () => {} } = {}) {
   if (kind !== 'worker') return new MainEngine(api);
-  const worker = new Worker(new URL(gpu ? `./worker.js?gpu=${gpu}` : './worker.js', import.meta.url), { type: 'module' });
-  const engine = new WorkerEngine(worker);
+  const url = new URL(gpu ? `./worker.js?gpu=${gpu}` : './worker.js', import.meta.url);
+  const engine = new WorkerEngine(() => new Worker(url, { type: 'module' }), onRestart);
   await engine.call('version');
   return engine;
 }

@@ -77,6 +77,22 @@ export function slidePng(chart) {
   return pngOf(c);
 }
 
+/**
+ * Every chart of `charts` (js/svgexport.js `exportCharts`) as a slide-size PNG,
+ * `[{name, data}]` with `name(chart)` as file name; `progress(n, total)` before each
+ * chart and once at the end, the page painted in between (the charts take seconds).
+ */
+export async function slidePngs(charts, name, progress) {
+  const files = [];
+  for (const c of charts) {
+    progress(files.length, charts.length);
+    await new Promise((resolve) => setTimeout(resolve, 0));
+    files.push({ name: name(c), data: await slidePng(c) });
+  }
+  progress(files.length, charts.length);
+  return files;
+}
+
 // ---------------------------------------------------------------- zip
 
 /** The entries' date: 1980-01-01, the first a zip can hold (the files are made now, not dated). */

@@ -5,30 +5,19 @@
 // views change, and outlines what to look at. With the panel focused, Space reveals or
 // goes on, the arrow keys (and Page Up / Down) step, 1..6 pick an option. Teachers
 // author here too: add the current view as a step, edit, reorder, delete, and export or
-// import the lesson as a JSON file or a link.
+// import the lesson as a JSON file or a link; what they make is saved in the browser as
+// they edit and listed under "Your lessons" (js/ownlessons.js). A lesson opened from a
+// link keeps its link in the address bar while it is open, so a reload opens it again.
 
 import { SHIPPED } from './lessonbook.js';
-import { PLACEHOLDERS, checkLesson, lessonHash, lessonJson, readLesson, readLessonHash, resolve } from './lessons.js';
-import { decodeHash, encodeHash } from './urlstate.js';
+import { PLACEHOLDERS, checkLesson, readLessonHash, resolve } from './lessons.js';
+import { decodeHash } from './urlstate.js';
 import { fitKeyOf } from './store.js';
 import { explain } from './controls.js';
-import { download } from './exports.js';
+import { OwnLessons } from './ownlessons.js';
+import { AUTHORING, checkIds, copy } from './lessonauthor.js';
 
 const $ = (id) => document.getElementById(id);
-
-/** Throws `{message}` naming the step and field when a highlighted or hidden id is no element of the page. */
-function checkIds(lesson) {
-  for (const [i, s] of lesson.steps.entries()) {
-    for (const key of ['highlight', 'hide']) {
-      s[key].forEach((id, j) => {
-        if (!$(id)) throw { message: `steps[${i}].${key}[${j}]: no element '${id}' on the page` };
-      });
-    }
-  }
-}
-
-/** A deep copy of a checked lesson (the panel edits its own). */
-const copy = (lesson) => JSON.parse(JSON.stringify(lesson));
 
 export class LessonPanel {
   /**
@@ -50,6 +39,15 @@ export class LessonPanel {
     this.goes = 0;
     this.lit = [];
     this.veiled = [];
+    /** The `#lesson=` hash the lesson in the panel was opened from (kept in the address bar while it is open), or null. */
+    this.linkHash = null;
+    this.own = new OwnLessons({
+      list: $('lesson-own'),
+      box: $('lesson-own-box'),
+      say: (text, kind) => this.say(text, kind),
+      onOpen: (it) => this.act(() => this.openOwn(it)),
+    });
+    this.own.render();
     this.listShipped();
     this.listPlaceholders();
     $('lessons-open').addEventListener('click', () => (this.isOpen ? this.close() : this.open()));
@@ -90,7 +88,14 @@ export class LessonPanel {
     this.onResize();
     if (!this.lesson) this.showList();
     else this.show();
+    this.pinLink();
     this.root.focus({ preventScroll: true });
+  }
+
+  /** The address bar holds the lesson link while its lesson is open, else the view's link. */
+  pinLink() {
+    const on = this.isOpen && this.linkHash && this.lesson && $('lesson-list').hidden;
+    this.store.pinHash(on ? this.linkHash : null);
   }
 
   close() {
@@ -99,6 +104,7 @@ export class LessonPanel {
     this.bench.classList.remove('lesson-open');
     $('lessons-open').setAttribute('aria-expanded', 'false');
     this.onResize();
+    this.pinLink();
   }
 
   // ---------------------------------------------------------------- choosing a lesson
@@ -126,13 +132,18 @@ export class LessonPanel {
     $('lesson-title').textContent = 'Lessons';
     $('lesson-count').textContent = '';
     for (const id of ['lesson-edit-toggle', 'lesson-export', 'lesson-copy', 'lesson-menu']) $(id).hidden = true;
+    this.own.render();
+    this.pinLink();
   }
 
   /**
    * Starts `lesson` (a lesson object, checked here) at step `k`. Resolves false with a
-   * message in the panel, and the page as it was, when the lesson is malformed.
+   * message in the panel, and the page as it was, when the lesson is malformed, or when
+   * the lesson in the panel is an unsaved one of the user's and they keep it.
+   * `ownId`: the user's stored lesson it is; `link`: the `#lesson=` hash it came from.
    */
-  async start(lesson, k = 0, origin = '') {
+  async start(lesson, k = 0, origin = '', { ownId = null, link = null } = {}) {
+    if (!this.own.mayLeave('Open another lesson')) return false;
     let checked;
     try {
       checked = await this.checkPage(checkLesson(lesson));
@@ -141,11 +152,14 @@ export class LessonPanel {
       return false;
     }
     this.lesson = copy(checked);
+    this.own.adopt(ownId, this.lesson);
+    this.linkHash = link;
     this.say('');
     if (!this.isOpen) this.open();
     $('lesson-list').hidden = true;
     $('lesson-step').hidden = false;
     for (const id of ['lesson-edit-toggle', 'lesson-export', 'lesson-copy', 'lesson-menu']) $(id).hidden = false;
+    this.pinLink();
     await this.go(k);
     return true;
   }
@@ -178,7 +192,7 @@ export class LessonPanel {
       return true;
     }
     if (!link) return false;
-    await this.start(link.lesson || SHIPPED.find((x) => x.id === link.id).lesson, 0, 'The lesson link');
+    await this.start(link.lesson || SHIPPED.find((x) => x.id === link.id).lesson, 0, 'The lesson link', { link: `#${hash.replace(/^#/, '')}` });
     return true;
   }
 
@@ -329,20 +343,36 @@ export class LessonPanel {
     $('lesson-count').textContent = `Step ${this.k + 1} of ${n}`;
     let ready = this.fill($('lesson-question'), step.question);
     const opts = $('lesson-options');
+    // Once revealed every option stays: the right one (the step's `answer`, 1..) marked
+    // "right answer", the class's prediction marked right or wrong.
+    const right = this.revealed && step.answer ? step.answer - 1 : null;
     opts.replaceChildren(...step.options.map((o, i) => {
       const b = document.createElement('button');
       b.type = 'button';
       b.className = 'lesson-option';
       b.textContent = `${i + 1}. ${o}`;
       b.setAttribute('aria-pressed', String(this.picked === i));
-      // Once revealed only the class's answer stays, to leave the room to the reveal.
-      b.hidden = this.revealed && this.picked !== i;
+      if (right !== null) {
+        const verdict = i === right ? (this.picked === i ? 'right' : 'answer') : this.picked === i ? 'wrong' : '';
+        if (verdict) {
+          b.dataset.verdict = verdict;
+          const tag = document.createElement('span');
+          tag.className = 'verdict';
+          tag.textContent = { right: '✓ right: the class\'s prediction', answer: '✓ right answer', wrong: '✗ wrong: the class\'s prediction' }[verdict];
+          b.append(' ', tag);
+        }
+      }
       b.addEventListener('click', () => this.act(() => this.commit(i)));
       return b;
     }));
     opts.hidden = step.options.length === 0;
+    opts.dataset.revealed = String(this.revealed);
     const hint = $('lesson-hint');
-    if (this.revealed) hint.textContent = this.k < n - 1 ? 'Space or → for the next step.' : 'The last step: ← goes back, "All lessons" lists them.';
+    if (this.revealed) {
+      const next = this.k < n - 1 ? 'Space or → for the next step.' : 'The last step: ← goes back, "All lessons" lists them.';
+      const said = right === null || this.picked === null ? '' : this.picked === right ? 'The class was right. ' : `The class chose ${this.picked + 1}; the right answer is ${right + 1}. `;
+      hint.textContent = said + next;
+    }
     else if (step.options.length && this.picked === null) hint.textContent = 'The class predicts: pick an option (1..' + step.options.length + '), then Reveal (Space).';
     else hint.textContent = step.options.length ? `The class chose ${this.picked + 1}. Reveal (Space) when ready.` : 'Discuss, then Reveal (Space).';
     const rv = $('lesson-answer');
@@ -371,151 +401,7 @@ export class LessonPanel {
     el.textContent = text;
     el.className = `lesson-msg ${kind}`;
   }
-
-  // ---------------------------------------------------------------- authoring
-
-  listPlaceholders() {
-    $('le-placeholders').replaceChildren(...Object.entries(PLACEHOLDERS).flatMap(([name, p]) => {
-      const dt = document.createElement('dt');
-      dt.textContent = `{${name}}`;
-      const dd = document.createElement('dd');
-      dd.textContent = p.about;
-      return [dt, dd];
-    }));
-  }
-
-  /** A new lesson of one step: the current view. */
-  newLesson() {
-    return this.start({ ridelab: 'lesson', version: 1, title: 'My lesson', steps: [this.viewStep()] }).then((ok) => {
-      if (ok && $('lesson-edit').hidden) this.toggleEdit();
-    });
-  }
-
-  /** A step of the current view, with a question and reveal to edit. */
-  viewStep() {
-    return {
-      view: encodeHash(this.store.state, { ...this.store.view, projector: false }).slice(1),
-      question: 'What do you predict?',
-      options: [],
-      reveal: 'BAcc {hifi.bacc}, DTL {hifi.dtl}, SWS {hifi.sws} (HiFi).',
-      highlight: [],
-      hide: [],
-    };
-  }
-
-  toggleEdit() {
-    const ed = $('lesson-edit');
-    ed.hidden = !ed.hidden;
-    $('lesson-edit-toggle').setAttribute('aria-pressed', String(!ed.hidden));
-    if (!ed.hidden) this.showEditor();
-  }
-
-  showEditor() {
-    const s = this.step;
-    const set = (id, v) => {
-      if (document.activeElement !== $(id)) $(id).value = v;
-    };
-    set('le-title', this.lesson.title);
-    set('le-question', s.question);
-    set('le-options', s.options.join('\n'));
-    set('le-reveal', s.reveal);
-    set('le-highlight', s.highlight.join(', '));
-    set('le-hide', s.hide.join(', '));
-    $('le-view').textContent = [...new URLSearchParams(s.view)].map(([k, v]) => `${k}=${v}`).join('&') || '(the default view)';
-    $('le-up').disabled = this.k === 0;
-    $('le-down').disabled = this.k === this.lesson.steps.length - 1;
-    $('le-delete').disabled = this.lesson.steps.length === 1;
-  }
-
-  wireEditor() {
-    const list = (v) => v.split(/[\s,]+/).filter(Boolean);
-    const fields = {
-      'le-title': (v) => (this.lesson.title = v),
-      'le-question': (v) => (this.step.question = v),
-      'le-options': (v) => (this.step.options = v.split('\n').map((x) => x.trim()).filter(Boolean)),
-      'le-reveal': (v) => (this.step.reveal = v),
-      'le-highlight': (v) => (this.step.highlight = list(v)),
-      'le-hide': (v) => (this.step.hide = list(v)),
-    };
-    for (const [id, put] of Object.entries(fields)) {
-      $(id).addEventListener('input', (ev) => {
-        put(ev.target.value);
-        this.picked = this.picked !== null && this.picked < this.step.options.length ? this.picked : null;
-        this.show();
-        this.checkDraft();
-      });
-    }
-    const move = (d) => {
-      const s = this.lesson.steps;
-      const j = this.k + d;
-      [s[this.k], s[j]] = [s[j], s[this.k]];
-      this.k = j;
-      this.show();
-    };
-    $('le-add').addEventListener('click', () => {
-      this.lesson.steps.splice(this.k + 1, 0, this.viewStep());
-      this.go(this.k + 1);
-    });
-    $('le-use-view').addEventListener('click', () => {
-      this.step.view = this.viewStep().view;
-      this.show();
-    });
-    $('le-up').addEventListener('click', () => move(-1));
-    $('le-down').addEventListener('click', () => move(1));
-    $('le-delete').addEventListener('click', () => {
-      this.lesson.steps.splice(this.k, 1);
-      this.go(Math.min(this.k, this.lesson.steps.length - 1));
-    });
-  }
-
-  /** Says what is wrong with the lesson being edited, if anything; the checked lesson or null. */
-  checkDraft() {
-    try {
-      const l = checkLesson(this.lesson);
-      checkIds(l);
-      this.say('');
-      return l;
-    } catch (e) {
-      this.say(e.message, 'bad');
-      return null;
-    }
-  }
-
-  /** The lesson as a JSON file. */
-  exportFile() {
-    const l = this.checkDraft();
-    if (!l) return;
-    const name = l.title.toLowerCase().replace(/[^a-z0-9]+/g, '-').replace(/^-|-$/g, '') || 'lesson';
-    download(`ridelab-lesson-${name}.json`, new Blob([lessonJson(l)], { type: 'application/json' }));
-  }
-
-  /** The lesson as a link, copied (and shown, to copy by hand where the clipboard is off). */
-  async copyLink() {
-    const l = this.checkDraft();
-    if (!l) return;
-    const url = `${location.href.split('#')[0]}${lessonHash(l)}`;
-    $('lesson-link').value = url;
-    $('lesson-link').hidden = false;
-    try {
-      await navigator.clipboard.writeText(url);
-      this.say('The lesson\'s link is copied; opening it starts the lesson at its first step.');
-    } catch {
-      this.say('Copy the lesson\'s link from the box below.');
-    }
-  }
-
-  /** A lesson file chosen: started, or refused with the step and field named (the page stays). */
-  async importFile(input) {
-    const file = input.files && input.files[0];
-    if (!file) return;
-    input.value = '';
-    let lesson;
-    try {
-      lesson = readLesson(await file.text());
-    } catch (e) {
-      this.say(`${file.name}: ${e.message}`, 'bad');
-      return;
-    }
-    await this.start(lesson, 0, file.name);
-  }
 }
+
+// The authoring half (js/lessonauthor.js): the editor, saving, export and import.
+Object.assign(LessonPanel.prototype, AUTHORING);

@@ -17,7 +17,8 @@ const MAX_STEPS = 40;
 const MAX_TEXT = 2000;
 const MAX_OPTIONS = 6;
 
-const STEP_KEYS = ['view', 'question', 'options', 'reveal', 'highlight', 'hide'];
+/** A step's keys; `answer` (optional): the number, 1.., of the right option, marked at the reveal. */
+const STEP_KEYS = ['view', 'question', 'options', 'reveal', 'highlight', 'hide', 'answer'];
 
 // ---------------------------------------------------------------- placeholders
 
@@ -114,8 +115,8 @@ def('recheck.err', "the largest error of the surrogate's prediction at the pick 
 def('plan', "the surrogate's sampling plan", (d) => d.state.plan, (v) => v);
 def('samples', 'the HiFi runs the surrogate is fitted to', (d) => d.fit.samples.length, (v) => String(v), ['fit']);
 for (const c of ['bacc', 'dtl', 'sws']) {
-  def(`fit.rte.${c}`, `the surrogate's largest relative error in ${CRIT[c].name} on the 20 × 20 HiFi grid, %`, (d) => d.fit.metrics[c].rte_max / 100, (v) => `${fmt(v * 100, 3)} %`, ['fit']);
-  def(`fit.rte_mean.${c}`, `the surrogate's mean relative error in ${CRIT[c].name} on the 20 × 20 HiFi grid, %`, (d) => d.fit.metrics[c].rte_mean / 100, (v) => `${fmt(v * 100, 3)} %`, ['fit']);
+  def(`fit.rte.${c}`, `the surrogate's largest relative error in ${CRIT[c].name} on the 20 × 20 HiFi grid, %`, (d) => d.fit.metrics[c].rte_max_percent / 100, (v) => `${fmt(v * 100, 3)} %`, ['fit']);
+  def(`fit.rte_mean.${c}`, `the surrogate's mean relative error in ${CRIT[c].name} on the 20 × 20 HiFi grid, %`, (d) => d.fit.metrics[c].rte_mean_percent / 100, (v) => `${fmt(v * 100, 3)} %`, ['fit']);
 }
 
 const PLACEHOLDER = /\{([a-z_][a-z0-9_.]*)\}/gi;
@@ -211,6 +212,9 @@ export function checkLesson(obj) {
       }
       options = s.options.map((o, j) => text(o, `${at}.options[${j}]`));
     }
+    if (s.answer !== undefined && !(Number.isInteger(s.answer) && s.answer >= 1 && s.answer <= options.length)) {
+      fail(`${at}.answer: must be the number of one of its options (1 to ${options.length})`);
+    }
     return {
       view: s.view.replace(/^#/, ''),
       question: text(s.question, `${at}.question`),
@@ -218,6 +222,7 @@ export function checkLesson(obj) {
       reveal: text(s.reveal, `${at}.reveal`),
       highlight: ids(s.highlight, `${at}.highlight`),
       hide: ids(s.hide, `${at}.hide`),
+      ...(s.answer !== undefined ? { answer: s.answer } : {}),
     };
   });
   return { ridelab: 'lesson', version: LESSON_VERSION, title, steps };

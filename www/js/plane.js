@@ -5,11 +5,16 @@
 // with the sliders). A design beyond the axes stays in view: pinned to the edge with an
 // arrow towards it. A click selects the nearest front point (and says its pseudo-weights);
 // the tooltip names the pick's rule. After an adaptive HiFi run the loop's front and pick
-// move to their new place (`move`). Handed plain data.
+// move to their new place (`move`). The axes are fitted to the fronts and the feasible
+// designs (js/planezoom.js), the datum too pinned to the edge when outside; the wheel,
+// a drag and the keys (+, -, arrows, 0) zoom and pan, the reset button goes back to the
+// fitted axes, and each change is told to the page (a `planezoom` event on the overlay,
+// `detail` the zoom, for the link's `pz=`). Handed plain data.
 
 import { Plot } from './plot.js';
 import { CLOUD_OPACITY, cloudPoints, objectiveSpec, planeXY } from './chartspecs.js';
 import { fmt, fmtPct } from './format.js';
+import { fitAxes, panBy, zoomAbout, zoomedAxes, zoomForKey } from './planezoom.js';
 
 /** The live layer's colours (the charts' own are in js/chartspecs.js). */
 const CLOUD_FILL = `rgba(120, 160, 210, ${CLOUD_OPACITY})`;
@@ -63,6 +68,13 @@ export class ObjectivePlane {
    */
   constructor({ base, overlay, wrap, msg }, onSelect) {
     this.base = new Plot(base, { fill: true });
+    /** The zoom (`[x0, x1, y0, y1]` fractions of the fitted axes, js/planezoom.js) or null; the fitted axes and the datum when outside them. */
+    this.zoom = null;
+    this.fit = null;
+    this.datumOut = null;
+    this.reset = wrap.parentElement.querySelector('.op-reset');
+    this.reset?.addEventListener('click', () => this.setZoom(null));
+    this.bindZoom(overlay);
     this.over = overlay;
     this.wrap = wrap;
     this.msg = msg;
@@ -80,6 +92,8 @@ export class ObjectivePlane {
     this.selected = null;
     this.title = overlay.title;
     overlay.addEventListener('click', (ev) => {
+      // The end of a drag is no click.
+      if (this.dragged) return;
       const hit = this.nearest(ev);
       if (!hit) return;
       this.selected = { index: hit.index, point: hit.point, weights: this.data.front.pseudoWeights[hit.index] };
@@ -92,6 +106,62 @@ export class ObjectivePlane {
       const fr = this.data && this.data.front;
       overlay.title = hit && hit.dist < 10 ? (hit.index === fr.study.pick.index ? pickText(fr) : frontPointText(fr, hit.index)) : this.title;
     });
+  }
+
+  /** The wheel (about the pointer), a drag (pan) and the keys on the focused plane zoom and pan. */
+  bindZoom(overlay) {
+    const frac = (ev) => {
+      const r = overlay.getBoundingClientRect();
+      const { plot } = this.base.layout();
+      return [(ev.clientX - r.left - plot.x) / plot.w, 1 - (ev.clientY - r.top - plot.y) / plot.h];
+    };
+    overlay.addEventListener('wheel', (ev) => {
+      if (!this.fit) return;
+      ev.preventDefault();
+      const [u, v] = frac(ev);
+      const step = ev.deltaMode === 1 ? ev.deltaY * 33 : ev.deltaY;
+      this.setZoom(zoomAbout(this.zoom, Math.exp(Math.max(-300, Math.min(300, step)) * 0.0015), Math.min(1, Math.max(0, u)), Math.min(1, Math.max(0, v))));
+    }, { passive: false });
+    let drag = null;
+    overlay.addEventListener('pointerdown', (ev) => {
+      if (ev.button !== 0 || ev.pointerType === 'touch' || !this.fit) return;
+      drag = { at: frac(ev), zoom: this.zoom, moved: false };
+      this.dragged = false;
+    });
+    overlay.addEventListener('pointermove', (ev) => {
+      if (!drag) return;
+      const [u, v] = frac(ev);
+      const [du, dv] = [drag.at[0] - u, drag.at[1] - v];
+      if (!drag.moved && Math.hypot(du * this.base.layout().plot.w, dv * this.base.layout().plot.h) < 4) return;
+      if (!drag.moved) overlay.setPointerCapture(ev.pointerId);
+      drag.moved = true;
+      this.dragged = true;
+      this.setZoom(panBy(drag.zoom, du, dv), false);
+    });
+    const end = () => {
+      if (drag && drag.moved) this.setZoom(this.zoom);
+      drag = null;
+      // The click that ends a drag comes after pointerup: it is skipped, the next one not.
+      setTimeout(() => (this.dragged = false), 0);
+    };
+    overlay.addEventListener('pointerup', end);
+    overlay.addEventListener('pointercancel', end);
+    overlay.addEventListener('keydown', (ev) => {
+      if (ev.ctrlKey || ev.metaKey || ev.altKey || !this.fit) return;
+      const z = zoomForKey(this.zoom, ev.key);
+      if (z === undefined) return;
+      ev.preventDefault();
+      ev.stopPropagation();
+      this.setZoom(z);
+    });
+  }
+
+  /** Shows zoom `z` (null: the fitted axes); `tell`: says so to the page (a `planezoom` event). */
+  setZoom(z, tell = true) {
+    this.zoom = z;
+    if (this.reset) this.reset.disabled = z === null;
+    if (this.data) this.draw({ ...this.data, zoom: z });
+    if (tell) this.over.dispatchEvent(new CustomEvent('planezoom', { bubbles: true, detail: z }));
   }
 
   /** Line widths times `thick` (projector mode). */
@@ -118,11 +188,23 @@ export class ObjectivePlane {
     }
     this.msg.hidden = true;
     this.wrap.hidden = false;
+    if ('zoom' in data) this.zoom = data.zoom;
+    if (this.reset) this.reset.disabled = this.zoom === null;
     const spec = objectiveSpec(data, { ratio: data.ratio, live: true });
     if (this.thick !== 1) for (const s of spec.series) s.size = (s.size || 2) * this.thick;
+    // Every cell of a cloud up to 120 wide, every other one of a larger one.
+    const cloud = data.cloud ? cloudPoints(data.cloud, fr, data.ratio, data.cloud.nx > 120 ? 2 : 1) : [];
+    this.fit = fitAxes(spec.series.filter((s) => s.name !== 'datum' && !s.name.startsWith('feasible')).flatMap((s) => s.points), cloud);
+    const axes = zoomedAxes(this.fit, this.zoom);
+    spec.xRange = axes.x;
+    spec.yRange = axes.y;
+    // The datum beyond the axes: out of the chart, pinned to its edge on the overlay.
+    const datum = spec.series.find((s) => s.name === 'datum').points[0];
+    const inside = datum[0] >= axes.x[0] && datum[0] <= axes.x[1] && datum[1] >= axes.y[0] && datum[1] <= axes.y[1];
+    this.datumOut = inside ? null : datum;
+    if (!inside) spec.series = spec.series.filter((s) => s.name !== 'datum');
     if (this.base.draw(spec, 'axes')) {
-      // Every cell of a cloud up to 120 wide, every other one of a larger one.
-      this.base.dots(cloudPoints(data.cloud, fr, data.ratio, data.cloud.nx > 120 ? 2 : 1), CLOUD_FILL, 1.4 * this.thick);
+      this.base.dots(cloud, CLOUD_FILL, 1.4 * this.thick);
       this.base.draw(spec, 'series');
     }
     this.drawDesign(this.design);
@@ -186,12 +268,16 @@ export class ObjectivePlane {
     this.animating = false;
   }
 
-  /** The current design's marker (`design`: its criteria `{bacc, dtl}` by the plane's model). */
+  /**
+   * The current design's marker (`design`: its criteria `{bacc, dtl}` by the plane's
+   * model) on the overlay, and the datum's when it lies beyond the axes; each pinned to
+   * the edge with an arrow towards it when outside.
+   */
   drawDesign(design) {
     this.design = design;
     const b = this.base;
     const d = this.data;
-    if (!d || !d.front || d.front.error || !b.placed || b.error || !design) return;
+    if (!d || !d.front || d.front.error || !b.placed || b.error) return;
     const c = this.over;
     const { w, h, dpr, zoom } = b.size;
     if (c.width !== b.canvas.width || c.height !== b.canvas.height) {
@@ -202,27 +288,52 @@ export class ObjectivePlane {
     const g = c.getContext('2d');
     g.setTransform(dpr, 0, 0, dpr, 0, 0);
     g.clearRect(0, 0, w, h);
-    const { plot } = b.layout();
-    const [x, y] = planeXY(d.front, d.ratio)(design.bacc, design.dtl);
-    const [px, py] = b.px(x, y);
     const r = 4.5 * zoom * Math.sqrt(this.thick);
-    // Inside the plot, or pinned to its edge (an inset of the marker's size) with an
-    // arrow pointing to where it lies.
+    if (this.datumOut) {
+      // The datum's square, white with a black rim as in the chart.
+      this.pinned(g, b.px(...this.datumOut), 0.9 * r, (mx, my, rr) => {
+        g.beginPath();
+        g.rect(mx - rr, my - rr, 2 * rr, 2 * rr);
+        g.fillStyle = '#fff';
+        g.fill();
+        g.lineWidth = 1.6 * this.thick;
+        g.strokeStyle = '#000';
+        g.stroke();
+      });
+    }
+    if (!design) return;
+    const [px, py] = b.px(...planeXY(d.front, d.ratio)(design.bacc, design.dtl));
+    const at = this.pinned(g, [px, py], r, (mx, my, rr) => {
+      g.beginPath();
+      g.arc(mx, my, rr, 0, 2 * Math.PI);
+      g.fillStyle = '#000';
+      g.fill();
+      g.lineWidth = 2 * this.thick;
+      g.strokeStyle = '#fff';
+      g.stroke();
+    });
+    this.designAt = at.at;
+    this.designClamped = at.out;
+  }
+
+  /**
+   * A marker of radius `r` at `[px, py]` (CSS px) painted by `paint(x, y, r)`: inside the
+   * plot where it is, else pinned to the edge (one arrow length in) with a black arrow
+   * whose tip is at the edge, pointing to where it lies. Returns `{at, out}`.
+   */
+  pinned(g, [px, py], r, paint) {
+    const { plot } = this.base.layout();
     const cx = Math.min(plot.x + plot.w - r - 2, Math.max(plot.x + r + 2, px));
     const cy = Math.min(plot.y + plot.h - r - 2, Math.max(plot.y + r + 2, py));
     const out = cx !== px || cy !== py;
-    this.designAt = [cx, cy];
-    this.designClamped = out;
+    let at = [cx, cy];
     if (out) {
-      // The marker one arrow length in from the edge, the arrow's tip at the edge.
       const a = Math.atan2(py - cy, px - cx);
       const ux = Math.cos(a);
       const uy = Math.sin(a);
-      const len = 3.5 * r;
-      this.designAt = [cx - ux * len, cy - uy * len];
-      const [mx, my] = this.designAt;
+      at = [cx - ux * 3.5 * r, cy - uy * 3.5 * r];
       g.beginPath();
-      g.moveTo(mx + ux * r, my + uy * r);
+      g.moveTo(at[0] + ux * r, at[1] + uy * r);
       g.lineTo(cx - ux * r * 0.5, cy - uy * r * 0.5);
       g.lineWidth = 2.2 * this.thick;
       g.strokeStyle = '#000';
@@ -237,14 +348,8 @@ export class ObjectivePlane {
       g.fillStyle = '#000';
       g.fill();
     }
-    const [mx, my] = this.designAt;
-    g.beginPath();
-    g.arc(mx, my, r, 0, 2 * Math.PI);
-    g.fillStyle = '#000';
-    g.fill();
-    g.lineWidth = 2 * this.thick;
-    g.strokeStyle = '#fff';
-    g.stroke();
+    paint(at[0], at[1], r);
+    return { at, out };
   }
 
   /** The front point nearest a click (CSS px on the plot) as `{point, index, dist}` (dist in CSS px), or null away from the plot. */

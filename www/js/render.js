@@ -97,7 +97,7 @@ export class Render {
     const st = this.store;
     // The adaptive loop's surrogate front is unweighted: not drawn on a Wk plane.
     const adaptive = st.plane.model === 'surrogate' ? adaptivePlane(st.adaptive) : null;
-    const data = { front: st.front, nsga: st.nsga, cloud: st.cloud, ratio: st.view.ratio, adaptive, hifi: currentHifiFront(st) };
+    const data = { front: st.front, nsga: st.nsga, cloud: st.cloud, ratio: st.view.ratio, zoom: st.view.planeZoom ?? null, adaptive, hifi: currentHifiFront(st) };
     if (animate) this.ui.plane.move(data);
     else this.ui.plane.draw(data);
     $('op-key-adaptive').hidden = !adaptive;

@@ -4,6 +4,9 @@
 // the text of a `ridelab map --cases FILE` file, which the core parses and checks (its
 // message names the field, `cases.load_cases[1].mass`). The tables and the JSON text are
 // two views of one cases file: a table edit rewrites the text, "Apply" sends the text.
+// Edits not yet applied are marked ("not applied: press Apply"), and each is checked as
+// it is typed by the core's own limits (`checkState` on the candidate cases: the message
+// names the case and field and states the range), the cell at fault marked.
 // Also the map selector (robust, or one case) and the Pick tab's per-case table, and the
 // labels the maps and the plane carry with cases.
 
@@ -58,6 +61,15 @@ function cellValue(raw) {
   if (t === '') return undefined;
   const n = Number(t);
   return Number.isFinite(n) ? n : t;
+}
+
+/** How long typing rests before the cases are checked, ms. */
+const CHECK_AFTER_MS = 150;
+
+/** The table and row key a core field path names (`cases.load_cases[1].mass`), or null. */
+function cellOf(message) {
+  const m = /cases\.(load_cases|operating)\[(\d+)\]\.(\w+)/.exec(message || '');
+  return m ? { table: m[1] === 'load_cases' ? 'load' : 'operating', row: Number(m[2]), key: m[3] } : null;
 }
 
 /** The cases file's text (compact JSON) of the tables' `{load, operating, combine}`. */
@@ -127,14 +139,20 @@ export function renderCasePicks(table, fr) {
 }
 
 /**
- * The editor: `els` = `{load, operating, addLoad, addOp, combine, text, apply, clear,
- * caseSelect, msg, count}`; `apply(text)` sends a cases text (null clears them) and
- * resolves to the core's failure or null; `pickCase(c)` sets `case` ("robust" or "k").
+ * The editor: `els` = `{load, operating, addLoad, addOp, combine, text, apply, pending,
+ * clear, caseSelect, msg, count}`; `apply(text)` sends a cases text (null clears them)
+ * and resolves to the core's failure or null; `check(text)` resolves to the core's
+ * failure for that cases text on the current state, or null; `pickCase(c)` sets `case`
+ * ("robust" or "k").
  */
 export class RobustPanel {
-  constructor(els, { apply, pickCase }) {
+  constructor(els, { apply, check, pickCase }) {
     this.els = els;
     this.applyText = apply;
+    this.checkText = check;
+    this.checkTimer = null;
+    /** Checks started (only the latest one's answer is shown). */
+    this.checks = 0;
     this.model = { load: [], operating: [], combine: 'worst' };
     this.shownText = undefined;
     els.addLoad.addEventListener('click', () => {
@@ -156,6 +174,7 @@ export class RobustPanel {
         this.drawTables();
       }
       this.count();
+      this.changed();
     });
     els.apply.addEventListener('click', () => this.send(els.text.value));
     els.clear.addEventListener('click', () => this.send(null));
@@ -164,9 +183,14 @@ export class RobustPanel {
 
   /** Sends `text` (null: no cases); the core's message, naming the field, stays under the editor. */
   async send(text) {
+    clearTimeout(this.checkTimer);
+    this.checks++;
     this.els.msg.textContent = '';
     const failure = await this.applyText(text === null ? null : compactCases(text));
-    if (failure) this.els.msg.textContent = `Not applied: ${plainWords(failure.message)}`;
+    if (failure) {
+      this.els.msg.textContent = `Not applied: ${this.words(failure)}`;
+      this.markCell(cellOf(failure.message));
+    }
   }
 
   /** A table edit: the text follows (`redraw`: the tables too, after rows came or went). */
@@ -174,6 +198,61 @@ export class RobustPanel {
     this.els.text.value = casesText(this.model);
     if (redraw) this.drawTables();
     this.count();
+    this.changed();
+  }
+
+  /** The editor differs from the state's cases: marked not applied, and checked once typing rests. */
+  changed() {
+    const text = this.els.text.value.trim();
+    const applied = this.shownText ? compactCases(this.shownText) : '';
+    const pending = (text === '' ? '' : compactCases(text)) !== applied;
+    this.els.pending.hidden = !pending;
+    this.els.apply.classList.toggle('primary', pending);
+    clearTimeout(this.checkTimer);
+    const token = ++this.checks;
+    if (!pending || text === '') {
+      this.els.msg.textContent = '';
+      this.markCell(null);
+      return;
+    }
+    this.checkTimer = setTimeout(async () => {
+      const failure = this.typedProblem() || (await this.checkText(compactCases(text)));
+      if (token !== this.checks) return;
+      this.els.msg.textContent = failure ? `${this.words(failure)}; not applied.` : 'The cases are valid: press Apply to use them.';
+      this.markCell(failure ? cellOf(failure.message) || failure.cell : null);
+    }, CHECK_AFTER_MS);
+  }
+
+  /** The first cell of the tables whose number does not read as one: `{message, cell}`, or null. */
+  typedProblem() {
+    for (const el of [...this.els.load.querySelectorAll('input'), ...this.els.operating.querySelectorAll('input')]) {
+      if (el.dataset.kind === 'num' && typeof cellValue(el.value) === 'string') {
+        return { message: `${el.getAttribute('aria-label')}: '${el.value.trim()}' is not a number`, cell: { el } };
+      }
+    }
+    return null;
+  }
+
+  /** A core failure in the page's words, the cell's own label before the field's path. */
+  words(failure) {
+    const c = cellOf(failure.message);
+    const el = c && this.cellInput(c);
+    const text = plainWords(failure.message);
+    return el ? text.replace(/^(cases\.[\w[\].]+): /, (m, p) => `${el.getAttribute('aria-label')} (${p}): `) : text;
+  }
+
+  /** The input of table cell `{table, row, key}`, or null. */
+  cellInput({ table, row, key }) {
+    const tb = this.els[table].tBodies[0];
+    return tb.rows[row]?.querySelector(`input[data-key="${key}"]`) || null;
+  }
+
+  /** Marks the cell at fault (`{table, row, key}` or `{el}`; null: none). */
+  markCell(c) {
+    for (const el of this.els.load.querySelectorAll('[aria-invalid]')) el.removeAttribute('aria-invalid');
+    for (const el of this.els.operating.querySelectorAll('[aria-invalid]')) el.removeAttribute('aria-invalid');
+    const el = c && (c.el || this.cellInput(c));
+    if (el) el.setAttribute('aria-invalid', 'true');
   }
 
   /** The case count the tables make, against the bound. */
@@ -193,6 +272,7 @@ export class RobustPanel {
       this.drawTables();
       this.count();
       this.els.msg.textContent = '';
+      this.changed();
     }
     const sel = this.els.caseSelect;
     const names = (st.desc && st.desc.cases) || [];
@@ -222,7 +302,9 @@ export class RobustPanel {
       el.value = row[key] === undefined ? '' : String(row[key]);
       el.setAttribute('aria-label', label);
       el.dataset.key = key;
-      el.addEventListener('change', () => {
+      el.dataset.kind = type;
+      // Each keystroke: the text follows, and the value is checked once typing rests.
+      el.addEventListener('input', () => {
         const v = type === 'num' ? cellValue(el.value) : el.value;
         if (v === undefined) delete row[key];
         else row[key] = v;

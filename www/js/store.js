@@ -4,7 +4,6 @@
 // handed plain data, see js/render.js).
 
 import { encodeHash } from './urlstate.js';
-import { MAX_SAVED } from './compare.js';
 
 /** The page-only settings of a fresh view. */
 export const DEFAULT_VIEW = {
@@ -126,6 +125,8 @@ export class Store {
     this.custom = null;
     this.lastHash = '';
     this.urlTimer = null;
+    /** A hash the address bar keeps instead of the view's (a lesson link while its lesson is open), or null. */
+    this.pinnedHash = null;
   }
 
   /** True when the HiFi reports belong to the current design and datum. */
@@ -170,10 +171,17 @@ export class Store {
     this.urlTimer = setTimeout(() => this.writeUrl(), 120);
   }
 
+  /** Keeps `hash` in the address bar (null: the view's link again, written at once). */
+  pinHash(hash) {
+    if (hash === this.pinnedHash) return;
+    this.pinnedHash = hash;
+    if (this.state) this.writeUrl();
+  }
+
   writeUrl() {
     clearTimeout(this.urlTimer);
     this.urlTimer = null;
-    const hash = encodeHash(this.state, this.view, this.keptDesigns());
+    const hash = this.pinnedHash || encodeHash(this.state, this.view, this.keptDesigns());
     if (hash !== location.hash) {
       this.lastHash = hash;
       history.replaceState(null, '', hash);
@@ -189,43 +197,4 @@ export class Store {
   session() {
     return { ridelab: 'session', version: 1, state: this.state, view: { ...this.view }, kept: this.keptDesigns() };
   }
-}
-
-/**
- * A session file's `{state, view, kept}`: throws `{message}` for text that is not JSON, not
- * a RideLab session, a view with keys or values the page does not know, or kept designs
- * that are not up to MAX_SAVED pairs of numbers > 0.
- */
-export function readSession(text) {
-  let s;
-  try {
-    s = JSON.parse(text);
-  } catch {
-    throw { message: 'not a RideLab session file (not JSON)' };
-  }
-  if (!s || typeof s !== 'object' || s.ridelab !== 'session') throw { message: 'not a RideLab session file (no "ridelab": "session")' };
-  if (typeof s.state !== 'object' || s.state === null) throw { message: 'the session has no state' };
-  const unknown = Object.keys(s).filter((k) => !['ridelab', 'version', 'state', 'view', 'kept'].includes(k));
-  if (unknown.length) throw { message: `unknown session key '${unknown[0]}'` };
-  const view = { ...DEFAULT_VIEW };
-  for (const [k, v] of Object.entries(s.view || {})) {
-    const ok = {
-      scale: ['abs', 'rel'].includes(v),
-      model: Object.hasOwn(MODEL_NAMES, v),
-      plan: typeof v === 'boolean',
-      ratio: typeof v === 'boolean',
-      projector: typeof v === 'boolean',
-      palette: ['viridis', 'cividis'].includes(v),
-      nsga: typeof v === 'boolean',
-    }[k];
-    if (ok === undefined) throw { message: `unknown view key '${k}'` };
-    if (!ok) throw { message: `view: ${k} cannot be ${JSON.stringify(v)}` };
-    view[k] = v;
-  }
-  const kept = s.kept ?? [];
-  const pair = (xy) => Array.isArray(xy) && xy.length === 2 && xy.every((x) => Number.isFinite(x) && x > 0);
-  if (!Array.isArray(kept) || kept.length > MAX_SAVED || !kept.every(pair)) {
-    throw { message: `kept: at most ${MAX_SAVED} [Ks N/m, Cs N s/m] pairs of numbers > 0` };
-  }
-  return { state: { ...s.state }, view, kept: kept.length ? kept : null };
 }

@@ -10,13 +10,33 @@ import { OUTPUTS, designText, objectiveSpec, output, spectraSpec, timeSpec } fro
 const MAP_MODELS = { lofi: 'LoFi', hifi: 'HiFi', surrogate: 'surrogate', error: 'surrogate error vs HiFi' };
 
 /**
+ * The car's name for titles: a custom car's own `name` (its JSON), else the preset's id (`sedan`).
+ */
+export function carName(state) {
+  if (state.car === 'custom' && state.carJson) {
+    try {
+      const n = JSON.parse(state.carJson).name;
+      if (typeof n === 'string' && n.trim()) return n.trim();
+    } catch {
+      // A car the core refused is never the state's; its id names it then.
+    }
+  }
+  return state.car;
+}
+
+/** The car's name for file names: lower case, letters and digits joined by '-', at most 40 characters. */
+export function carSlug(state) {
+  return carName(state).toLowerCase().replace(/[^a-z0-9]+/g, '-').replace(/^-+|-+$/g, '').slice(0, 40).replace(/-+$/, '') || state.car;
+}
+
+/**
  * The objective plane as on screen (`ratio`: its datum-ratio axes; `adaptive`: the
  * adaptive loop's front and picks, js/chartspecs.js `adaptivePlane`, when one runs), with
  * a title.
  */
 export function objectiveChart({ state, front, nsga, cloud, design, ratio, adaptive = null, hifi = null }, { width = 720, height = 460 } = {}) {
   const title = front && !front.error
-    ? `Objective plane (surrogate ${front.study.evaluator}): ${state.car}, class ${state.class} at ${state.speed} m/s`
+    ? `Objective plane (surrogate ${front.study.evaluator}): ${carName(state)}, class ${state.class} at ${state.speed} m/s`
     : '';
   return objectiveSpec({ front, nsga, cloud, design, adaptive, hifi }, { ratio, width, height, title });
 }

@@ -2,7 +2,7 @@
 //   #car=sedan&ks=19960&cs=1290&class=B&speed=20&tracks=correlated&sws=7
 //    &box=10000,40000,500,4000&bb=0.8,1.5&db=0.2,0.5&nw=0,1,0&sur=rba-mul-rbf-mq&plan=ae:10
 //    &comfort=wk&pick=asf:0.3
-//    &model=hifi&samples=0&scale=rel&axes=ratio&pal=cividis&proj=1
+//    &model=hifi&samples=0&scale=rel&axes=ratio&pal=cividis&proj=1&pz=0.1,0.6,0,0.5
 // ks in N/m, cs in N s/m, speed in m/s (SI, as the CLI), sws (the SWS limit) in mm,
 // box (Ks from, to, Cs from, to) in N/m and N s/m, bb (bounce band) in Hz, db (damping
 // band) dimensionless, nw (no worse than datum: BAcc, DTL, SWS) as 0/1, comfort (bacc or
@@ -53,15 +53,17 @@ export function encodeHash(state, view, kept = []) {
   if (view.ratio) p.set('axes', 'ratio');
   if (view.palette && view.palette !== 'viridis') p.set('pal', view.palette);
   if (view.projector) p.set('proj', '1');
+  if (view.planeZoom) p.set('pz', view.planeZoom.join(','));
   if (kept.length) p.set('keep', kept.map(([ks, cs]) => `${ks}:${cs}`).join(','));
   return '#' + p.toString();
 }
 
 /**
  * Reads a hash. Returns `{state, view, kept, problems}`: `state` holds only the keys
- * present (the caller merges them over the defaults and lets the core validate them),
- * `kept` the kept designs (`null` when the link has none), and `problems` lists what
- * could not be read at all (then the caller uses the defaults).
+ * present and readable (the caller merges them over the defaults and lets the core
+ * validate them, js/restore.js), `kept` the kept designs that are Ks:Cs pairs (`null`
+ * when there are none), and `problems` names every key (or kept design) that could not
+ * be read, with why; the others still apply.
  */
 export function decodeHash(hash) {
   const out = { state: {}, view: {}, kept: null, problems: [] };
@@ -112,7 +114,7 @@ export function decodeHash(hash) {
     } else if (key === 'plan') {
       out.state.plan = v.toLowerCase();
     } else if (key === 'comfort' || key === 'pick') {
-      // The core validates both (js/controller.js `fromHash` keeps the default for a bad one).
+      // The core validates both (js/restore.js keeps the default for a bad one).
       out.state[key] = v.toLowerCase();
     } else if (key === 'model') {
       if (['lofi', 'hifi', 'surrogate', 'error'].includes(v)) out.view.model = v;
@@ -130,11 +132,22 @@ export function decodeHash(hash) {
       if (v === 'viridis' || v === 'cividis') out.view.palette = v;
       else out.problems.push(`pal: '${raw}' is not 'viridis' or 'cividis'`);
     } else if (key === 'keep') {
-      const pairs = v.split(',').map((x) => x.split(':').map((y) => (y.trim() === '' ? NaN : Number(y))));
-      if (pairs.length > MAX_SAVED) out.problems.push(`keep: at most ${MAX_SAVED} designs, not ${pairs.length}`);
-      else if (!pairs.every((xy) => xy.length === 2 && xy.every((x) => Number.isFinite(x) && x > 0))) {
-        out.problems.push(`keep: '${raw}' is not Ks:Cs pairs in N/m and N s/m (numbers > 0)`);
-      } else out.kept = pairs;
+      // Each design on its own: a bad one is named and left out, the others kept.
+      const kept = [];
+      for (const [i, text] of v.split(',').entries()) {
+        const xy = text.split(':').map((y) => (y.trim() === '' ? NaN : Number(y)));
+        if (!(xy.length === 2 && xy.every((x) => Number.isFinite(x) && x > 0))) {
+          out.problems.push(`keep: '${text}' is not Ks:Cs pairs in N/m and N s/m (numbers > 0), design ${i + 1} left out`);
+        } else if (kept.length >= MAX_SAVED) {
+          out.problems.push(`keep: at most ${MAX_SAVED} designs are kept, design ${i + 1} left out`);
+        } else kept.push(xy);
+      }
+      out.kept = kept.length ? kept : null;
+    } else if (key === 'pz') {
+      // The objective plane's zoom: x0,x1,y0,y1 as fractions of its fitted axes (js/planezoom.js).
+      const z = v.split(',').map((x) => (x.trim() === '' ? NaN : Number(x)));
+      if (z.length !== 4 || !z.every(Number.isFinite) || !(z[1] > z[0] && z[3] > z[2])) out.problems.push(`pz: '${raw}' is not x0,x1,y0,y1 with x0 < x1 and y0 < y1`);
+      else out.view.planeZoom = z;
     } else if (key === 'proj' || key === 'large') {
       if (v === '1' || v === '0') out.view.projector = v === '1';
       else out.problems.push(`${key}: '${raw}' is not 0 or 1`);

@@ -1,11 +1,22 @@
 // The workbench's frame: the tabs that open the drawer of further panels (beside the
 // maps and the front on a wide screen, over the right half on a smaller one, in the
-// page's flow on a phone), the keyboard shortcuts and their list behind "?".
+// page's flow on a phone), the keyboard shortcuts and their list behind "?". An opened
+// panel is scrolled into view (on a phone it is far down the page); opened from the
+// keyboard it takes the focus (its first control), and Escape anywhere in the drawer,
+// a text field included, closes it and gives the focus back to its tab.
 
 const $ = (id) => document.getElementById(id);
 
 /** Is the drawer a column of the grid (the first set keeps its room) rather than over it? */
 export const WIDE = '(min-width: 1600px) and (min-height: 1000px)';
+
+/** What takes the focus in a panel: its controls, in document order. */
+const CONTROLS = 'input:not([type="hidden"]), select, textarea, button, a[href], summary, [tabindex]:not([tabindex="-1"])';
+
+/** The first enabled, visible control inside `el`, or null. */
+export function firstControl(el) {
+  return [...el.querySelectorAll(CONTROLS)].find((c) => !c.disabled && !c.closest('[hidden], [inert]') && c.getClientRects().length > 0) ?? null;
+}
 
 export class Workbench {
   /**
@@ -19,7 +30,12 @@ export class Workbench {
     this.onResize = onResize;
     this.current = null;
     for (const t of tabs) {
-      t.addEventListener('click', () => (this.current === t.getAttribute('aria-controls') ? this.close() : this.open(t.getAttribute('aria-controls'))));
+      // A click with `detail` 0 came from the keyboard (Enter or Space on the tab): the focus goes into the panel.
+      t.addEventListener('click', (ev) => {
+        const id = t.getAttribute('aria-controls');
+        if (this.current === id) this.close();
+        else this.open(id, { focus: ev.detail === 0 });
+      });
       t.addEventListener('keydown', (ev) => {
         // Arrow keys move between the tabs (the ARIA tabs pattern).
         const i = tabs.indexOf(t);
@@ -30,13 +46,20 @@ export class Workbench {
       });
     }
     close.addEventListener('click', () => this.close());
+    // Escape from anywhere in the drawer, a text field too (a number field first puts back
+    // its value, js/app.js), closes it.
     drawer.addEventListener('keydown', (ev) => {
-      if (ev.key === 'Escape' && !ev.target.closest('input[type="text"]')) this.close();
+      if (ev.key !== 'Escape' || ev.defaultPrevented) return;
+      ev.preventDefault();
+      this.close(true);
     });
   }
 
-  /** Opens the drawer on panel `id` (a tab's `aria-controls`). */
-  open(id) {
+  /**
+   * Opens the drawer on panel `id` (a tab's `aria-controls`) and scrolls it into view;
+   * `focus`: its first control takes the focus (opened from the keyboard).
+   */
+  open(id, { focus = false } = {}) {
     this.current = id;
     for (const t of this.tabs) {
       const on = t.getAttribute('aria-controls') === id;
@@ -46,17 +69,29 @@ export class Workbench {
     this.drawer.hidden = false;
     this.bench.classList.add('drawer-open');
     this.onResize();
+    const panel = $(id);
+    // On a phone the drawer is in the page's flow, below the readout: go there.
+    this.drawer.scrollIntoView({ block: 'start', behavior: 'instant' });
+    if (focus) (firstControl(panel) ?? this.drawer).focus({ preventScroll: true });
   }
 
-  close() {
+  /**
+   * Closes the drawer; the focus goes back to the tab that opened it when it was in the
+   * drawer (or `refocus`), and on a phone the tab is scrolled back into view.
+   */
+  close(refocus = false) {
     if (this.current === null) return;
     const tab = this.tabs.find((t) => t.getAttribute('aria-controls') === this.current);
+    const inside = refocus || this.drawer.contains(document.activeElement);
     this.current = null;
     for (const t of this.tabs) t.setAttribute('aria-selected', 'false');
     this.drawer.hidden = true;
     this.bench.classList.remove('drawer-open');
     this.onResize();
-    if (this.drawer.contains(document.activeElement)) tab?.focus();
+    if (inside && tab) {
+      tab.focus({ preventScroll: true });
+      tab.scrollIntoView({ block: 'nearest', behavior: 'instant' });
+    }
   }
 }
 

@@ -1,5 +1,8 @@
 // Web Worker entry: the same wasm module as the page, answering engine calls
 // `{id, method, args}` with `{id, ok, value}` or `{id, ok: false, error: {message, field}}`.
+// A trap of the core (a WebAssembly.RuntimeError: its memory can no longer be trusted)
+// is answered `{id, ok: false, trap: true, error}` and the worker closes; the page's
+// engine starts a fresh one (js/engine.js).
 import init, * as api from '../ridelab.js';
 import { Host, toFailure } from './engine.js';
 
@@ -8,6 +11,8 @@ import { Host, toFailure } from './engine.js';
 // page starts that one with `?gpu=MODE` in its URL (the page's `?compute=`).
 const host = new Host(api, { gpu: new URL(self.location.href).searchParams.get('gpu') });
 const ready = init({ module_or_path: new URL('../ridelab_bg.wasm', import.meta.url) });
+/** This thread's session, where the browser tests reach it (tests/e2e/hostile.test.mjs). */
+self.ridelabHost = host;
 
 self.onmessage = async ({ data }) => {
   const { id, method, args } = data;
@@ -21,6 +26,8 @@ self.onmessage = async ({ data }) => {
     }
     self.postMessage({ id, ok: true, value }, transfer);
   } catch (e) {
-    self.postMessage({ id, ok: false, error: toFailure(e) });
+    const trap = e instanceof WebAssembly.RuntimeError;
+    self.postMessage({ id, ok: false, trap, error: toFailure(e) });
+    if (trap) self.close();
   }
 };
