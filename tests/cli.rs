@@ -38,7 +38,9 @@ fn json(args: &[&str]) -> Value {
     let (code, out, err) = ridelab(&args);
     assert_eq!(code, 0, "{args:?}: {err}");
     let v: Value = serde_json::from_str(&out).expect("valid JSON");
-    let units = v["units"].as_object().unwrap_or_else(|| panic!("{args:?}: no units object"));
+    let units = v["units"]
+        .as_object()
+        .unwrap_or_else(|| panic!("{args:?}: no units object"));
     let mut missing = std::collections::BTreeSet::new();
     numbers_without_units(&v, &mut Vec::new(), units, &mut missing);
     assert!(missing.is_empty(), "{args:?}: no unit for {missing:?}");
@@ -799,12 +801,17 @@ fn simulate_json_and_csv_equal_the_library() {
         json_args.push("--json");
         let v = json(&json_args);
         // The JSON names every series (issue #32); the numbers are the library's.
-        let series = |name: &str| -> Vec<f64> { serde_json::from_value(v["series"][name].clone()).unwrap() };
+        let series =
+            |name: &str| -> Vec<f64> { serde_json::from_value(v["series"][name].clone()).unwrap() };
         assert_eq!(series("t"), lib.t, "{model} t");
         assert_eq!(series("road"), lib.road, "{model} road");
         for (k, name) in ["bacc", "dtl", "sws"].iter().enumerate() {
             assert_eq!(series(name), lib.outputs[k], "{model} {name}");
-            assert_eq!(v["rms"][name].as_f64(), Some(lib.rms[k]), "{model} rms {name}");
+            assert_eq!(
+                v["rms"][name].as_f64(),
+                Some(lib.rms[k]),
+                "{model} rms {name}"
+            );
             assert!(lib.rms[k] > 0.0);
         }
         let dofs = kind.build(&car).dof_names;
@@ -812,7 +819,11 @@ fn simulate_json_and_csv_equal_the_library() {
             let key = name.replace([' ', '-'], "_");
             let p: Vec<f64> = serde_json::from_value(v["positions"][&key].clone()).unwrap();
             let a: Vec<f64> = serde_json::from_value(v["accelerations"][&key].clone()).unwrap();
-            assert_eq!((p, a), (lib.positions[d].clone(), lib.accelerations[d].clone()), "{model} {key}");
+            assert_eq!(
+                (p, a),
+                (lib.positions[d].clone(), lib.accelerations[d].clone()),
+                "{model} {key}"
+            );
         }
         assert_eq!(v["t"], Value::Null);
         assert_eq!(v["series"]["t"].as_array().unwrap().len(), 750 / 5);
@@ -1552,7 +1563,7 @@ fn optimize_pick_rules_equal_the_library() {
             &road,
             &ridelab::DesignBox::default(),
         )
-            .unwrap();
+        .unwrap();
         assert_same_json(&v, &to_json(&lib), rule);
         assert_eq!(v["pick"]["rule"], rule);
     }
@@ -1770,15 +1781,43 @@ fn readme_names_every_top_level_json_field() {
         ("eval", vec!["eval", "--model", "quarter"]),
         ("doe", vec!["doe", "--points", "5"]),
         ("map", [&["map", "--model", "quarter"][..], &grid].concat()),
-        ("optimize", vec!["optimize", "--evaluator", "quarter", "--grid", "11", "--levels", "0"]),
-        ("surrogate", vec!["surrogate", "--approach", "vba-lts", "--plan", "ae:3", "--predict", "grid:3"]),
-        ("simulate", vec!["simulate", "--model", "quarter", "--duration", "1"]),
+        (
+            "optimize",
+            vec![
+                "optimize",
+                "--evaluator",
+                "quarter",
+                "--grid",
+                "11",
+                "--levels",
+                "0",
+            ],
+        ),
+        (
+            "surrogate",
+            vec![
+                "surrogate",
+                "--approach",
+                "vba-lts",
+                "--plan",
+                "ae:3",
+                "--predict",
+                "grid:3",
+            ],
+        ),
+        (
+            "simulate",
+            vec!["simulate", "--model", "quarter", "--duration", "1"],
+        ),
         ("presets", vec!["presets"]),
     ];
     for (command, args) in runs {
         let row = readme
             .lines()
-            .find(|l| l.starts_with(&format!("| `{command} ")) || l.starts_with(&format!("| `{command}` ")))
+            .find(|l| {
+                l.starts_with(&format!("| `{command} "))
+                    || l.starts_with(&format!("| `{command}` "))
+            })
             .unwrap_or_else(|| panic!("no README row for {command}"));
         let v = json(&args);
         let keys: Vec<String> = match &v {
@@ -1792,7 +1831,10 @@ fn readme_names_every_top_level_json_field() {
                 !row.contains(&quoted) && !common.contains(&quoted)
             })
             .collect();
-        assert!(missing.is_empty(), "README row of {command} does not name {missing:?}");
+        assert!(
+            missing.is_empty(),
+            "README row of {command} does not name {missing:?}"
+        );
     }
 }
 
@@ -1816,9 +1858,25 @@ fn text_is_the_default_output() {
     for args in [
         vec!["eval", "--model", "quarter"],
         [&["map", "--model", "quarter"][..], &grid].concat(),
-        vec!["surrogate", "--approach", "vba-lts", "--plan", "ae:3", "--predict", "grid:3"],
+        vec![
+            "surrogate",
+            "--approach",
+            "vba-lts",
+            "--plan",
+            "ae:3",
+            "--predict",
+            "grid:3",
+        ],
         vec!["simulate", "--model", "quarter", "--duration", "1"],
-        vec!["optimize", "--evaluator", "quarter", "--grid", "11", "--levels", "0"],
+        vec![
+            "optimize",
+            "--evaluator",
+            "quarter",
+            "--grid",
+            "11",
+            "--levels",
+            "0",
+        ],
         vec!["presets"],
     ] {
         let (code, out, err) = ridelab(&args);
@@ -1828,7 +1886,10 @@ fn text_is_the_default_output() {
             "{args:?} printed JSON by default: {}",
             &out[..out.len().min(200)]
         );
-        assert!(!out.contains("NaN") && !out.contains("inf "), "{args:?}: {out}");
+        assert!(
+            !out.contains("NaN") && !out.contains("inf "),
+            "{args:?}: {out}"
+        );
     }
     // The map's text names the units it shows.
     let (_, out, _) = ridelab(&[&["map", "--model", "quarter"][..], &grid].concat());
@@ -1840,17 +1901,39 @@ fn text_is_the_default_output() {
 /// `simulate --json`: every series named, the step stated, positions by coordinate.
 #[test]
 fn simulate_json_names_its_series() {
-    let v = json(&["simulate", "--model", "full", "--duration", "1", "--decimate", "5"]);
-    assert_eq!(v["dt"].as_f64(), Some(ridelab::time_domain::TimeOptions::default().dt));
-    assert!((v["sample_interval"].as_f64().unwrap() - 5.0 * v["dt"].as_f64().unwrap()).abs() < 1e-15);
+    let v = json(&[
+        "simulate",
+        "--model",
+        "full",
+        "--duration",
+        "1",
+        "--decimate",
+        "5",
+    ]);
+    assert_eq!(
+        v["dt"].as_f64(),
+        Some(ridelab::time_domain::TimeOptions::default().dt)
+    );
+    assert!(
+        (v["sample_interval"].as_f64().unwrap() - 5.0 * v["dt"].as_f64().unwrap()).abs() < 1e-15
+    );
     let n = v["series"]["t"].as_array().unwrap().len();
     for k in ["road", "bacc", "dtl", "sws"] {
         assert_eq!(v["series"][k].as_array().unwrap().len(), n, "{k}");
         assert!(v["rms"][k].as_f64().is_some() || k == "road", "{k}");
     }
-    for dof in ["body_heave_z", "body_pitch_theta", "body_roll_phi", "wheel_hop_front_right"] {
+    for dof in [
+        "body_heave_z",
+        "body_pitch_theta",
+        "body_roll_phi",
+        "wheel_hop_front_right",
+    ] {
         assert_eq!(v["positions"][dof].as_array().unwrap().len(), n, "{dof}");
-        assert_eq!(v["accelerations"][dof].as_array().unwrap().len(), n, "{dof}");
+        assert_eq!(
+            v["accelerations"][dof].as_array().unwrap().len(),
+            n,
+            "{dof}"
+        );
     }
     assert_eq!(v["units"]["positions.body_pitch_theta"], "rad");
     assert_eq!(v["units"]["accelerations.body_heave_z"], "m/s^2");

@@ -7,8 +7,8 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use ridelab::analysis::report;
-use ridelab::criteria::criteria_exact;
 use ridelab::car::{Axle, Car};
+use ridelab::criteria::criteria_exact;
 use ridelab::domain::{self, Limit};
 use ridelab::road::{Road, RoadClass, Tracks};
 use ridelab::{Evaluator, HiFi, LoFi, ModelKind};
@@ -18,7 +18,9 @@ fn draw(rng: &mut ChaCha8Rng, l: &Limit) -> f64 {
     if l.min <= 0.0 {
         return rng.random_range(l.min..=l.max);
     }
-    (rng.random_range(l.min.ln()..=l.max.ln())).exp().clamp(l.min, l.max)
+    (rng.random_range(l.min.ln()..=l.max.ln()))
+        .exp()
+        .clamp(l.min, l.max)
 }
 
 /// One end of a limit or the other.
@@ -89,7 +91,10 @@ fn every_car_in_the_domain_gives_finite_criteria_that_two_routes_agree_on() {
         let corner = k >= 200;
         let c = car(&mut rng, corner);
         drawn += 1;
-        assert!(drawn < 200_000, "only {k} cars in the domain after {drawn} draws");
+        assert!(
+            drawn < 200_000,
+            "only {k} cars in the domain after {drawn} draws"
+        );
         if c.validate().is_err() {
             continue;
         }
@@ -132,8 +137,16 @@ fn every_car_in_the_domain_gives_finite_criteria_that_two_routes_agree_on() {
         }
     }
     // Where the frequency route converged to 1e-8, the exact route is within 1e-6 of it.
-    assert!(worst.0 < 1e-6, "exact vs frequency route: {:e} at {}", worst.0, worst.1);
-    assert!(tight >= 300, "only {tight} of 600 reports converged to 1e-8");
+    assert!(
+        worst.0 < 1e-6,
+        "exact vs frequency route: {:e} at {}",
+        worst.0,
+        worst.1
+    );
+    assert!(
+        tight >= 300,
+        "only {tight} of 600 reports converged to 1e-8"
+    );
     // The modal route (the report's) loses a few digits at the domain's far corners (a
     // 20 t body on a 0.4 m wheelbase: 6e-8); the Kronecker and residue routes agree to
     // 1e-12 there.
@@ -151,16 +164,24 @@ fn one_step_outside_every_range_is_refused_naming_the_field() {
     let base = Car::datum();
     type Set = fn(&mut Car, f64);
     let fields: [(&str, &Limit, Set); 10] = [
-        ("sprung_mass", &domain::SPRUNG_MASS, |c, v| c.sprung_mass = v),
+        ("sprung_mass", &domain::SPRUNG_MASS, |c, v| {
+            c.sprung_mass = v
+        }),
         ("a", &domain::AXLE_DISTANCE, |c, v| c.a = v),
         ("b", &domain::AXLE_DISTANCE, |c, v| c.b = v),
         ("track_front", &domain::TRACK, |c, v| c.track_front = v),
         ("track_rear", &domain::TRACK, |c, v| c.track_rear = v),
-        ("front.unsprung_mass", &domain::UNSPRUNG_MASS, |c, v| c.front.unsprung_mass = v),
+        ("front.unsprung_mass", &domain::UNSPRUNG_MASS, |c, v| {
+            c.front.unsprung_mass = v
+        }),
         ("rear.spring", &domain::SPRING, |c, v| c.rear.spring = v),
         ("front.damper", &domain::DAMPER, |c, v| c.front.damper = v),
-        ("rear.tire_stiffness", &domain::TIRE_STIFFNESS, |c, v| c.rear.tire_stiffness = v),
-        ("front.tire_damping", &domain::TIRE_DAMPING, |c, v| c.front.tire_damping = v),
+        ("rear.tire_stiffness", &domain::TIRE_STIFFNESS, |c, v| {
+            c.rear.tire_stiffness = v
+        }),
+        ("front.tire_damping", &domain::TIRE_DAMPING, |c, v| {
+            c.front.tire_damping = v
+        }),
     ];
     for (field, limit, set) in fields {
         for v in [limit.min * 0.999 - 1e-9, limit.max * 1.001, f64::NAN, 1e300] {
@@ -174,7 +195,10 @@ fn one_step_outside_every_range_is_refused_naming_the_field() {
                 let h = (c.track_front + c.track_rear).abs() / 4.0;
                 c.roll_inertia = 0.5 * c.sprung_mass * h * h;
             }
-            let e = c.validate().expect_err(&format!("{field} = {v}")).to_string();
+            let e = c
+                .validate()
+                .expect_err(&format!("{field} = {v}"))
+                .to_string();
             assert!(e.starts_with(&format!("{field}: ")), "{field} = {v}: {e}");
         }
     }
@@ -183,7 +207,10 @@ fn one_step_outside_every_range_is_refused_naming_the_field() {
     let mut c = base.clone();
     c.sprung_mass = 20_000.0;
     let e = c.validate().unwrap_err().to_string();
-    assert!(e.starts_with("pitch_inertia: 2460 kg m^2 gives a pitch dynamic index"), "{e}");
+    assert!(
+        e.starts_with("pitch_inertia: 2460 kg m^2 gives a pitch dynamic index"),
+        "{e}"
+    );
     assert!(e.contains("for this body 3645.67..182283 kg m^2"), "{e}");
 }
 
@@ -211,7 +238,10 @@ fn speeds_and_designs_outside_are_refused() {
         for e in [&hifi as &dyn Evaluator, &lofi] {
             let msg = e.evaluate(ks, cs).unwrap_err().to_string();
             assert!(msg.starts_with(&format!("{field}: ")), "{ks} {cs}: {msg}");
-            assert!(!msg.contains("road warp") && !msg.contains("stable"), "{msg}");
+            assert!(
+                !msg.contains("road warp") && !msg.contains("stable"),
+                "{msg}"
+            );
         }
     }
 }
@@ -226,7 +256,9 @@ fn the_readme_states_the_domain_the_code_checks() {
         .find("<!-- domain-table")
         .and_then(|i| readme[i..].find('\n').map(|j| i + j + 1))
         .expect("the README's domain-table marker");
-    let end = readme.find("<!-- end domain-table -->").expect("its end marker");
+    let end = readme
+        .find("<!-- end domain-table -->")
+        .expect("its end marker");
     assert_eq!(
         &readme[start..end],
         domain::markdown_table(),

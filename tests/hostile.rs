@@ -106,14 +106,44 @@ fn cases() -> Vec<Case> {
         (&["eval", "--model", "quarter"], "cs"),
         (&["eval", "--model", "full"], "speed"),
         (&["map", "--model", "quarter"], "sws-limit"),
-        (&["optimize", "--evaluator", "quarter", "--grid", "21"], "dtl-margin"),
+        (
+            &["optimize", "--evaluator", "quarter", "--grid", "21"],
+            "dtl-margin",
+        ),
         (&["simulate", "--model", "quarter"], "duration"),
         (&["simulate", "--model", "quarter"], "dt"),
-        (&["simulate", "--model", "quarter", "--rebound", "2000"], "bump"),
-        (&["surrogate", "--approach", "rba-mul-poly1", "--plan", "ae:5"], "speed"),
-        (&["map", "--model", "full", "--ks-range", "10000:40000:3", "--cs-range", "500:4000:3"], "ks"),
         (
-            &["optimize", "--evaluator", "rba-mul-poly1", "--plan", "ae:5", "--adaptive", "1", "--grid", "21"],
+            &["simulate", "--model", "quarter", "--rebound", "2000"],
+            "bump",
+        ),
+        (
+            &["surrogate", "--approach", "rba-mul-poly1", "--plan", "ae:5"],
+            "speed",
+        ),
+        (
+            &[
+                "map",
+                "--model",
+                "full",
+                "--ks-range",
+                "10000:40000:3",
+                "--cs-range",
+                "500:4000:3",
+            ],
+            "ks",
+        ),
+        (
+            &[
+                "optimize",
+                "--evaluator",
+                "rba-mul-poly1",
+                "--plan",
+                "ae:5",
+                "--adaptive",
+                "1",
+                "--grid",
+                "21",
+            ],
             "min-distance",
         ),
         (&["map", "--model", "quarter"], "dtl-margin"),
@@ -134,15 +164,55 @@ fn cases() -> Vec<Case> {
     }
     // Counts: zero, negative, huge and text refused.
     let counts: [(&[&str], &str, &[&str]); 10] = [
-        (&["optimize", "--evaluator", "quarter"], "grid", &["0", "-1", "1e300", "abc", "99999999999999999999"]),
-        (&["optimize", "--evaluator", "quarter"], "levels", &["-1", "11", "abc"]),
-        (&["optimize", "--evaluator", "quarter", "--method", "nsga2"], "population", &["0", "3", "-1", "abc"]),
-        (&["optimize", "--evaluator", "quarter", "--method", "nsga2"], "generations", &["0", "-1", "abc"]),
+        (
+            &["optimize", "--evaluator", "quarter"],
+            "grid",
+            &["0", "-1", "1e300", "abc", "99999999999999999999"],
+        ),
+        (
+            &["optimize", "--evaluator", "quarter"],
+            "levels",
+            &["-1", "11", "abc"],
+        ),
+        (
+            &["optimize", "--evaluator", "quarter", "--method", "nsga2"],
+            "population",
+            &["0", "3", "-1", "abc"],
+        ),
+        (
+            &["optimize", "--evaluator", "quarter", "--method", "nsga2"],
+            "generations",
+            &["0", "-1", "abc"],
+        ),
         (&["doe"], "points", &["0", "1", "1001", "-1", "abc"]),
-        (&["simulate", "--model", "full"], "decimate", &["0", "-1", "abc"]),
-        (&["study", "--adaptive", "rba-mul-poly1"], "initial", &["0", "1", "abc"]),
-        (&["study", "--adaptive", "rba-mul-poly1"], "max-runs", &["0", "101", "abc"]),
-        (&["optimize", "--evaluator", "rba-mul-poly1", "--plan", "ae:5", "--adaptive", "1"], "candidates", &["0", "1", "202", "abc"]),
+        (
+            &["simulate", "--model", "full"],
+            "decimate",
+            &["0", "-1", "abc"],
+        ),
+        (
+            &["study", "--adaptive", "rba-mul-poly1"],
+            "initial",
+            &["0", "1", "abc"],
+        ),
+        (
+            &["study", "--adaptive", "rba-mul-poly1"],
+            "max-runs",
+            &["0", "101", "abc"],
+        ),
+        (
+            &[
+                "optimize",
+                "--evaluator",
+                "rba-mul-poly1",
+                "--plan",
+                "ae:5",
+                "--adaptive",
+                "1",
+            ],
+            "candidates",
+            &["0", "1", "202", "abc"],
+        ),
         (&["map", "--model", "quarter"], "case", &["1", "-1", "abc"]),
     ];
     for (base, option, values) in counts {
@@ -154,12 +224,43 @@ fn cases() -> Vec<Case> {
     }
     // Ranges of the design box, the maps' axes and the travel budget.
     for (base, option, values) in [
-        (&["map", "--model", "quarter"][..], "ks-range", &["1:1e9:5", "0:40000:5", "40000:10000:5", "10000:40000:1", "a:b:c", "10000:40000:1002"][..]),
-        (&["map", "--model", "quarter"][..], "cs-range", &["1:4000:5", "500:1e9:5", "NaN:4000:5", ""][..]),
-        (&["report", "--out", "/nonexistent/x"][..], "ks-range", &["1e3:1e12", "10000", "-1:5"][..]),
-        (&["map", "--model", "quarter"][..], "travel", &["0.02", "0:3", "0.025:0", "1e300:3", "x:y"][..]),
-        (&["map", "--model", "quarter"][..], "bounce-band", &["-1:1.5", "1.5:0.8", "0.8:100", "x:y", "1"][..]),
-        (&["optimize", "--evaluator", "quarter", "--grid", "21"][..], "damping-band", &["-1:0.5", "0.5:0.2", "0.2:50"][..]),
+        (
+            &["map", "--model", "quarter"][..],
+            "ks-range",
+            &[
+                "1:1e9:5",
+                "0:40000:5",
+                "40000:10000:5",
+                "10000:40000:1",
+                "a:b:c",
+                "10000:40000:1002",
+            ][..],
+        ),
+        (
+            &["map", "--model", "quarter"][..],
+            "cs-range",
+            &["1:4000:5", "500:1e9:5", "NaN:4000:5", ""][..],
+        ),
+        (
+            &["report", "--out", "/nonexistent/x"][..],
+            "ks-range",
+            &["1e3:1e12", "10000", "-1:5"][..],
+        ),
+        (
+            &["map", "--model", "quarter"][..],
+            "travel",
+            &["0.02", "0:3", "0.025:0", "1e300:3", "x:y"][..],
+        ),
+        (
+            &["map", "--model", "quarter"][..],
+            "bounce-band",
+            &["-1:1.5", "1.5:0.8", "0.8:100", "x:y", "1"][..],
+        ),
+        (
+            &["optimize", "--evaluator", "quarter", "--grid", "21"][..],
+            "damping-band",
+            &["-1:0.5", "0.5:0.2", "0.2:50"][..],
+        ),
     ] {
         for v in values {
             let mut args: Vec<&str> = base.to_vec();
@@ -171,22 +272,52 @@ fn cases() -> Vec<Case> {
     for (args, option) in [
         (&["eval", "--model", "half"][..], "model"),
         (&["eval", "--model", "full", "--class", "Z"][..], "class"),
-        (&["eval", "--model", "full", "--tracks", "both"][..], "tracks"),
+        (
+            &["eval", "--model", "full", "--tracks", "both"][..],
+            "tracks",
+        ),
         (&["eval", "--model", "full", "--car", "truck"][..], "car"),
         (&["optimize", "--pick", "asf:2"][..], "pick"),
         (&["optimize", "--evaluator", "magic"][..], "evaluator"),
-        (&["optimize", "--evaluator", "rba-mul-poly1", "--plan", "ae:0"][..], "plan"),
-        (&["surrogate", "--approach", "rba-mul-rbf-mq", "--plan", "grid:1"][..], "plan"),
-        (&["surrogate", "--approach", "rba-mul-rbf-mq", "--predict", "grid:101"][..], "predict"),
+        (
+            &["optimize", "--evaluator", "rba-mul-poly1", "--plan", "ae:0"][..],
+            "plan",
+        ),
+        (
+            &[
+                "surrogate",
+                "--approach",
+                "rba-mul-rbf-mq",
+                "--plan",
+                "grid:1",
+            ][..],
+            "plan",
+        ),
+        (
+            &[
+                "surrogate",
+                "--approach",
+                "rba-mul-rbf-mq",
+                "--predict",
+                "grid:101",
+            ][..],
+            "predict",
+        ),
         (&["frobnicate"][..], "command"),
-        (&["map", "--model", "quarter", "--no-worse", "comfort"][..], "no-worse"),
+        (
+            &["map", "--model", "quarter", "--no-worse", "comfort"][..],
+            "no-worse",
+        ),
         (&["completions", "tcsh"][..], "shell"),
     ] {
         cs.push(case(args, refused(&[option])));
     }
     // Car files: each key at hostile values names `front.key` / `key`.
     for (key, values) in [
-        ("sprung_mass", &["0", "-5", "1e9", "1e-300", "1e999", "\"heavy\"", "null"][..]),
+        (
+            "sprung_mass",
+            &["0", "-5", "1e9", "1e-300", "1e999", "\"heavy\"", "null"][..],
+        ),
         ("pitch_inertia", &["0", "1e9", "1"][..]),
         ("front.tire_stiffness", &["1e300", "0", "-1"][..]),
         ("front.unsprung_mass", &["1e-300", "1e9"][..]),
@@ -199,7 +330,15 @@ fn cases() -> Vec<Case> {
             let path = car_file(&dir, &name, key, v);
             for command in [
                 &["eval", "--model", "full"][..],
-                &["map", "--model", "quarter", "--ks-range", "10000:40000:3", "--cs-range", "500:4000:3"][..],
+                &[
+                    "map",
+                    "--model",
+                    "quarter",
+                    "--ks-range",
+                    "10000:40000:3",
+                    "--cs-range",
+                    "500:4000:3",
+                ][..],
             ] {
                 let mut args: Vec<&str> = command.to_vec();
                 args.extend(["--car", path.as_str()]);
@@ -227,18 +366,27 @@ fn cases() -> Vec<Case> {
     let empty = write(&dir, "empty.json", "");
     let array = write(&dir, "array.json", "[1, 2]");
     let number = write(&dir, "number.json", "42");
-    let mut c = case(&["eval", "--model", "full", "--car", empty.as_str()], refused(&["car"]));
+    let mut c = case(
+        &["eval", "--model", "full", "--car", empty.as_str()],
+        refused(&["car"]),
+    );
     c.says = vec!["is empty"];
     c.never = vec!["EOF"];
     cs.push(c);
     for f in [&array, &number] {
-        let mut c = case(&["eval", "--model", "full", "--car", f.as_str()], refused(&["car"]));
+        let mut c = case(
+            &["eval", "--model", "full", "--car", f.as_str()],
+            refused(&["car"]),
+        );
         c.says = vec!["one JSON object"];
         c.never = vec!["invalid type", "[0]"];
         cs.push(c);
     }
     let misspelt = car_file(&dir, "misspelt", "sprung_mas", "1460");
-    let mut c = case(&["eval", "--model", "full", "--car", misspelt.as_str()], refused(&["sprung_mas"]));
+    let mut c = case(
+        &["eval", "--model", "full", "--car", misspelt.as_str()],
+        refused(&["sprung_mas"]),
+    );
     c.says = vec!["`load_cases`"];
     cs.push(c);
     // Load cases and cases files.
@@ -248,31 +396,87 @@ fn cases() -> Vec<Case> {
         "load_cases",
         r#"[{"name": "far", "mass": 100, "x": 1e308}]"#,
     );
-    let mut c = case(&["eval", "--model", "full", "--car", far.as_str()], refused(&["load_cases[0].x"]));
+    let mut c = case(
+        &["eval", "--model", "full", "--car", far.as_str()],
+        refused(&["load_cases[0].x"]),
+    );
     c.never = vec!["inf"];
     cs.push(c);
     for (name, text, field) in [
         ("cases-empty", "", "cases"),
         ("cases-array", "[]", "cases"),
-        ("cases-speed", r#"{"operating": [{"class": "B", "speed": 1e-320}]}"#, "operating[0].speed"),
-        ("cases-weight", r#"{"operating": [{"class": "B", "speed": 20, "weight": -1}]}"#, "operating[0].weight"),
-        ("cases-mass", r#"{"load_cases": [{"name": "x", "mass": 1e300}]}"#, "load_cases[0].mass"),
-        ("cases-z", r#"{"load_cases": [{"name": "x", "mass": 100, "z": "high"}]}"#, "load_cases[0].z"),
+        (
+            "cases-speed",
+            r#"{"operating": [{"class": "B", "speed": 1e-320}]}"#,
+            "operating[0].speed",
+        ),
+        (
+            "cases-weight",
+            r#"{"operating": [{"class": "B", "speed": 20, "weight": -1}]}"#,
+            "operating[0].weight",
+        ),
+        (
+            "cases-mass",
+            r#"{"load_cases": [{"name": "x", "mass": 1e300}]}"#,
+            "load_cases[0].mass",
+        ),
+        (
+            "cases-z",
+            r#"{"load_cases": [{"name": "x", "mass": 100, "z": "high"}]}"#,
+            "load_cases[0].z",
+        ),
     ] {
         let f = write(&dir, &format!("{name}.json"), text);
-        cs.push(case(&["map", "--model", "quarter", "--cases", f.as_str()], refused(&[field])));
+        cs.push(case(
+            &["map", "--model", "quarter", "--cases", f.as_str()],
+            refused(&[field]),
+        ));
     }
     // The issue's cases: nonsense refused with the real cause.
-    let mut c = case(&["map", "--model", "quarter", "--relative", "--speed", "1e-320"], refused(&["speed"]));
+    let mut c = case(
+        &[
+            "map",
+            "--model",
+            "quarter",
+            "--relative",
+            "--speed",
+            "1e-320",
+        ],
+        refused(&["speed"]),
+    );
     c.never = vec!["NaN", "frequency integral"];
     cs.push(c);
     for (args, field, never) in [
-        (&["eval", "--model", "quarter", "--ks", "1e12"][..], "ks", "road warp"),
-        (&["eval", "--model", "full", "--ks", "1e308"][..], "ks", "road warp"),
-        (&["eval", "--model", "full", "--cs", "1e9"][..], "cs", "stable"),
-        (&["simulate", "--model", "full", "--speed", "1e-320"][..], "speed", "diverged"),
-        (&["surrogate", "--approach", "vba-qts", "--speed", "1e-320"][..], "speed", "samples"),
-        (&["optimize", "--evaluator", "full", "--speed", "1e-320"][..], "speed", "datum"),
+        (
+            &["eval", "--model", "quarter", "--ks", "1e12"][..],
+            "ks",
+            "road warp",
+        ),
+        (
+            &["eval", "--model", "full", "--ks", "1e308"][..],
+            "ks",
+            "road warp",
+        ),
+        (
+            &["eval", "--model", "full", "--cs", "1e9"][..],
+            "cs",
+            "stable",
+        ),
+        (
+            &["simulate", "--model", "full", "--speed", "1e-320"][..],
+            "speed",
+            "diverged",
+        ),
+        (
+            &["surrogate", "--approach", "vba-qts", "--speed", "1e-320"][..],
+            "speed",
+            "samples",
+        ),
+        (
+            &["optimize", "--evaluator", "full", "--speed", "1e-320"][..],
+            "speed",
+            "datum",
+        ),
     ] {
         let mut c = case(args, refused(&[field]));
         c.never = vec![never];
@@ -280,46 +484,193 @@ fn cases() -> Vec<Case> {
     }
     // A damper law too steep for the time step: the step is named, with one that works.
     let mut c = case(
-        &["simulate", "--model", "full", "--bump", "100000", "--rebound", "100000", "--dt", "0.01"],
+        &[
+            "simulate",
+            "--model",
+            "full",
+            "--bump",
+            "100000",
+            "--rebound",
+            "100000",
+            "--dt",
+            "0.01",
+        ],
         refused(&["dt"]),
     );
     c.says = vec!["give a step of 5e-4 s or less"];
     c.never = vec!["diverged"];
     cs.push(c);
     for (args, field) in [
-        (&["simulate", "--model", "quarter", "--bump", "500", "--rebound", "3000", "--knee", "1e-300", "--bump-high", "100", "--rebound-high", "100"][..], "knee"),
-        (&["simulate", "--model", "quarter", "--bump", "1e300", "--rebound", "3000"][..], "bump"),
-        (&["simulate", "--model", "quarter", "--bump", "500", "--rebound", "NaN"][..], "rebound"),
+        (
+            &[
+                "simulate",
+                "--model",
+                "quarter",
+                "--bump",
+                "500",
+                "--rebound",
+                "3000",
+                "--knee",
+                "1e-300",
+                "--bump-high",
+                "100",
+                "--rebound-high",
+                "100",
+            ][..],
+            "knee",
+        ),
+        (
+            &[
+                "simulate",
+                "--model",
+                "quarter",
+                "--bump",
+                "1e300",
+                "--rebound",
+                "3000",
+            ][..],
+            "bump",
+        ),
+        (
+            &[
+                "simulate",
+                "--model",
+                "quarter",
+                "--bump",
+                "500",
+                "--rebound",
+                "NaN",
+            ][..],
+            "rebound",
+        ),
     ] {
         cs.push(case(args, refused(&[field])));
     }
-    let mut c = case(&["map", "--model", "quarter", "--travel", "0.02"], refused(&["travel"]));
+    let mut c = case(
+        &["map", "--model", "quarter", "--travel", "0.02"],
+        refused(&["travel"]),
+    );
     c.says = vec!["0.025:3"];
     c.never = vec!["10000:40000"];
     cs.push(c);
     // Work without a bound, and conflicting outputs.
     for (args, fields) in [
-        (&["optimize", "--evaluator", "quarter", "--grid", "1001", "--levels", "10"][..], &["levels", "grid"][..]),
-        (&["optimize", "--evaluator", "full", "--grid", "2001", "--levels", "0"][..], &["grid"][..]),
-        (&["optimize", "--evaluator", "quarter", "--method", "nsga2", "--population", "10000", "--generations", "10000"][..], &["generations"][..]),
-        (&["study", "--adaptive", "gp-mul", "--grid", "2001"][..], &["grid"][..]),
-        (&["study", "--adaptive", "gp-mul", "--grid", "1001"][..], &["grid"][..]),
-        (&["map", "--model", "quarter", "--json", "--csv"][..], &["json", "csv"][..]),
-        (&["simulate", "--model", "quarter", "--json", "--csv"][..], &["json", "csv"][..]),
-        (&["study", "--json", "--markdown"][..], &["json", "markdown"][..]),
-        (&["eval", "--model", "full", "--speed", "3", "--speed", "4"][..], &["speed"][..]),
+        (
+            &[
+                "optimize",
+                "--evaluator",
+                "quarter",
+                "--grid",
+                "1001",
+                "--levels",
+                "10",
+            ][..],
+            &["levels", "grid"][..],
+        ),
+        (
+            &[
+                "optimize",
+                "--evaluator",
+                "full",
+                "--grid",
+                "2001",
+                "--levels",
+                "0",
+            ][..],
+            &["grid"][..],
+        ),
+        (
+            &[
+                "optimize",
+                "--evaluator",
+                "quarter",
+                "--method",
+                "nsga2",
+                "--population",
+                "10000",
+                "--generations",
+                "10000",
+            ][..],
+            &["generations"][..],
+        ),
+        (
+            &["study", "--adaptive", "gp-mul", "--grid", "2001"][..],
+            &["grid"][..],
+        ),
+        (
+            &["study", "--adaptive", "gp-mul", "--grid", "1001"][..],
+            &["grid"][..],
+        ),
+        (
+            &["map", "--model", "quarter", "--json", "--csv"][..],
+            &["json", "csv"][..],
+        ),
+        (
+            &["simulate", "--model", "quarter", "--json", "--csv"][..],
+            &["json", "csv"][..],
+        ),
+        (
+            &["study", "--json", "--markdown"][..],
+            &["json", "markdown"][..],
+        ),
+        (
+            &["eval", "--model", "full", "--speed", "3", "--speed", "4"][..],
+            &["speed"][..],
+        ),
     ] {
         cs.push(case(args, refused(fields)));
     }
     // Inside the domain, at its ends: finite results.
     for args in [
-        &["eval", "--model", "full", "--ks", "1800000", "--cs", "100000", "--json"][..],
-        &["eval", "--model", "quarter", "--ks", "1000", "--cs", "20", "--json"][..],
-        &["eval", "--model", "full", "--speed", "1", "--class", "H", "--json"][..],
-        &["eval", "--model", "full", "--speed", "100", "--tracks", "independent", "--json"][..],
-        &["map", "--model", "full", "--ks-range", "5000:1000000:4", "--cs-range", "500:15000:4", "--json"][..],
-        &["map", "--model", "quarter", "--relative", "--speed", "1", "--csv"][..],
-        &["optimize", "--evaluator", "quarter", "--grid", "21", "--levels", "0", "--sws-limit", "1"][..],
+        &[
+            "eval", "--model", "full", "--ks", "1800000", "--cs", "100000", "--json",
+        ][..],
+        &[
+            "eval", "--model", "quarter", "--ks", "1000", "--cs", "20", "--json",
+        ][..],
+        &[
+            "eval", "--model", "full", "--speed", "1", "--class", "H", "--json",
+        ][..],
+        &[
+            "eval",
+            "--model",
+            "full",
+            "--speed",
+            "100",
+            "--tracks",
+            "independent",
+            "--json",
+        ][..],
+        &[
+            "map",
+            "--model",
+            "full",
+            "--ks-range",
+            "5000:1000000:4",
+            "--cs-range",
+            "500:15000:4",
+            "--json",
+        ][..],
+        &[
+            "map",
+            "--model",
+            "quarter",
+            "--relative",
+            "--speed",
+            "1",
+            "--csv",
+        ][..],
+        &[
+            "optimize",
+            "--evaluator",
+            "quarter",
+            "--grid",
+            "21",
+            "--levels",
+            "0",
+            "--sws-limit",
+            "1",
+        ][..],
         &["simulate", "--model", "quarter", "--duration", "1", "--csv"][..],
         &["doe", "--points", "2", "--json"][..],
     ] {
@@ -332,7 +683,12 @@ fn cases() -> Vec<Case> {
 /// absent optional value: the CLI checks every number is finite before it writes JSON.
 fn finite_text(out: &str) -> bool {
     out.split(|c: char| !(c.is_alphanumeric() || c == '.' || c == '-' || c == '+'))
-        .all(|w| !matches!(w.trim_start_matches(['-', '+']), "NaN" | "nan" | "inf" | "Infinity"))
+        .all(|w| {
+            !matches!(
+                w.trim_start_matches(['-', '+']),
+                "NaN" | "nan" | "inf" | "Infinity"
+            )
+        })
 }
 
 /// Whether run `r` ends as case `c` expects; why not.
@@ -343,18 +699,25 @@ fn judge(c: &Case, r: &Run) -> Result<(), String> {
     match &c.expect {
         Expect::Ok => {
             check(r.code == 0, format!("exit {}: {}", r.code, r.err))?;
-            check(finite_text(&r.out), "output holds a NaN, an infinity or a null".into())
+            check(
+                finite_text(&r.out),
+                "output holds a NaN, an infinity or a null".into(),
+            )
         }
         Expect::Refused(fields) => {
             let head: String = r.out.chars().take(200).collect();
             check(r.code == 2, format!("exit {}: {}{head}", r.code, r.err))?;
             check(r.out.is_empty(), format!("wrote {head}"))?;
-            check(r.err.lines().count() == 1, format!("not one line: {}", r.err))?;
+            check(
+                r.err.lines().count() == 1,
+                format!("not one line: {}", r.err),
+            )?;
             // Options are written with '-', core fields with '_': either names it.
             let err = r.err.replace('_', "-");
             let named = fields.iter().any(|f| {
                 let f = f.replace('_', "-");
-                err.starts_with(&format!("error: {f}: ")) || err.starts_with(&format!("error: {f} "))
+                err.starts_with(&format!("error: {f}: "))
+                    || err.starts_with(&format!("error: {f} "))
             });
             check(named, format!("should name {fields:?}: {}", r.err))?;
             for s in &c.says {
@@ -392,11 +755,20 @@ fn every_hostile_input_ends_in_a_finite_result_or_a_message_naming_its_field() {
             Expect::Refused(_) => refused_n += 1,
         }
     }
-    assert!(failures.is_empty(), "{} of {} cases failed:\n{}", failures.len(), cases.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} of {} cases failed:\n{}",
+        failures.len(),
+        cases.len(),
+        failures.join("\n")
+    );
     // The README quotes these counts.
     let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md"))
         .expect("README.md");
-    let quoted = format!("`tests/hostile.rs` runs the CLI on {} hostile inputs", cases.len());
+    let quoted = format!(
+        "`tests/hostile.rs` runs the CLI on {} hostile inputs",
+        cases.len()
+    );
     assert!(readme.contains(&quoted), "README should say: {quoted}");
     let outcome = format!("{refused_n} refused, {ok_n} finite results");
     assert!(readme.contains(&outcome), "README should say: {outcome}");

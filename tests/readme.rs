@@ -108,7 +108,10 @@ fn commands_are_read_from_code_blocks_only() {
     let text = "ridelab eval\n\n    ridelab eval --model full\n    ridelab map --model quarter --grid 1   # exit 2: bad\n```\nridelab presets\n```\n";
     let c = readme_commands(text);
     assert_eq!(c.len(), 3);
-    assert_eq!(c[0], (3, vec!["eval".into(), "--model".into(), "full".into()], 0));
+    assert_eq!(
+        c[0],
+        (3, vec!["eval".into(), "--model".into(), "full".into()], 0)
+    );
     assert_eq!(c[1].2, 2);
     assert_eq!(c[2].1, vec!["presets".to_string()]);
 }

@@ -501,7 +501,10 @@ fn default_outputs_unchanged_and_robust_json_is_the_library() {
         },
     )
     .unwrap();
-    assert_eq!(without_units(&plain), without_units(&serde_json::to_string(&lib).unwrap()));
+    assert_eq!(
+        without_units(&plain),
+        without_units(&serde_json::to_string(&lib).unwrap())
+    );
 
     let cases = r#"{"load_cases": [{"name": "driver only", "mass": 0}, {"name": "fully laden", "mass": 350, "x": -0.3}],
                     "operating": [{"class": "B", "speed": 10}, {"class": "C", "speed": 30, "weight": 2}], "combine": "mean"}"#;
@@ -523,7 +526,10 @@ fn default_outputs_unchanged_and_robust_json_is_the_library() {
         Compute::Auto,
     )
     .unwrap();
-    assert_eq!(without_units(&out), without_units(&serde_json::to_string(&lib).unwrap()));
+    assert_eq!(
+        without_units(&out),
+        without_units(&serde_json::to_string(&lib).unwrap())
+    );
     let v: Value = serde_json::from_str(&out).unwrap();
     assert_eq!(v["robust"]["cases"].as_array().unwrap().len(), 4);
     assert_eq!(v["robust"]["combine"], "mean");

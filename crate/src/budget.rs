@@ -75,9 +75,14 @@ mod tests {
         assert_eq!(stm_runs(201, 3), 40_401 + 12 * 1_600);
         assert_eq!(stm_runs(61, 2), 3_721 + 12 * 240);
         assert!(check(stm_runs(201, 3), "grid", "STM", "--grid").is_ok());
-        let e = check(stm_runs(1001, 10), "grid", "STM on 1001 x 1001 with 10 levels", "--grid or --levels")
-            .unwrap_err()
-            .to_string();
+        let e = check(
+            stm_runs(1001, 10),
+            "grid",
+            "STM on 1001 x 1001 with 10 levels",
+            "--grid or --levels",
+        )
+        .unwrap_err()
+        .to_string();
         assert_eq!(
             e,
             "grid: STM on 1001 x 1001 with 10 levels asks for about 13 290 001 model runs; one command takes at most 4 000 000 (about 10 s of model time): lower --grid or --levels"

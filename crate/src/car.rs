@@ -267,8 +267,12 @@ impl Axle {
                 ),
             ));
         }
-        DesignDomain::new(ms, self.tire_stiffness)
-            .check_named(self.spring, self.damper, &field("spring"), &field("damper"))
+        DesignDomain::new(ms, self.tire_stiffness).check_named(
+            self.spring,
+            self.damper,
+            &field("spring"),
+            &field("damper"),
+        )
     }
 }
 

@@ -74,7 +74,11 @@ impl DesignBox {
         ] {
             domain.check(ks, cs).map_err(|e| match e {
                 RideError::Field { field, reason } => RideError::field(
-                    if field == "ks" { "ks-range" } else { "cs-range" },
+                    if field == "ks" {
+                        "ks-range"
+                    } else {
+                        "cs-range"
+                    },
                     format!(
                         "the box's corner Ks {} N/m, Cs {} N s/m: {reason}",
                         crate::domain::num(ks),

@@ -136,7 +136,8 @@ pub const SPRUNG_MASS: Limit = Limit {
     min: 100.0,
     max: 20_000.0,
     unit: Unit::Kilogram,
-    why: "road vehicles: a light quadricycle's body (about 300 kg) to a laden two-axle truck (18 t)",
+    why:
+        "road vehicles: a light quadricycle's body (about 300 kg) to a laden two-axle truck (18 t)",
 };
 
 /// Dynamic index `Iyy / (M a b)`, -: the pitch inertia relative to the two-mass body.
@@ -488,17 +489,36 @@ mod tests {
         let e = SPRING.check("front.spring", 1e12).unwrap_err().to_string();
         assert_eq!(
             e,
-            format!("front.spring: 1e+12 N/m is outside 1000..2e+6 N/m ({})", SPRING.why)
+            format!(
+                "front.spring: 1e+12 N/m is outside 1000..2e+6 N/m ({})",
+                SPRING.why
+            )
         );
         let e = SPEED.check("speed", 1e-320).unwrap_err().to_string();
-        assert!(e.starts_with("speed: 1e-320 m/s is outside 1..100 m/s"), "{e}");
-        let e = SPRUNG_MASS.check("sprung_mass", f64::NAN).unwrap_err().to_string();
-        assert!(e.starts_with("sprung_mass: must be a finite number in 100..20000 kg"), "{e}");
+        assert!(
+            e.starts_with("speed: 1e-320 m/s is outside 1..100 m/s"),
+            "{e}"
+        );
+        let e = SPRUNG_MASS
+            .check("sprung_mass", f64::NAN)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("sprung_mass: must be a finite number in 100..20000 kg"),
+            "{e}"
+        );
         let e = DTL_MARGIN.check("dtl_margin", 0.1).unwrap_err().to_string();
-        assert!(e.starts_with("dtl_margin: 0.1 is outside 0.5..100 ("), "{e}");
+        assert!(
+            e.starts_with("dtl_margin: 0.1 is outside 0.5..100 ("),
+            "{e}"
+        );
         // The ends are inside.
         for l in TABLE.iter().map(|(_, l)| l) {
-            assert!(l.check("x", l.min).is_ok() && l.check("x", l.max).is_ok(), "{}", l.what);
+            assert!(
+                l.check("x", l.min).is_ok() && l.check("x", l.max).is_ok(),
+                "{}",
+                l.what
+            );
             assert!(l.min < l.max);
         }
     }
@@ -508,7 +528,10 @@ mod tests {
         let m = SPRING.check("front.spring", 1e12).unwrap_err().to_string();
         assert_eq!(
             page_units(&m),
-            format!("front.spring: 1e+9 kN/m is outside 1..2000 kN/m ({})", SPRING.why)
+            format!(
+                "front.spring: 1e+9 kN/m is outside 1..2000 kN/m ({})",
+                SPRING.why
+            )
         );
         let m = DAMPER.check("cs", 1e9).unwrap_err().to_string();
         assert!(page_units(&m).starts_with("cs: 1e+6 kNs/m is outside 0.01..100 kNs/m ("));
@@ -520,6 +543,9 @@ mod tests {
     fn the_table_lists_every_limit() {
         let t = markdown_table();
         assert_eq!(t.lines().count(), TABLE.len() + 2);
-        assert!(t.contains("| `speed` | vehicle speed | 1..100 m/s |"), "{t}");
+        assert!(
+            t.contains("| `speed` | vehicle speed | 1..100 m/s |"),
+            "{t}"
+        );
     }
 }

@@ -180,11 +180,7 @@ impl<'a> ser::Serializer for &'a mut Checker {
     fn serialize_map(self, _: Option<usize>) -> std::result::Result<Map<'a>, Found> {
         Ok(Map::new(self))
     }
-    fn serialize_struct(
-        self,
-        _: &'static str,
-        _: usize,
-    ) -> std::result::Result<Map<'a>, Found> {
+    fn serialize_struct(self, _: &'static str, _: usize) -> std::result::Result<Map<'a>, Found> {
         Ok(Map::new(self))
     }
     fn serialize_struct_variant(
@@ -493,7 +489,9 @@ mod tests {
         assert!(check(&report(None)).is_ok());
         let e = check(&report(Some((3, f64::NAN)))).unwrap_err().to_string();
         assert!(e.contains("at `front[3].bacc`"), "{e}");
-        let e = check(&report(Some((0, f64::NEG_INFINITY)))).unwrap_err().to_string();
+        let e = check(&report(Some((0, f64::NEG_INFINITY))))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("at `front[0].bacc`"), "{e}");
         let mut r = report(None);
         r.by.insert("sws".into(), f64::INFINITY);

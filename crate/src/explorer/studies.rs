@@ -11,11 +11,11 @@ use crate::evaluate::{Criteria, Evaluator};
 use crate::optimize::EvaluatorSpec;
 use crate::optimize::{
     minmax::{normalised_distances, pick, pseudo_weights, recheck, PickRule, Recheck},
-        trust::{pick_warnings, Warning},
     nsga2::Nsga2Params,
     stm::StmParams,
     study::{run_study, Method, Study},
     suspension::SuspensionProblem,
+    trust::{pick_warnings, Warning},
 };
 use crate::robust::optimize::CasePick;
 use crate::robust::{robust_optimize_report, CaseSet, Combine};

@@ -15,11 +15,11 @@ pub mod report;
 pub mod stm;
 pub mod study;
 pub mod suspension;
-pub mod trust;
 #[cfg(test)]
 mod test_problems;
 #[cfg(test)]
 mod tests;
+pub mod trust;
 
 pub use hypervolume::{front_distance, hypervolume, reference_point, FrontDistance};
 pub use minmax::{

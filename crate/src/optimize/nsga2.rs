@@ -107,7 +107,11 @@ impl Nsga2Params {
                 "NSGA-II with population {} for {} generations{}",
                 self.population,
                 self.generations,
-                if cases > 1 { format!(" over {cases} cases") } else { String::new() }
+                if cases > 1 {
+                    format!(" over {cases} cases")
+                } else {
+                    String::new()
+                }
             ),
             "--population or --generations",
         )

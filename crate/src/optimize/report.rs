@@ -8,8 +8,8 @@
 
 use super::minmax::{pick, recheck, PickRule, Recheck};
 use super::study::{run_study, Method, Study};
-use super::trust::{pick_warnings, Warning};
 use super::suspension::SuspensionProblem;
+use super::trust::{pick_warnings, Warning};
 use crate::analysis::{HiFi, LoFi, ModelKind};
 use crate::car::Car;
 use crate::comfort::{Comfort, WkComfort};

@@ -73,9 +73,15 @@ impl StmParams {
     pub fn check_runs(&self, cases: usize) -> Result<()> {
         let runs = budget::stm_runs(self.grid, self.levels).saturating_mul(cases as u64);
         let what = if cases > 1 {
-            format!("STM on a {0} x {0} grid with {1} levels over {cases} cases", self.grid, self.levels)
+            format!(
+                "STM on a {0} x {0} grid with {1} levels over {cases} cases",
+                self.grid, self.levels
+            )
         } else {
-            format!("STM on a {0} x {0} grid with {1} levels", self.grid, self.levels)
+            format!(
+                "STM on a {0} x {0} grid with {1} levels",
+                self.grid, self.levels
+            )
         };
         budget::check(runs, "grid", &what, "--grid or --levels")
     }

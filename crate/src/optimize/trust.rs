@@ -47,8 +47,24 @@ pub fn box_edges(ks: f64, cs: f64, dbox: &DesignBox) -> Vec<Warning> {
     let bounds = [
         ("ks_min", "lower Ks", ks, dbox.ks_min, wk, "N/m", "ks-range"),
         ("ks_max", "upper Ks", ks, dbox.ks_max, wk, "N/m", "ks-range"),
-        ("cs_min", "lower Cs", cs, dbox.cs_min, wc, "N s/m", "cs-range"),
-        ("cs_max", "upper Cs", cs, dbox.cs_max, wc, "N s/m", "cs-range"),
+        (
+            "cs_min",
+            "lower Cs",
+            cs,
+            dbox.cs_min,
+            wc,
+            "N s/m",
+            "cs-range",
+        ),
+        (
+            "cs_max",
+            "upper Cs",
+            cs,
+            dbox.cs_max,
+            wc,
+            "N s/m",
+            "cs-range",
+        ),
     ];
     bounds
         .into_iter()
@@ -113,7 +129,11 @@ mod tests {
         let w = box_edges(10_000.0, 1_677.0, &b);
         assert_eq!(w.len(), 1);
         assert_eq!(w[0].field, "ks_min");
-        assert!(w[0].message.contains("lower Ks bound (10000 N/m)"), "{}", w[0].message);
+        assert!(
+            w[0].message.contains("lower Ks bound (10000 N/m)"),
+            "{}",
+            w[0].message
+        );
         let corner = box_edges(40_000.0, 4_000.0, &b);
         let fields: Vec<&str> = corner.iter().map(|w| w.field.as_str()).collect();
         assert_eq!(fields, ["ks_max", "cs_max"]);
@@ -126,7 +146,9 @@ mod tests {
         assert_eq!(w.len(), 2);
         assert_eq!((w[0].field.as_str(), w[1].field.as_str()), ("bacc", "sws"));
         assert!(
-            w[0].message.starts_with("BAcc: predicted -10.75 % against the datum, the HiFi re-check gives +2.83 %"),
+            w[0].message.starts_with(
+                "BAcc: predicted -10.75 % against the datum, the HiFi re-check gives +2.83 %"
+            ),
             "{}",
             w[0].message
         );

@@ -165,13 +165,18 @@ mod tests {
             dtl: 300.0,
             sws: 0.005,
         };
-        let e = check_rms("data-quad", 1e4, 500.0, &c).unwrap_err().to_string();
+        let e = check_rms("data-quad", 1e4, 500.0, &c)
+            .unwrap_err()
+            .to_string();
         assert!(
             e.starts_with("surrogate: data-quad predicts an RMS BAcc of -0.12 m/s^2 at Ks 10000 N/m, Cs 500 N s/m"),
             "{e}"
         );
         let nan = Criteria { sws: f64::NAN, ..c };
         let nan = Criteria { bacc: 0.4, ..nan };
-        assert!(check_rms("x", 1e4, 500.0, &nan).unwrap_err().to_string().contains("SWS of NaN m"));
+        assert!(check_rms("x", 1e4, 500.0, &nan)
+            .unwrap_err()
+            .to_string()
+            .contains("SWS of NaN m"));
     }
 }

@@ -9,10 +9,10 @@
 //! multiplicative polynomial RBA), and per criterion otherwise.
 //! Plans: `ae:N` (Audze-Eglais, N points), `grid:n` (n x n full factorial).
 
-use super::guard::Guarded;
 use super::datafit::DataFitParams;
 use super::fit::LmOptions;
 use super::gp::GpParams;
+use super::guard::Guarded;
 use super::pba::{PbaParams, Scaling};
 use super::rba::{Form, RbaParams};
 use super::response::{Kernel, ResponseKind};

@@ -421,8 +421,10 @@ fn check_explicit_step(dynamics: &Dynamics, law: &Damper, h: f64) -> Result<()> 
     }
     let mut a = DMatrix::zeros(2 * n, 2 * n);
     a.view_mut((0, n), (n, n)).fill_with_identity();
-    a.view_mut((n, 0), (n, n)).copy_from(&(-(&dynamics.minv * &dynamics.k)));
-    a.view_mut((n, n), (n, n)).copy_from(&(-(&dynamics.minv * c)));
+    a.view_mut((n, 0), (n, n))
+        .copy_from(&(-(&dynamics.minv * &dynamics.k)));
+    a.view_mut((n, n), (n, n))
+        .copy_from(&(-(&dynamics.minv * c)));
     let fastest = a
         .complex_eigenvalues()
         .iter()

@@ -54,7 +54,12 @@ pub(crate) struct CasesArgs {
 impl CasesArgs {
     /// The case set when there is more than the car as given: `--cases`, or the car
     /// file's load cases at `--class`/`--speed`.
-    pub(crate) fn set(&self, car: &Car, loads: &[LoadCase], road: &Road) -> Result<Option<CaseSet>> {
+    pub(crate) fn set(
+        &self,
+        car: &Car,
+        loads: &[LoadCase],
+        road: &Road,
+    ) -> Result<Option<CaseSet>> {
         match self.cases.as_deref() {
             Some(path) => {
                 let text = std::fs::read_to_string(path)
@@ -309,5 +314,7 @@ pub(crate) fn write_svg(path: &Path, svg: &str) -> Result<()> {
 
 /// One `warning:` line per warning about a pick ([`ridelab::optimize::trust`]).
 pub(crate) fn warning_lines(w: &[Warning]) -> String {
-    w.iter().map(|w| format!("warning: {}\n", w.message)).collect()
+    w.iter()
+        .map(|w| format!("warning: {}\n", w.message))
+        .collect()
 }

@@ -7,28 +7,28 @@
 
 use clap::error::{ContextKind, ContextValue, ErrorKind};
 use clap::{Parser, Subcommand};
-use ridelab::error::{Result, RideError};
 use doe::DoeArgs;
 use eval::EvalArgs;
 use map::MapArgs;
 use optimize::OptimizeArgs;
 use presets::PresetsArgs;
 use report::ReportArgs;
+use ridelab::error::{Result, RideError};
 use simulate::SimulateArgs;
 use study::StudyArgs;
 use surrogate::SurrogateArgs;
 
 mod args;
-mod eval;
 mod doe;
-mod optimize;
+mod eval;
 mod map;
-mod surrogate;
-mod study;
-mod simulate;
+mod optimize;
 mod presets;
 mod report;
 mod road;
+mod simulate;
+mod study;
+mod surrogate;
 mod text;
 mod units;
 

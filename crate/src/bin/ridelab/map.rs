@@ -1,6 +1,8 @@
 //! `ridelab map`: the design criteria and objective maps over a Ks x Cs grid.
 
-use crate::args::{car_loads_road, count, json, svg_target, write_svg, CarRoad, CasesArgs, ObjectiveArgs};
+use crate::args::{
+    car_loads_road, count, json, svg_target, write_svg, CarRoad, CasesArgs, ObjectiveArgs,
+};
 use clap::Args;
 use ridelab::analysis::ModelKind;
 use ridelab::chart::{map_chart_svg, map_report_charts};

@@ -65,7 +65,10 @@ fn road_text(file: &str, d: &RoadDescription) -> String {
     );
     if let Some(c) = &d.coherence {
         let mean = c.gamma2.iter().sum::<f64>() / c.gamma2.len().max(1) as f64;
-        s += &format!("tracks' coherence: mean {mean:.3} over {} bins\n", c.gamma2.len());
+        s += &format!(
+            "tracks' coherence: mean {mean:.3} over {} bins\n",
+            c.gamma2.len()
+        );
     }
     s += &format!("PSD: {}\n", d.method);
     for n in &d.notes {
@@ -99,7 +102,12 @@ pub(crate) struct MeasuredEval {
     notes: Vec<String>,
 }
 
-pub(crate) fn eval_measured(kind: ModelKind, car: &Car, o: &CarRoad, path: &str) -> Result<MeasuredEval> {
+pub(crate) fn eval_measured(
+    kind: ModelKind,
+    car: &Car,
+    o: &CarRoad,
+    path: &str,
+) -> Result<MeasuredEval> {
     let profile = read_profile(path)?;
     let speed = o.speed.unwrap_or(ridelab::road::Road::default().speed);
     ridelab::domain::SPEED.check("speed", speed)?;

@@ -2,12 +2,12 @@
 
 use crate::args::{car_and_road, count, count_u64, number, CarRoad};
 use crate::units::json_with_units;
-use serde::Serialize;
-use std::collections::BTreeMap;
 use clap::Args;
 use ridelab::analysis::ModelKind;
 use ridelab::error::{Result, RideError};
 use ridelab::time_domain::{simulate, Damper, Knee, TimeOptions, TimeResponse};
+use serde::Serialize;
+use std::collections::BTreeMap;
 
 #[derive(Args)]
 pub(crate) struct SimulateArgs {
@@ -174,11 +174,17 @@ impl<'a> SimulateJson<'a> {
     fn new(r: &'a TimeResponse, opt: &TimeOptions, dofs: &[&str]) -> Self {
         let key = |name: &str| name.replace([' ', '-'], "_");
         let named = |rows: &'a [Vec<f64>]| -> BTreeMap<String, &'a [f64]> {
-            dofs.iter().zip(rows).map(|(d, v)| (key(d), v.as_slice())).collect()
+            dofs.iter()
+                .zip(rows)
+                .map(|(d, v)| (key(d), v.as_slice()))
+                .collect()
         };
         let out = ["bacc", "dtl", "sws"];
-        let mut series: BTreeMap<&'static str, &'a [f64]> =
-            out.iter().zip(&r.outputs).map(|(k, v)| (*k, v.as_slice())).collect();
+        let mut series: BTreeMap<&'static str, &'a [f64]> = out
+            .iter()
+            .zip(&r.outputs)
+            .map(|(k, v)| (*k, v.as_slice()))
+            .collect();
         series.insert("t", &r.t);
         series.insert("road", &r.road);
         SimulateJson {

@@ -53,7 +53,11 @@ pub(crate) fn map_text(r: &MapReport) -> String {
         ("SWS", &r.sws, "mm", 1e3, 4),
     ] {
         let digits = if relative { 5 } else { digits };
-        let (unit, factor) = if relative { ("x datum", 1.0) } else { (unit, factor) };
+        let (unit, factor) = if relative {
+            ("x datum", 1.0)
+        } else {
+            (unit, factor)
+        };
         let at = |i: usize| {
             let (ks, cs) = (r.ks_values[i % g.ks.n], r.cs_values[i / g.ks.n]);
             design_words(ks, cs)

@@ -23,8 +23,8 @@ pub(crate) fn unit_of(key: &str) -> Option<&'static str> {
         "speed" | "velocity" | "knee" => "m/s",
         "sprung_mass" | "unsprung_mass" | "mass" | "quarter_mass" | "ms" | "mu" => "kg",
         "pitch_inertia" | "roll_inertia" => "kg m^2",
-        "x" | "y" | "z" | "a" | "b" | "track_front" | "track_rear" | "wheelbase"
-        | "spacing_m" | "length_m" | "segment_m" => "m",
+        "x" | "y" | "z" | "a" | "b" | "track_front" | "track_rear" | "wheelbase" | "spacing_m"
+        | "length_m" | "segment_m" => "m",
         "gd_n0" | "gd" | "gd_right" => "m^3",
         "n" | "n_min" | "n_max" | "resolution" => "cycle/m",
         // Criteria and their limits.
@@ -40,13 +40,40 @@ pub(crate) fn unit_of(key: &str) -> Option<&'static str> {
         k if k.ends_with("_percent") => "%",
         // Dimensionless: ratios, weights, errors relative to a value, normalised
         // coordinates; and counts, indices, seeds and bit masks.
-        "damping_ratio" | "ratio" | "weight" | "weights" | "probability" | "score"
-        | "mass_ratio" | "dynamic_index" | "roll_index" | "waviness" | "dtl_margin"
-        | "dtl_relative" | "route_difference" | "spectral_error_estimate" | "fit_error"
-        | "residual" | "r2" | "min_r2" | "cost" | "pseudo_weights" | "distance"
-        | "min_distance" | "probability_feasible" | "relative_std" | "energy" | "min_gap"
-        | "unit" | "gamma2" | "overlap" | "hypervolume_ratio" | "eta_c" | "eta_m"
-        | "crossover_probability" | "mutation_probability" => "-",
+        "damping_ratio"
+        | "ratio"
+        | "weight"
+        | "weights"
+        | "probability"
+        | "score"
+        | "mass_ratio"
+        | "dynamic_index"
+        | "roll_index"
+        | "waviness"
+        | "dtl_margin"
+        | "dtl_relative"
+        | "route_difference"
+        | "spectral_error_estimate"
+        | "fit_error"
+        | "residual"
+        | "r2"
+        | "min_r2"
+        | "cost"
+        | "pseudo_weights"
+        | "distance"
+        | "min_distance"
+        | "probability_feasible"
+        | "relative_std"
+        | "energy"
+        | "min_gap"
+        | "unit"
+        | "gamma2"
+        | "overlap"
+        | "hypervolume_ratio"
+        | "eta_c"
+        | "eta_m"
+        | "crossover_probability"
+        | "mutation_probability" => "-",
         "points" | "poly" | "level" | "levels" | "seed" | "grid" | "population" | "generations"
         | "evaluations" | "hifi_evaluations" | "hifi_runs" | "runs" | "run" | "total"
         | "feasible" | "broken" | "bit" | "mask" | "index" | "case" | "decimate"
@@ -75,7 +102,12 @@ pub(crate) fn json_with_units<T: serde::Serialize>(value: &T) -> Result<String> 
     };
     let own_unit = |k: &str| own.get(k).and_then(Value::as_str).map(str::to_string);
     let mut units = BTreeMap::new();
-    collect(&Value::Object(top.clone()), &mut Vec::new(), &own_unit, &mut units);
+    collect(
+        &Value::Object(top.clone()),
+        &mut Vec::new(),
+        &own_unit,
+        &mut units,
+    );
     let mut merged: Map<String, Value> = units
         .into_iter()
         .map(|(k, u)| (k, Value::String(u)))

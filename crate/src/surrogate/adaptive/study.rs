@@ -117,11 +117,14 @@ pub fn adaptive_study(
     // Two fronts per row and the HiFi's own, each STM; the loop's infill predictions.
     let rows = (options.max_runs - options.min_runs + 1) as u64;
     let fronts = 2 * rows + 1;
-    let infill = (options.max_runs - options.initial) as u64
-        * (options.adaptive.candidates as u64).pow(2);
+    let infill =
+        (options.max_runs - options.initial) as u64 * (options.adaptive.candidates as u64).pow(2);
     crate::budget::check(
         fronts
-            .saturating_mul(crate::budget::stm_runs(options.stm.grid, options.stm.levels))
+            .saturating_mul(crate::budget::stm_runs(
+                options.stm.grid,
+                options.stm.levels,
+            ))
             .saturating_add(infill),
         "grid",
         &format!(
