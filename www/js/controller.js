@@ -632,6 +632,8 @@ export class Controller {
     const failed = kept ? await this.restoreKept(kept) : [];
     const said = [...problems, ...failed.map((f) => `kept design ${f}: cannot be evaluated (left out)`)];
     if (said.length) this.controls.banner(`${what}: ${said.join('; ')}. Each of these kept the default or was left out; the rest applies.`);
+    // A load is not a drag: its link is in the address bar when the load resolves.
+    st.writeUrl();
     return true;
   }
 
