@@ -185,6 +185,66 @@ fn deterministic_and_the_step_api_equals_run() {
     }
 }
 
+/// The stop rule (issue #30): with a threshold `r`, `run` adds runs while the best
+/// candidate's `EHVI x PoF` is at least `r` times the front's hypervolume before it, and
+/// stops at the first proposal below, saying so; the same loop with `r = 0` runs all `K`
+/// and its first runs are the stopped loop's (the rule only ends the loop). Checked here
+/// from the report's own candidates and history, not from the loop's flag.
+#[test]
+fn the_loop_stops_when_the_expected_improvement_is_negligible() {
+    let (car, road, b) = (Car::datum(), Road::default(), DesignBox::default());
+    let setting = Setting::new(&car, &road, &b).unwrap();
+    let hifi = HiFi::new(&car, &road).unwrap();
+    let decision = decision(&car, &hifi, 61, 2);
+    let spec = SurrogateSpec::parse("gp-mul").unwrap();
+    let go = |stop_below| {
+        run(
+            spec,
+            &setting,
+            &hifi,
+            PlanSpec::AudzeEglais(5),
+            &decision,
+            AdaptiveOptions {
+                runs: 8,
+                candidates: 21,
+                stop_below,
+                ..AdaptiveOptions::default()
+            },
+        )
+        .unwrap()
+    };
+    let all = go(0.0).report();
+    assert_eq!(all.added.len(), 8);
+    assert!(all.stopped.is_none());
+    // A threshold between the 3rd and the 4th run's relative criterion stops after 3.
+    let rel: Vec<f64> = all
+        .added
+        .iter()
+        .zip(&all.history)
+        .map(|(a, h)| a.candidate.value / h.hypervolume)
+        .collect();
+    let k = (1..rel.len())
+        .find(|&k| rel[k] < rel[..k].iter().cloned().fold(f64::INFINITY, f64::min))
+        .expect("the criterion falls at some run");
+    let r = (rel[k] * rel[..k].iter().cloned().fold(f64::INFINITY, f64::min)).sqrt();
+    let stopped = go(r).report();
+    assert_eq!(stopped.added.len(), k, "relative criteria {rel:?}, threshold {r:e}");
+    assert_eq!(stopped.added[..], all.added[..k]);
+    let why = stopped.stopped.expect("it says why it stopped");
+    assert!(why.starts_with(&format!("stopped after {k} of 8 adaptive runs")), "{why}");
+    assert!(why.contains("converged"), "{why}");
+    // A threshold out of range is refused naming the field.
+    let bad = run(
+        spec,
+        &setting,
+        &hifi,
+        PlanSpec::AudzeEglais(5),
+        &decision,
+        AdaptiveOptions { runs: 1, stop_below: 0.5, ..AdaptiveOptions::default() },
+    );
+    assert!(matches!(bad, Err(ridelab::RideError::Field { ref field, .. }) if field == "stop-below"));
+}
+
 #[test]
 fn bounds_and_bad_options_name_the_field() {
     let (car, road, b) = (Car::datum(), Road::default(), DesignBox::default());

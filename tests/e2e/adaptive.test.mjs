@@ -303,6 +303,32 @@ test('adaptive loop: 2 clicks and "Run 5 more" equal `ridelab surrogate --plan a
   assert.equal(ex.csv.length, a.front.length, 'the CSV lists the loop\'s front');
   assert.deepEqual(ex.csv.map((l) => l.split(',').slice(1, 3).map(Number)), a.front.map((p) => [p.ks, p.cs]));
   assert.equal(ex.csv.filter((l) => l.endsWith(',1')).length, 1, 'its pick marked once');
+
+  // Convergence (#30): "Run 5 more" stops at the first proposal below the core's stop
+  // threshold, as `ridelab surrogate --adaptive 12` does, and says so; "Run anyway" adds
+  // that run, as the CLI with `--stop-below 0` does.
+  const args = ['surrogate', '--approach', state.surrogate, '--plan', 'ae:5', '--car', CAR(), '--class', 'B', '--speed', '20'];
+  const stops = cli(...args, '--adaptive', '12').adaptive;
+  assert.ok(stops.stopped && stops.added.length < 12, `the CLI's loop converges within 12 runs (${stops.added.length}, ${stops.stopped})`);
+  const more = Math.ceil((stops.added.length - 7) / 5);
+  for (let k = 0; k < more; k++) await press(page, '#ad-more');
+  const conv = await page.evaluate(() => ({
+    a: window.__ridelab.adaptive,
+    status: document.getElementById('ad-status').textContent,
+    next: document.getElementById('ad-next').textContent,
+    more: document.getElementById('ad-more').disabled,
+  }));
+  assert.deepEqual(conv.a.report.added.map((x) => [x.sample.ks, x.sample.cs]), stops.added.map((x) => [x.sample.ks, x.sample.cs]), 'the page stops where the CLI stops');
+  assert.equal(conv.a.proposal.converged, true);
+  assert.ok(stops.stopped.endsWith(conv.a.proposal.reason), 'the same reason as the CLI\'s');
+  assert.match(conv.status, /^Converged: .* below the stop threshold, so the loop stops here; "Run anyway" adds it/);
+  assert.equal(conv.next, 'Run anyway');
+  assert.equal(conv.more, true, '"Run 5 more" is off once converged');
+  t.diagnostic(`converged after ${stops.added.length} adaptive runs: ${stops.stopped}`);
+  await press(page, '#ad-next');
+  const anyway = await page.evaluate(() => window.__ridelab.adaptive.report.added.map((x) => [x.sample.ks, x.sample.cs]));
+  const all = cli(...args, '--adaptive', String(stops.added.length + 1), '--stop-below', '0').adaptive;
+  assert.deepEqual(anyway, all.added.map((x) => [x.sample.ks, x.sample.cs]), '"Run anyway" adds the converged proposal');
   assertClean(log);
   await context.close();
 });

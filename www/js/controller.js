@@ -501,6 +501,8 @@ export class Controller {
       for (let k = 0; k < n; k++) {
         const a = st.adaptive;
         if (!a || a.proposal.error) break;
+        // Converged (the core's stop rule): only an explicit single "Run anyway" goes on.
+        if (a.proposal.converged && (n > 1 || k > 0)) break;
         this.render.adaptiveStatus(`Running the HiFi at ${designText(a.proposal.candidate)} (${k + 1} of ${n})…`);
         const r = await this.compute.adaptiveStep(a.state);
         const report = st.adaptive === a ? await this.compute.adaptiveReport(a.state) : null;

@@ -287,8 +287,11 @@ export class Render {
    */
   adaptive(busy) {
     const a = this.store.adaptive;
+    // A converged loop (the core's stop rule) offers one more run anyway, not five.
+    const converged = Boolean(a && a.proposal.converged);
     $('ad-next').disabled = busy;
-    $('ad-more').disabled = busy;
+    $('ad-next').textContent = converged ? 'Run anyway' : 'Next HiFi run';
+    $('ad-more').disabled = busy || converged;
     $('maps-key-adaptive').hidden = !a;
     if (!busy) this.adaptiveStatus(a ? proposalText(a.proposal) : 'No adaptive run yet: "Next HiFi run" runs the plan on the HiFi, fits the surrogate and adds one HiFi run where it helps the front most.');
     renderAdaptive($('ad-samples'), a);

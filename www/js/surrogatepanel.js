@@ -133,6 +133,10 @@ export function tuningText(report) {
 export function proposalText(proposal) {
   if (proposal.error) return `No further HiFi run: ${proposal.error.replace(/^adaptive: /, '')}.`;
   const c = proposal.candidate;
+  if (proposal.converged) {
+    return `Converged: the best next run (Ks ${fmt(c.ks / 1000, 4)} kN/m, Cs ${fmt(c.cs / 1000, 4)} kNs/m) is expected to improve the front's ` +
+      `hypervolume by ${fmt(c.value, 3)} (m/s²)·N, below the stop threshold, so the loop stops here; "Run anyway" adds it. Why: ${proposal.reason}.`;
+  }
   return `Next HiFi run: Ks ${fmt(c.ks / 1000, 4)} kN/m, Cs ${fmt(c.cs / 1000, 4)} kNs/m, ${c.on_front ? 'on' : 'off'} the predicted front; ` +
     `EHVI ${fmt(c.ehvi, 3)} (m/s²)·N, probability feasible ${fmt(100 * c.probability_feasible, 3)} %. Why: ${proposal.reason}.`;
 }

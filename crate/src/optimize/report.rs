@@ -6,7 +6,7 @@
 //! against the datum car's **HiFi** criteria, whatever the evaluator: the HiFi is the
 //! reference every evaluator is judged by.
 
-use super::minmax::{pick, recheck, PickRule, Recheck};
+use super::minmax::{change_percent, pick, recheck, PickRule, Recheck};
 use super::study::{run_study, Method, Study};
 use super::suspension::SuspensionProblem;
 use super::trust::{pick_warnings, Warning};
@@ -102,6 +102,33 @@ pub struct OptimizeReport {
     /// How far the pick can be trusted ([`super::trust`]): a box bound it sits on, a
     /// criterion its HiFi re-check misses by more than the tolerance; empty when neither.
     pub warnings: Vec<Warning>,
+    /// The pick against the datum on the optimisation's own model (the LoFi or a
+    /// surrogate): like with like, where `pick.change_percent` (against the HiFi `datum`)
+    /// includes that model's bias. Left out when the model is the HiFi, or cannot
+    /// evaluate the datum design (a surrogate whose box leaves it out).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub same_model: Option<SameModel>,
+}
+
+/// The datum design evaluated on the model that drew the front, and the pick's change
+/// against it: `100 (c_pick - c_datum) / c_datum` per criterion, %.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SameModel {
+    /// The datum design's criteria on the model that drew the front.
+    pub datum: Criteria,
+    /// The pick's BAcc, DTL and SWS against `datum`, %.
+    pub change_percent: [f64; 3],
+}
+
+impl SameModel {
+    /// The datum design on `model`: `None` for the HiFi (its datum is the report's) or a
+    /// model that cannot evaluate the datum design.
+    fn datum(model: &dyn Evaluator, car: &Car) -> Option<Criteria> {
+        if model.name() == "full" {
+            return None;
+        }
+        model.evaluate(car.front.spring, car.front.damper).ok()
+    }
 }
 
 impl OptimizeReport {
@@ -212,11 +239,17 @@ pub fn optimize_model_with(
         Comfort::Wk => Box::new(WkComfort::full(HiFi::new(car, road)?)),
     };
     let datum = hifi.evaluate(car.front.spring, car.front.damper)?;
+    let model_datum = SameModel::datum(&*model, car);
     let problem =
         SuspensionProblem::new(model, *design_box, objectives, DosContext::new(car, datum))?;
     let study = run_study(&problem, method, None)?;
     let hifi_recheck = recheck(&study.pick, &*hifi, &datum)?;
+    let same_model = model_datum.map(|d| SameModel {
+        datum: d,
+        change_percent: change_percent(&study.pick.criteria, &d),
+    });
     Ok(OptimizeReport {
+        same_model,
         warnings: pick_warnings(&study.pick, &hifi_recheck, design_box),
         study,
         datum,

@@ -178,6 +178,11 @@ pub(crate) struct AdaptiveArgs {
     /// Smallest normalised distance of a new run to every sample, (0, 0.5] [default: 0.02].
     #[arg(long, value_name = "D", value_parser = number, allow_negative_numbers = true, requires = "adaptive")]
     pub(crate) min_distance: Option<f64>,
+    /// Stop before K runs when the best candidate's EHVI x P(feasible) is below this
+    /// fraction of the front's hypervolume (converged; the JSON's `stopped` says why),
+    /// [0, 0.01], 0: never [default: 1e-7].
+    #[arg(long, value_name = "R", value_parser = number, allow_negative_numbers = true, requires = "adaptive")]
+    pub(crate) stop_below: Option<f64>,
 }
 
 impl AdaptiveArgs {
@@ -190,6 +195,7 @@ impl AdaptiveArgs {
             uncertainty: self.uncertainty,
             candidates: self.candidates.unwrap_or(DEFAULT_CANDIDATES),
             min_distance: self.min_distance.unwrap_or(DEFAULT_MIN_DISTANCE),
+            stop_below: self.stop_below.unwrap_or(d.stop_below),
             ..d
         })
     }

@@ -219,6 +219,9 @@ pub(crate) fn adaptive_text(r: &adaptive::AdaptiveReport) -> String {
             a.run, a.sample.ks, a.sample.cs, a.reason
         );
     }
+    if let Some(why) = &r.stopped {
+        s += &format!("  {why}\n");
+    }
     s
 }
 
@@ -228,7 +231,8 @@ pub(crate) fn optimize_text(out: &OptimizeReport) -> String {
     let bacc = out.comfort.label();
     let mut text = format!(
         "front: {} points on {} ({} evaluations), hypervolume {:.4} (m/s^2) N against [{:.4}, {:.2}]\n\
-         {} pick: Ks {:.1} N/m, Cs {:.1} N s/m (pseudo-weights comfort {:.2}, road holding {:.2})\n  {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} % against the datum\n\
+         {} pick: Ks {:.1} N/m, Cs {:.1} N s/m (pseudo-weights comfort {:.2}, road holding {:.2})\n{}  \
+         {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} % against the datum's HiFi criteria{}\n\
          HiFi re-check: {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} % (prediction error {:.3} / {:.3} / {:.3} %)\n",
         study.front.len(),
         study.evaluator,
@@ -241,9 +245,17 @@ pub(crate) fn optimize_text(out: &OptimizeReport) -> String {
         p.cs,
         p.pseudo_weights[0],
         p.pseudo_weights[1],
+        match &out.same_model {
+            Some(m) => format!(
+                "  {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} % against the datum on the same model ({}: like with like)\n",
+                m.change_percent[0], m.change_percent[1], m.change_percent[2], study.evaluator
+            ),
+            None => String::new(),
+        },
         p.change_percent[0],
         p.change_percent[1],
         p.change_percent[2],
+        if out.same_model.is_some() { format!(" (includes the {} model's bias)", study.evaluator) } else { String::new() },
         check.rechecked_change_percent[0],
         check.rechecked_change_percent[1],
         check.rechecked_change_percent[2],
@@ -271,6 +283,7 @@ pub(crate) fn robust_optimize_text(out: &RobustOptimizeReport) -> String {
         compute: None,
         adapter: None,
         warnings: out.warnings.clone(),
+        same_model: None,
     };
     let bacc = out.comfort.label();
     let mut s = format!(

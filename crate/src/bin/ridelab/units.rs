@@ -73,7 +73,8 @@ pub(crate) fn unit_of(key: &str) -> Option<&'static str> {
         | "eta_c"
         | "eta_m"
         | "crossover_probability"
-        | "mutation_probability" => "-",
+        | "mutation_probability"
+        | "stop_below" => "-",
         "points" | "poly" | "level" | "levels" | "seed" | "grid" | "population" | "generations"
         | "evaluations" | "hifi_evaluations" | "hifi_runs" | "runs" | "run" | "total"
         | "feasible" | "broken" | "bit" | "mask" | "index" | "case" | "decimate"
