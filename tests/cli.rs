@@ -572,11 +572,21 @@ fn optimize_by_library(evaluator: &str, method: Method) -> Value {
             )
         }
     };
+    // The datum design on the front's own model, where that is not the HiFi.
+    let own = (evaluator != "full").then(|| eval.evaluate(car.front.spring, car.front.damper).unwrap());
     let problem =
         SuspensionProblem::new(eval, design_box, DesignObjectives::default(), ctx).unwrap();
     let study = run_study(&problem, &method, None).unwrap();
     let check = recheck(&study.pick, &hifi, &datum).unwrap();
     let mut v = to_json(&study);
+    if let Some(d) = own {
+        let p = &study.pick.criteria;
+        let pc = |c: f64, d: f64| 100.0 * (c / d - 1.0);
+        v["same_model"] = serde_json::json!({
+            "datum": to_json(&d),
+            "change_percent": [pc(p.bacc, d.bacc), pc(p.dtl, d.dtl), pc(p.sws, d.sws)],
+        });
+    }
     v["datum"] = to_json(&datum);
     v["hifi_recheck"] = to_json(&check);
     v["warnings"] = to_json(&ridelab::optimize::pick_warnings(
