@@ -228,10 +228,17 @@ fn the_loop_stops_when_the_expected_improvement_is_negligible() {
         .expect("the criterion falls at some run");
     let r = (rel[k] * rel[..k].iter().cloned().fold(f64::INFINITY, f64::min)).sqrt();
     let stopped = go(r).report();
-    assert_eq!(stopped.added.len(), k, "relative criteria {rel:?}, threshold {r:e}");
+    assert_eq!(
+        stopped.added.len(),
+        k,
+        "relative criteria {rel:?}, threshold {r:e}"
+    );
     assert_eq!(stopped.added[..], all.added[..k]);
     let why = stopped.stopped.expect("it says why it stopped");
-    assert!(why.starts_with(&format!("stopped after {k} of 8 adaptive runs")), "{why}");
+    assert!(
+        why.starts_with(&format!("stopped after {k} of 8 adaptive runs")),
+        "{why}"
+    );
     assert!(why.contains("converged"), "{why}");
     // A threshold out of range is refused naming the field.
     let bad = run(
@@ -240,9 +247,15 @@ fn the_loop_stops_when_the_expected_improvement_is_negligible() {
         &hifi,
         PlanSpec::AudzeEglais(5),
         &decision,
-        AdaptiveOptions { runs: 1, stop_below: 0.5, ..AdaptiveOptions::default() },
+        AdaptiveOptions {
+            runs: 1,
+            stop_below: 0.5,
+            ..AdaptiveOptions::default()
+        },
     );
-    assert!(matches!(bad, Err(ridelab::RideError::Field { ref field, .. }) if field == "stop-below"));
+    assert!(
+        matches!(bad, Err(ridelab::RideError::Field { ref field, .. }) if field == "stop-below")
+    );
 }
 
 #[test]

@@ -45,8 +45,10 @@ pub fn map_report_charts(r: &MapReport) -> Vec<(&'static str, MapChart)> {
             };
             let chart = MapChart {
                 title: format!(
-                    "{name}: {long} ({}, {}, class {:?} at {} m/s)",
-                    r.evaluator, r.car, r.road.class, r.road.speed
+                    "{name}: {long} ({}, {}, {})",
+                    r.evaluator,
+                    r.car,
+                    r.road.words()
                 ),
                 unit,
                 nx: r.grid.ks.n,

@@ -16,6 +16,7 @@ use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
 use crate::gpu::{Compute, ComputePath, HiFiGrid};
 use crate::road::Road;
+use crate::road_profile::RoadScenario;
 use serde::{Deserialize, Serialize};
 
 /// The layout sentence every report carries.
@@ -133,8 +134,8 @@ pub struct MapReport {
     pub evaluator: String,
     /// Car name.
     pub car: String,
-    /// Road scenario.
-    pub road: Road,
+    /// Road scenario: an ISO class (the fields of [`Road`]) or a measured profile.
+    pub road: RoadScenario,
     /// Absolute or relative to the datum.
     pub scale: Scale,
     /// The grid.
@@ -266,7 +267,7 @@ pub fn map_report_from(
     Ok(MapReport {
         evaluator: map.evaluator.clone(),
         car: car.name.clone(),
-        road: *road,
+        road: RoadScenario::Iso(*road),
         scale: settings.scale,
         grid,
         ks_values: grid.ks.values(),

@@ -141,9 +141,19 @@ impl OptimizeReport {
         road: &Road,
         design_box: &DesignBox,
     ) -> Result<()> {
-        let p = pick(&self.study.front, &self.datum, rule)?;
         let hifi = self.comfort.evaluator(ModelKind::Full, car, road)?;
-        self.hifi_recheck = recheck(&p, &*hifi, &self.datum)?;
+        self.repick_on(rule, &*hifi, design_box)
+    }
+
+    /// [`Self::repick`] re-checked on `hifi` (the HiFi of a measured road, say).
+    pub fn repick_on(
+        &mut self,
+        rule: PickRule,
+        hifi: &dyn Evaluator,
+        design_box: &DesignBox,
+    ) -> Result<()> {
+        let p = pick(&self.study.front, &self.datum, rule)?;
+        self.hifi_recheck = recheck(&p, hifi, &self.datum)?;
         self.warnings = pick_warnings(&p, &self.hifi_recheck, design_box);
         self.study.pick = p;
         Ok(())
@@ -233,17 +243,32 @@ pub fn optimize_model_with(
     objectives: DesignObjectives,
     comfort: Comfort,
 ) -> Result<OptimizeReport> {
-    objectives.validate()?;
     let hifi: Box<dyn Evaluator + Sync> = match comfort {
         Comfort::Bacc => Box::new(HiFi::new(car, road)?),
         Comfort::Wk => Box::new(WkComfort::full(HiFi::new(car, road)?)),
     };
+    optimize_on_models(car, design_box, model, &*hifi, method, objectives, comfort)
+}
+
+/// The optimisation on `model` with the datum and the pick's re-check on `hifi` (both
+/// built by the caller: the models of a measured road, say); `comfort` labels the
+/// report (the models give the measure they were built with).
+pub fn optimize_on_models(
+    car: &Car,
+    design_box: &DesignBox,
+    model: Box<dyn Evaluator + Sync>,
+    hifi: &dyn Evaluator,
+    method: &Method,
+    objectives: DesignObjectives,
+    comfort: Comfort,
+) -> Result<OptimizeReport> {
+    objectives.validate()?;
     let datum = hifi.evaluate(car.front.spring, car.front.damper)?;
     let model_datum = SameModel::datum(&*model, car);
     let problem =
         SuspensionProblem::new(model, *design_box, objectives, DosContext::new(car, datum))?;
     let study = run_study(&problem, method, None)?;
-    let hifi_recheck = recheck(&study.pick, &*hifi, &datum)?;
+    let hifi_recheck = recheck(&study.pick, hifi, &datum)?;
     let same_model = model_datum.map(|d| SameModel {
         datum: d,
         change_percent: change_percent(&study.pick.criteria, &d),

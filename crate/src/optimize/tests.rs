@@ -475,7 +475,10 @@ fn lofi_pick_is_also_judged_against_the_lofi_datum() {
     use crate::road::Road;
     use crate::surrogate::PlanSpec;
     let (car, road) = (Car::preset("sedan").unwrap(), Road::default());
-    let stm = Method::Stm(StmParams { grid: 41, levels: 1 });
+    let stm = Method::Stm(StmParams {
+        grid: 41,
+        levels: 1,
+    });
     let run = |kind| {
         optimize_report(
             &car,
@@ -494,11 +497,24 @@ fn lofi_pick_is_also_judged_against_the_lofi_datum() {
     let p = lofi.evaluate(r.study.pick.ks, r.study.pick.cs).unwrap();
     let m = r.same_model.expect("a LoFi front has a same-model datum");
     assert_eq!(m.datum, d);
-    for (k, (c, dk)) in [(p.bacc, d.bacc), (p.dtl, d.dtl), (p.sws, d.sws)].into_iter().enumerate() {
-        assert!((m.change_percent[k] - 100.0 * (c - dk) / dk).abs() < 1e-9, "{k}: {:?}", m.change_percent);
+    for (k, (c, dk)) in [(p.bacc, d.bacc), (p.dtl, d.dtl), (p.sws, d.sws)]
+        .into_iter()
+        .enumerate()
+    {
+        assert!(
+            (m.change_percent[k] - 100.0 * (c - dk) / dk).abs() < 1e-9,
+            "{k}: {:?}",
+            m.change_percent
+        );
     }
-    let hd = HiFi::new(&car, &road).unwrap().evaluate(car.front.spring, car.front.damper).unwrap();
-    assert!((d.bacc - hd.bacc).abs() / hd.bacc > 0.01, "the LoFi's BAcc bias at the datum");
+    let hd = HiFi::new(&car, &road)
+        .unwrap()
+        .evaluate(car.front.spring, car.front.damper)
+        .unwrap();
+    assert!(
+        (d.bacc - hd.bacc).abs() / hd.bacc > 0.01,
+        "the LoFi's BAcc bias at the datum"
+    );
     assert!((m.change_percent[0] - r.study.pick.change_percent[0]).abs() > 0.5);
     assert!(run(ModelKind::Full).same_model.is_none());
 }

@@ -1,17 +1,25 @@
 //! `ridelab map`: the design criteria and objective maps over a Ks x Cs grid.
 
 use crate::args::{
-    car_loads_road, count, json, svg_target, write_svg, CarRoad, CasesArgs, ObjectiveArgs,
+    car_loads_road_of, count, json, svg_target, write_svg, CarRoad, CasesArgs, ObjectiveArgs,
 };
+use crate::road::measured_model;
 use clap::Args;
 use ridelab::analysis::ModelKind;
+use ridelab::car::Car;
 use ridelab::chart::{map_chart_svg, map_report_charts};
 use ridelab::comfort::Comfort;
 use ridelab::error::{Result, RideError};
 use ridelab::gpu::Compute;
-use ridelab::maps::{map_csv, map_report_on, Axis, Grid, MapSettings, Scale};
+use ridelab::gpu::ComputePath;
+use ridelab::maps::{
+    map_csv, map_report_on, map_report_with, Axis, Grid, MapReport, MapSettings, Scale,
+};
+use ridelab::road::Road;
+use ridelab::road_profile::RoadScenario;
+use ridelab::robust::LoadCase;
 use ridelab::robust::{case_map_report, robust_map_report, CaseSet, Combine};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 #[derive(Args)]
 pub(crate) struct MapArgs {
@@ -58,8 +66,7 @@ pub(crate) struct MapArgs {
 
 pub(crate) fn map_cmd(a: MapArgs) -> Result<String> {
     let svg = svg_target(a.svg.as_deref())?;
-    let (car, loads, road) = car_loads_road(&a.car)?;
-    let set = a.cases.set(&car, &loads, &road)?;
+    let (car, loads, road) = car_loads_road_of(&a.car)?;
     let settings = MapSettings {
         grid: Grid::new(a.ks_range, a.cs_range)?,
         scale: if a.relative {
@@ -71,6 +78,12 @@ pub(crate) fn map_cmd(a: MapArgs) -> Result<String> {
         comfort: a.comfort,
         ..MapSettings::default()
     };
+    if let Some(path) = a.car.road.as_deref() {
+        let r = measured_map(&a, &car, &road, &loads, &settings, path)?;
+        let text = if a.json { json(&r)? } else { String::new() };
+        return map_output(&a, svg, r, text);
+    }
+    let set = a.cases.set(&car, &loads, &road)?;
     if set.is_some() && a.compute == Compute::Gpu {
         return Err(RideError::field(
             "compute",
@@ -98,6 +111,61 @@ pub(crate) fn map_cmd(a: MapArgs) -> Result<String> {
             (r.map, text)
         }
     };
+    map_output(&a, svg, r, json_text)
+}
+
+/// The map on the measured road of `--road FILE`: one scenario, so `--cases`, `--case`,
+/// a car file's load cases and `--compute gpu` are refused naming them, and `--comfort
+/// wk` (its weighting filter is not yet on the measured route) names `comfort`. A
+/// point costs more here than on an ISO class (the exact route with the road's filters),
+/// so the grid is bounded by [`ridelab::budget::MAX_MEASURED_RUNS`] points.
+fn measured_map(
+    a: &MapArgs,
+    car: &Car,
+    road: &Road,
+    loads: &[LoadCase],
+    settings: &MapSettings,
+    path: &str,
+) -> Result<MapReport> {
+    if a.cases.cases.is_some() || a.case.is_some() || !loads.is_empty() {
+        return Err(RideError::field(
+            "road",
+            "a measured road is one scenario: --cases, --case and a car file's load_cases take ISO classes (--class)",
+        ));
+    }
+    if a.compute == Compute::Gpu {
+        return Err(RideError::field(
+            "compute",
+            "gpu: the measured road's maps are computed on the CPU; use --compute cpu or auto",
+        ));
+    }
+    if a.comfort == Comfort::Wk {
+        return Err(RideError::field(
+            "comfort",
+            "wk is computed on ISO classes only in this version; use --comfort bacc with --road",
+        ));
+    }
+    let g = &settings.grid;
+    ridelab::budget::check_measured(
+        (g.ks.n as u64) * (g.cs.n as u64),
+        "ks-range",
+        &format!("a {} x {} map", g.ks.n, g.cs.n),
+        "the points of --ks-range or --cs-range",
+    )?;
+    let (model, about) = measured_model(a.model, car, &a.car, path)?;
+    let mut r = map_report_with(&model, car, road, settings)?;
+    r.road = RoadScenario::Measured(about);
+    r.compute = ComputePath::Cpu;
+    Ok(r)
+}
+
+/// Writes the SVGs (`--svg`) and returns the CSV, the JSON or the text of `r`.
+fn map_output(
+    a: &MapArgs,
+    svg: Option<PathBuf>,
+    r: MapReport,
+    json_text: String,
+) -> Result<String> {
     if let Some(prefix) = svg {
         ridelab::finite::check(&r)?;
         let prefix = prefix.to_string_lossy();

@@ -1,20 +1,29 @@
 //! `ridelab optimize`: the front, its pick and the pick's HiFi re-check.
 
 use crate::args::{
-    car_loads_road, count, count_u64, json, svg_target, warning_lines, write_svg, AdaptiveArgs,
+    car_loads_road_of, count, count_u64, json, svg_target, warning_lines, write_svg, AdaptiveArgs,
     BoxArgs, CarRoad, CasesArgs, ObjectiveArgs,
 };
+use crate::road::measured_model;
 use clap::Args;
+use ridelab::analysis::ModelKind;
+use ridelab::car::Car;
 use ridelab::chart::{front_chart, line_chart_svg};
 use ridelab::comfort::Comfort;
+use ridelab::design::DesignBox;
+use ridelab::dos::DesignObjectives;
 use ridelab::error::{Result, RideError};
 use ridelab::gpu::{Compute, ComputePath};
 use ridelab::optimize::{
-    optimize_report_on, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, PickRule, StmParams,
+    optimize_on_models, optimize_report_on, EvaluatorSpec, Method, Nsga2Params, OptimizeReport,
+    PickRule, StmParams,
 };
+use ridelab::road_profile::RoadScenario;
+use ridelab::robust::LoadCase;
 use ridelab::robust::{robust_optimize_report, RobustOptimizeReport};
 use ridelab::surrogate::adaptive;
 use ridelab::surrogate::PlanSpec;
+use std::path::Path;
 
 #[derive(Args)]
 pub(crate) struct OptimizeArgs {
@@ -77,8 +86,7 @@ pub(crate) struct OptimizeArgs {
 
 pub(crate) fn optimize(a: OptimizeArgs) -> Result<String> {
     let svg = svg_target(a.svg.as_deref())?;
-    let (car, loads, road) = car_loads_road(&a.car)?;
-    let set = a.cases.set(&car, &loads, &road)?;
+    let (car, loads, road) = car_loads_road_of(&a.car)?;
     let objectives = a.objectives.objectives()?;
     let method = if a.method == "stm" {
         Method::Stm(StmParams {
@@ -94,6 +102,10 @@ pub(crate) fn optimize(a: OptimizeArgs) -> Result<String> {
         })
     };
     let design_box = a.design_box.design_box()?;
+    if let Some(path) = a.car.road.as_deref() {
+        return measured_optimize(&a, &car, &loads, &design_box, &method, objectives, path);
+    }
+    let set = a.cases.set(&car, &loads, &road)?;
     if let Some(set) = set {
         if a.compute == Some(Compute::Gpu) {
             return Err(RideError::field(
@@ -180,13 +192,7 @@ pub(crate) fn optimize(a: OptimizeArgs) -> Result<String> {
         out.repick(a.pick, &car, &road, &design_box)?;
     }
     if let Some(path) = &svg {
-        ridelab::finite::check(&out)?;
-        let mut chart = front_chart(&out.study, &out.datum, Some(&out.hifi_recheck));
-        if out.comfort == Comfort::Wk {
-            chart.title = chart.title.replacen("BAcc", out.comfort.label(), 1);
-            chart.x_label = format!("{} [m/s^2]", out.comfort.label());
-        }
-        write_svg(path, &line_chart_svg(&chart)?)?;
+        write_front_svg(path, &out)?;
     }
     if let Some(looped) = looped {
         let report = adaptive::AdaptiveOptimizeReport {
@@ -202,6 +208,96 @@ pub(crate) fn optimize(a: OptimizeArgs) -> Result<String> {
         return json(&out);
     }
     Ok(optimize_text(&out))
+}
+
+/// The front in the BAcc-DTL plane as an SVG file.
+fn write_front_svg(path: &Path, out: &OptimizeReport) -> Result<()> {
+    ridelab::finite::check(out)?;
+    let mut chart = front_chart(&out.study, &out.datum, Some(&out.hifi_recheck));
+    if out.comfort == Comfort::Wk {
+        chart.title = chart.title.replacen("BAcc", out.comfort.label(), 1);
+        chart.x_label = format!("{} [m/s^2]", out.comfort.label());
+    }
+    write_svg(path, &line_chart_svg(&chart)?)
+}
+
+/// `optimize --road FILE`: the front of the LoFi or the HiFi on the measured road (the
+/// exact route at every design), the datum and the pick's re-check on its HiFi. One
+/// scenario: `--cases` (and a car file's load_cases), `--adaptive`, a surrogate
+/// evaluator, `--compute gpu` and `--comfort wk` are refused naming them. A run costs
+/// more here (the exact route with the road's filters: the default STM on the HiFi,
+/// 48 517 runs, took 33 s), so the work is bounded by
+/// [`ridelab::budget::MAX_MEASURED_RUNS`] runs (`grid^2 + 12 (grid - 1) 2^levels` for
+/// STM, `population (generations + 1)` for NSGA-II).
+fn measured_optimize(
+    a: &OptimizeArgs,
+    car: &Car,
+    loads: &[LoadCase],
+    design_box: &DesignBox,
+    method: &Method,
+    objectives: DesignObjectives,
+    path: &str,
+) -> Result<String> {
+    let refuse = |field: &str, why: &str| Err(RideError::field(field, why));
+    if a.cases.cases.is_some() || !loads.is_empty() {
+        return refuse("road", "a measured road is one scenario: --cases and a car file's load_cases take ISO classes (--class)");
+    }
+    if a.adaptive.adaptive.is_some() {
+        return refuse("adaptive", "the adaptive loop's surrogates are fitted on ISO classes in this version; leave out --adaptive with --road");
+    }
+    if a.compute == Some(Compute::Gpu) {
+        return refuse(
+            "compute",
+            "gpu: the measured road's models run on the CPU; use --compute cpu or auto",
+        );
+    }
+    if a.comfort == Comfort::Wk {
+        return refuse(
+            "comfort",
+            "wk is computed on ISO classes only in this version; use --comfort bacc with --road",
+        );
+    }
+    let EvaluatorSpec::Model(kind) = a.evaluator else {
+        return refuse("evaluator", "the surrogates are fitted on ISO classes in this version; use --evaluator quarter or full with --road");
+    };
+    let runs = match method {
+        Method::Stm(p) => ridelab::budget::stm_runs(p.grid, p.levels),
+        Method::Nsga2(p) => (p.population as u64).saturating_mul(p.generations as u64 + 1),
+    };
+    let (field, options) = match method {
+        Method::Stm(_) => ("grid", "--grid or --levels"),
+        Method::Nsga2(_) => ("generations", "--generations or --population"),
+    };
+    ridelab::budget::check_measured(runs, field, "this optimisation", options)?;
+    let (model, _) = measured_model(kind, car, &a.car, path)?;
+    let (hifi, about) = measured_model(ModelKind::Full, car, &a.car, path)?;
+    let mut out = optimize_on_models(
+        car,
+        design_box,
+        Box::new(model),
+        &hifi,
+        method,
+        objectives,
+        a.comfort,
+    )?;
+    out.compute = a.compute.map(|_| ComputePath::Cpu);
+    if a.pick != PickRule::MinMax {
+        out.repick_on(a.pick, &hifi, design_box)?;
+    }
+    if let Some(p) = svg_target(a.svg.as_deref())? {
+        write_front_svg(&p, &out)?;
+    }
+    if a.json {
+        let mut v = serde_json::to_value(&out).map_err(|e| RideError::Numerical(e.to_string()))?;
+        v["road"] =
+            serde_json::to_value(&about).map_err(|e| RideError::Numerical(e.to_string()))?;
+        return json(&v);
+    }
+    Ok(format!(
+        "on {}\n{}",
+        crate::text::scenario_words(&RoadScenario::Measured(about)),
+        optimize_text(&out)
+    ))
 }
 
 /// The loop's added runs, one line each.

@@ -9,8 +9,8 @@ use ridelab::error::{Result, RideError};
 use ridelab::evaluate::Criteria;
 use ridelab::road::Tracks;
 use ridelab::road_profile::{
-    criteria_shaped, criteria_shaped_spectral, describe, Profile, ProfileTracks, RoadDescription,
-    ShapedRoad,
+    criteria_shaped, criteria_shaped_spectral, describe, MeasuredModel, MeasuredRoad, Profile,
+    ProfileTracks, RoadDescription, ShapedRoad,
 };
 use serde::Serialize;
 
@@ -77,6 +77,38 @@ fn road_text(file: &str, d: &RoadDescription) -> String {
     s + "--json for the PSD, its band means and the coherence\n"
 }
 
+/// The measured road of `--road FILE` at the options' `--speed` (default 20 m/s) with
+/// their `--tracks` (default: the file's own, measured when it has two); errors name
+/// `road` (with the file's column and row) or `speed`.
+pub(crate) fn shaped_road(o: &CarRoad, path: &str) -> Result<(ShapedRoad, ProfileTracks)> {
+    let profile = read_profile(path)?;
+    let speed = o.speed.unwrap_or(ridelab::road::Road::default().speed);
+    ridelab::domain::SPEED.check("speed", speed)?;
+    let tracks = match o.tracks {
+        None => ProfileTracks::default_for(&profile),
+        Some(Tracks::Correlated) => ProfileTracks::Correlated,
+        Some(Tracks::Independent) => ProfileTracks::Independent,
+    };
+    let shaped = ShapedRoad::from_profile(&profile, speed, tracks).map_err(|e| match e {
+        RideError::Field { field, reason } => RideError::field(format!("road: {field}"), reason),
+        other => other,
+    })?;
+    Ok((shaped, tracks))
+}
+
+/// `kind`'s model of `car` on the measured road of `--road FILE` (map and optimize), and
+/// what their reports say of that road.
+pub(crate) fn measured_model(
+    kind: ModelKind,
+    car: &Car,
+    o: &CarRoad,
+    path: &str,
+) -> Result<(MeasuredModel, MeasuredRoad)> {
+    let (shaped, tracks) = shaped_road(o, path)?;
+    let about = MeasuredRoad::of(path, &shaped, tracks);
+    Ok((MeasuredModel::new(kind, car, shaped), about))
+}
+
 /// `eval --road FILE`: the criteria on a measured road by the exact route (the model
 /// augmented with the fitted shaping filter) and the frequency route on the raw PSD.
 #[derive(Serialize)]
@@ -108,18 +140,8 @@ pub(crate) fn eval_measured(
     o: &CarRoad,
     path: &str,
 ) -> Result<MeasuredEval> {
-    let profile = read_profile(path)?;
-    let speed = o.speed.unwrap_or(ridelab::road::Road::default().speed);
-    ridelab::domain::SPEED.check("speed", speed)?;
-    let tracks = match o.tracks {
-        None => ProfileTracks::default_for(&profile),
-        Some(Tracks::Correlated) => ProfileTracks::Correlated,
-        Some(Tracks::Independent) => ProfileTracks::Independent,
-    };
-    let shaped = ShapedRoad::from_profile(&profile, speed, tracks).map_err(|e| match e {
-        RideError::Field { field, reason } => RideError::field(format!("road: {field}"), reason),
-        other => other,
-    })?;
+    let (shaped, tracks) = shaped_road(o, path)?;
+    let speed = shaped.speed;
     let model = kind.build(car);
     let exact = criteria_shaped(&model, &shaped)?;
     let spectral = criteria_shaped_spectral(&model, &shaped, 1e-8)?.criteria;

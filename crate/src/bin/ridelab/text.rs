@@ -4,6 +4,7 @@
 
 use ridelab::maps::{MapReport, Scale};
 use ridelab::road::Road;
+use ridelab::road_profile::RoadScenario;
 use ridelab::surrogate::SurrogateReport;
 
 /// "class B at 20 m/s, correlated tracks".
@@ -14,6 +15,22 @@ pub(crate) fn road_words(r: &Road) -> String {
         r.speed,
         format!("{:?}", r.tracks).to_lowercase()
     )
+}
+
+/// A report's road (an ISO class or a measured profile) in words.
+pub(crate) fn scenario_words(r: &RoadScenario) -> String {
+    match r {
+        RoadScenario::Iso(road) => road_words(road),
+        RoadScenario::Measured(m) => format!(
+            "the measured road {} at {} m/s, {} tracks (exact route; shaping-filter PSD error {:.1e} over {:.2}..{:.1} Hz)",
+            m.file,
+            m.speed,
+            format!("{:?}", m.tracks).to_lowercase(),
+            m.fit_error,
+            m.band_hz[0],
+            m.band_hz[1]
+        ),
+    }
 }
 
 /// Ks and Cs in display units.
@@ -29,7 +46,7 @@ pub(crate) fn map_text(r: &MapReport) -> String {
         "{} map, {} on {} (computed on the {})\ngrid {} x {}: Ks {}..{} kN/m, Cs {}..{} kNs/m\n",
         r.evaluator,
         r.car,
-        road_words(&r.road),
+        scenario_words(&r.road),
         format!("{:?}", r.compute).to_uppercase(),
         g.ks.n,
         g.cs.n,
