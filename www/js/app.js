@@ -37,6 +37,7 @@ import { installTestHooks } from './testhooks.js';
 import { pathText, computeMode } from './gpupath.js';
 import { keepDesign, renderCompare, savedEntry, MAX_SAVED } from './compare.js';
 import { LessonPanel } from './lessonpanel.js';
+import { ClassFront } from './classfront.js';
 import { isLessonHash } from './lessons.js';
 import { RobustPanel, withLoadCases } from './robustpanel.js';
 import { fromSession } from './restore.js';
@@ -565,7 +566,12 @@ async function main() {
   const lessons = new LessonPanel({
     root: $('lesson'), bench: $('app'), store, controller, compute, onResize: () => requestAnimationFrame(() => render.redrawAll()),
   });
-  controller.onViewsChanged = () => lessons.viewsChanged();
+  const ids = { name: 'cf-name', make: 'cf-make', code: 'cf-code', copy: 'cf-copy', text: 'cf-text', file: 'cf-file', apply: 'cf-apply', clear: 'cf-clear', status: 'cf-status', problems: 'cf-problems', table: 'cf-table', drop: 'cf-drop' };
+  const classFront = new ClassFront(Object.fromEntries(Object.entries(ids).map(([k, id]) => [k, $(id)])), { store, controller, compute });
+  controller.onViewsChanged = () => {
+    lessons.viewsChanged();
+    classFront.viewsChanged();
+  };
   installTestHooks({ store, controller, compute, ui, boot, lessons, exportData: () => exportDataOf(store, ui) });
   wire({ store, controller, controls, render, ui, guide, bench, compute, lessons });
   $('loading').hidden = true;

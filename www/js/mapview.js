@@ -10,6 +10,7 @@
 import { paint } from './colormap.js';
 import { fmt, fmtPct } from './format.js';
 import { drawMapFrame } from '../ridelab.js';
+import { paintClass } from './classmarks.js';
 
 /** The criteria drawn as maps: plane index in the wasm map, display unit and factor. */
 export const CRITERIA = [
@@ -302,10 +303,11 @@ export class MapView {
   /**
    * The design and datum points (N/m, N s/m), optionally the surrogate's sample points,
    * the min-max pick ({ks, cs}) and the adaptive loop's `{added, next}` (the samples it
-   * added, its next proposal or null), and the caption's text (the design's value).
+   * added, its next proposal or null), the class front's designs (`klass`: `[{rank, ks,
+   * cs}]` or null, js/classmarks.js), and the caption's text (the design's value).
    */
-  setMarkers({ design, datum, samples = null, pick = null, adaptive = null }, caption) {
-    this.markers = { design, datum, samples, pick, adaptive };
+  setMarkers({ design, datum, samples = null, pick = null, adaptive = null, klass = null }, caption) {
+    this.markers = { design, datum, samples, pick, adaptive, klass };
     const label = caption.startsWith('design: ') ? 'design: ' : '';
     const labelEl = document.createElement('span');
     labelEl.className = 'at-label';
@@ -537,7 +539,7 @@ export class MapView {
 
   /** The markers on context `g` (CSS px) over the plot of layout `{fs, plot}`. */
   paintMarkers(g, { fs, plot }) {
-    const { design, datum, samples, pick, adaptive } = this.markers;
+    const { design, datum, samples, pick, adaptive, klass } = this.markers;
     const lw = this.thick;
     const inside = (p) => p[0] >= plot.x - 0.5 && p[0] <= plot.x + plot.w + 0.5 && p[1] >= plot.y - 0.5 && p[1] <= plot.y + plot.h + 0.5;
     const r = Math.max(4, fs * 0.45) * Math.sqrt(lw);
@@ -580,6 +582,11 @@ export class MapView {
         g.stroke();
       }
     }
+    // The class front's designs (issue #30), under the datum and the design.
+    paintClass(g, klass, (row) => {
+      const q = this.toPlot(row.ks, row.cs, plot);
+      return inside(q) ? q : null;
+    }, { r: r * 0.9, lw, fs: fs * 1.05 });
 
     const pd = this.toPlot(datum.ks, datum.cs, plot);
     if (inside(pd)) {

@@ -15,6 +15,7 @@ import { Plot } from './plot.js';
 import { CLOUD_OPACITY, cloudPoints, objectiveSpec, planeXY } from './chartspecs.js';
 import { fmt, fmtPct } from './format.js';
 import { fitAxes, panBy, zoomAbout, zoomedAxes, zoomForKey } from './planezoom.js';
+import { paintClass } from './classmarks.js';
 
 /** The live layer's colours (the charts' own are in js/chartspecs.js). */
 const CLOUD_FILL = `rgba(120, 160, 210, ${CLOUD_OPACITY})`;
@@ -79,6 +80,8 @@ export class ObjectivePlane {
     this.wrap = wrap;
     this.msg = msg;
     this.data = null;
+    /** The class front's designs (`[{rank, plane: {bacc, dtl}}]` or null, js/classmarks.js). */
+    this.klass = null;
     this.design = null;
     this.designAt = null;
     this.designClamped = false;
@@ -194,7 +197,10 @@ export class ObjectivePlane {
     if (this.thick !== 1) for (const s of spec.series) s.size = (s.size || 2) * this.thick;
     // Every cell of a cloud up to 120 wide, every other one of a larger one.
     const cloud = data.cloud ? cloudPoints(data.cloud, fr, data.ratio, data.cloud.nx > 120 ? 2 : 1) : [];
-    this.fit = fitAxes(spec.series.filter((s) => s.name !== 'datum' && !s.name.startsWith('feasible')).flatMap((s) => s.points), cloud);
+    // The class front's designs (js/classfront.js) are in the fit: every student in view.
+    const xy = planeXY(fr, data.ratio);
+    const klass = (this.klass || []).map((row) => xy(row.plane.bacc, row.plane.dtl));
+    this.fit = fitAxes([...spec.series.filter((s) => s.name !== 'datum' && !s.name.startsWith('feasible')).flatMap((s) => s.points), ...klass], cloud);
     const axes = zoomedAxes(this.fit, this.zoom);
     spec.xRange = axes.x;
     spec.yRange = axes.y;
@@ -301,6 +307,12 @@ export class ObjectivePlane {
         g.stroke();
       });
     }
+    const { plot, fs } = b.layout();
+    const xy = planeXY(d.front, d.ratio);
+    paintClass(g, this.klass, (row) => {
+      const [x, y] = b.px(...xy(row.plane.bacc, row.plane.dtl));
+      return x >= plot.x && x <= plot.x + plot.w && y >= plot.y && y <= plot.y + plot.h ? [x, y] : null;
+    }, { r: 0.9 * r, lw: this.thick, fs: fs * 1.05 });
     if (!design) return;
     const [px, py] = b.px(...planeXY(d.front, d.ratio)(design.bacc, design.dtl));
     const at = this.pinned(g, [px, py], r, (mx, my, rr) => {

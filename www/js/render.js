@@ -14,6 +14,7 @@ import { fmt, fmtInput, fmtPct, inPageUnits } from './format.js';
 import { pathText } from './gpupath.js';
 import { currentHifiFront, hifiFrontLine, hifiFrontTitle, renderHifiFront } from './hififront.js';
 import { renderCasePicks, robustMapLabel, robustPlaneLabel } from './robustpanel.js';
+import { classMarks } from './classfront.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -98,10 +99,12 @@ export class Render {
     // The adaptive loop's surrogate front is unweighted: not drawn on a Wk plane.
     const adaptive = st.plane.model === 'surrogate' ? adaptivePlane(st.adaptive) : null;
     const data = { front: st.front, nsga: st.nsga, cloud: st.cloud, ratio: st.view.ratio, zoom: st.view.planeZoom ?? null, adaptive, hifi: currentHifiFront(st) };
+    this.ui.plane.klass = classMarks(st);
     if (animate) this.ui.plane.move(data);
     else this.ui.plane.draw(data);
     $('op-key-adaptive').hidden = !adaptive;
     $('op-key-hifi').hidden = !data.hifi;
+    $('op-key-class').hidden = !this.ui.plane.klass;
     this.ui.plane.drawDesign(st.plane.design);
   }
 
@@ -260,10 +263,12 @@ export class Render {
     const cased = !sur && st.state.cases && st.mapDesign && shown;
     const value = sur ? st.surrogate.design : cased ? st.mapDesign : wk(lofi.design);
     const ref = sur ? st.surrogate.datum : cased ? shown.datum : wk(lofi.datum);
+    const klass = classMarks(st);
+    $('maps-key-class').hidden = !klass;
     for (const v of this.ui.maps) {
       const k = v.crit.key;
       const caption = shown && (st.view.model === 'lofi' || sur) ? MapView.caption(v.crit, value[k], ref[k], st.view.scale) : '';
-      v.setMarkers({ design: { ks: state.ks, cs: state.cs }, datum, samples, pick, adaptive }, caption);
+      v.setMarkers({ design: { ks: state.ks, cs: state.cs }, datum, samples, pick, adaptive, klass }, caption);
     }
     this.ui.uncertainty.moveDesign({ ks: state.ks, cs: state.cs });
   }

@@ -83,6 +83,11 @@ export class Store {
     this.hifi = { design: null, datum: null, key: '', datumKey: '', checkedKey: '' };
     /** Designs kept to compare side by side (js/compare.js; their Ks, Cs are in the link). */
     this.saved = [];
+    /**
+     * The class front (js/classfront.js) when codes were applied: `{key, rows, problems}`,
+     * evaluated on the scenario `key`; null when none (or cleared).
+     */
+    this.classFront = null;
     /** The LoFi and surrogate maps at the page's grid, each with the scenario key it is for. */
     this.maps = null;
     this.surMaps = null;

@@ -34,6 +34,10 @@ export function installTestHooks({ store, controller, compute, ui, boot, lessons
     get presets() {
       return store.presets;
     },
+    /** The class front (js/classfront.js): `{key, rows, problems}` or null. */
+    get classFront() {
+      return store.classFront;
+    },
     get lofi() {
       return store.lofi;
     },
