@@ -40,6 +40,11 @@ def run(args, runs=3):
     return statistics.median(times), data
 
 
+def runs(n):
+    """A count with spaces between thousands, as the README writes them."""
+    return f"{n:,}".replace(",", " ")
+
+
 def machine():
     model = "unknown CPU"
     try:
@@ -60,11 +65,11 @@ def rows():
         sections = ", ".join(f"{s['name']} {s['seconds']:.2f} s" for s in rep["sections"])
         out.append(("`ridelab report` (the default car), whole process", f"{t:.2f} s", f"sections: {sections}"))
     t, o = run(["optimize", "--evaluator", "full", "--method", "stm", "--json"])
-    out.append(("`ridelab optimize --evaluator full --method stm` (STM 201, 3 levels)", f"{t:.2f} s", f"{o['evaluations']} HiFi runs"))
+    out.append(("`ridelab optimize --evaluator full --method stm` (STM 201, 3 levels)", f"{t:.2f} s", f"{runs(o['evaluations'])} HiFi runs"))
     t, o = run(["optimize", "--evaluator", "full", "--grid", "61", "--levels", "2", "--json"])
-    out.append(("`ridelab optimize --evaluator full --grid 61 --levels 2` (the page's HiFi front)", f"{t:.2f} s", f"{o['evaluations']} HiFi runs"))
+    out.append(("`ridelab optimize --evaluator full --grid 61 --levels 2` (the page's HiFi front)", f"{t:.2f} s", f"{runs(o['evaluations'])} HiFi runs"))
     t, o = run(["optimize", "--evaluator", "full", "--grid", "61", "--levels", "2", "--car", CAR, "--cases", CASES, "--json"])
-    out.append(("the same on the laden sedan's 6 cases (class B at 10, 20, 30 m/s)", f"{t:.2f} s", f"{o['evaluations']} HiFi runs"))
+    out.append(("the same on the laden sedan's 6 cases (class B at 10, 20, 30 m/s)", f"{t:.2f} s", f"{runs(o['evaluations'])} HiFi runs"))
     for tracks in ["correlated", "independent"]:
         t, _ = run(["map", "--model", "full", "--ks-range", "10000:40000:160", "--cs-range", "500:4000:120", "--compute", "cpu", "--tracks", tracks, "--json"])
         out.append((f"`ridelab map --model full` 160 x 120, {tracks} tracks", f"{t:.2f} s", ""))
