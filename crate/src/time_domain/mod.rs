@@ -248,14 +248,67 @@ fn run(model: &LinearModel, road: &Road, opt: &TimeOptions, rate: f64) -> Result
             r_wheel[j] = road_profile(road, n, h, opt.f_min, opt.f_max, &phases[track], tau);
         }
     }
+    let warm = ((20.0f64.min(opt.duration)) / h).round() as usize;
+    integrate(model, opt, rate, h, warm, warm + n, |k, j| {
+        r_wheel[j][(k + n - warm % n) % n]
+    })
+}
+
+/// Simulates the design `car` with model `kind` on a measured profile played back
+/// (`wheels[j][k]`: the road under the model's wheel `j` at `k dt`, m, as
+/// `crate::road_profile::playback` samples it for the model's wheels), from
+/// rest at the profile's start: no warm-up (the profile is not periodic), so the record
+/// and its RMS include the start's transient. `opt.dt` and `opt.duration` are the
+/// playback's; `opt.seed` is not used.
+pub fn simulate_playback(
+    kind: ModelKind,
+    car: &Car,
+    dt: f64,
+    wheels: &[Vec<f64>],
+    opt: &TimeOptions,
+) -> Result<TimeResponse> {
+    let rate = opt.damper.map_or(car.front.damper, |law| law.linear_rate());
+    let design = car.with_front(car.front.spring, rate)?;
+    let model = kind.build(&design);
+    let n = wheels.first().map_or(0, Vec::len);
+    if n < 17 || wheels.len() != model.kr.ncols() || wheels.iter().any(|w| w.len() != n) {
+        return Err(RideError::field(
+            "road",
+            format!(
+                "the playback needs one record of at least 17 samples per wheel ({} wheels, {n} samples)",
+                wheels.len()
+            ),
+        ));
+    }
+    let opt = TimeOptions {
+        dt,
+        duration: (n - 1) as f64 * dt,
+        f_max: DEFAULT_F_MAX.min(0.4 / dt),
+        ..*opt
+    };
+    opt.validate()?;
+    integrate(&model, &opt, rate, dt, 0, n - 1, |k, j| wheels[j][k])
+}
+
+/// The time loop over `total` steps of `h` s from rest, recording (and taking the RMS
+/// over) the steps from `warm` on; `road(k, j)`: the road displacement under wheel `j`
+/// at step `k`, m (`k` up to `total`). `rate`: the linear rate the model's front dampers
+/// were built with (taken out of `C` again when `opt.damper` gives a law).
+fn integrate(
+    model: &LinearModel,
+    opt: &TimeOptions,
+    rate: f64,
+    h: f64,
+    warm: usize,
+    total: usize,
+    road: impl Fn(usize, usize) -> f64,
+) -> Result<TimeResponse> {
+    let n = total - warm;
+    let wheels = model.kr.ncols();
     let dynamics = Dynamics::new(model, opt.damper.map(|law| (law, rate)))?;
     let stepper = Stepper::new(model, h, &dynamics)?;
     let nq = model.n();
-    let warm = ((20.0f64.min(opt.duration)) / h).round() as usize;
-    let total = warm + n;
-    let r_at = |k: usize| -> DVector<f64> {
-        DVector::from_fn(wheels, |j, _| r_wheel[j][(k + n - warm % n) % n])
-    };
+    let r_at = |k: usize| -> DVector<f64> { DVector::from_fn(wheels, |j, _| road(k, j)) };
     let mut x = DVector::zeros(2 * nq);
     let keep = opt.decimate;
     let cap = n / keep + 1;

@@ -1,11 +1,14 @@
 //! `ridelab simulate`: a time response on a seeded road realisation.
 
-use crate::args::{car_and_road, count, count_u64, number, CarRoad};
+use crate::args::{car_and_road, car_loads_road_of, count, count_u64, number, CarRoad};
 use crate::units::json_with_units;
 use clap::Args;
 use ridelab::analysis::ModelKind;
+use ridelab::car::Car;
 use ridelab::error::{Result, RideError};
-use ridelab::time_domain::{simulate, Damper, Knee, TimeOptions, TimeResponse};
+use ridelab::road::Road;
+use ridelab::road_profile::playback;
+use ridelab::time_domain::{simulate, simulate_playback, Damper, Knee, TimeOptions, TimeResponse};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -90,6 +93,9 @@ pub(crate) fn damper_law(a: &SimulateArgs) -> Result<Option<Damper>> {
 }
 
 pub(crate) fn simulate_cmd(a: SimulateArgs) -> Result<String> {
+    if let Some(path) = a.car.road.as_deref() {
+        return simulate_road(&a, path);
+    }
     let (car, road) = car_and_road(&a.car)?;
     let mut opt = TimeOptions {
         duration: a.duration,
@@ -102,13 +108,69 @@ pub(crate) fn simulate_cmd(a: SimulateArgs) -> Result<String> {
         opt = opt.with_step(dt);
     }
     let r = simulate(a.model, &car, &road, &opt)?;
+    simulate_output(&a, &car, &r, &opt, None)
+}
+
+/// `simulate --road FILE`: the profile itself played back under the wheels at `--speed`
+/// (rear wheels a wheelbase later), from rest at its start, for as long as every wheel
+/// is on it (`--duration` and `--seed` do not apply; `--tracks` is refused: a two-track
+/// file plays each track under its wheels, a one-track file plays on both). The step is
+/// the largest at most `--dt` that divides the profile's spacing at the speed.
+fn simulate_road(a: &SimulateArgs, path: &str) -> Result<String> {
+    if a.car.tracks.is_some() {
+        return Err(RideError::field(
+            "tracks",
+            "a played-back profile drives each track with its own column (one column: both); leave out --tracks with --road",
+        ));
+    }
+    let (car, _, _) = car_loads_road_of(&a.car)?;
+    let profile = crate::road::read_profile(path)?;
+    let speed = a.car.speed.unwrap_or(Road::default().speed);
+    ridelab::domain::SPEED.check("speed", speed)?;
+    let max_dt = a.dt.unwrap_or(TimeOptions::default().dt);
+    if !(max_dt > 0.0 && max_dt <= 0.01) {
+        return Err(RideError::field("dt", "must be in (0, 0.01] s"));
+    }
+    let dt = profile.playback_step(speed, max_dt);
+    let wheels = playback(&profile, &a.model.build(&car).wheels, speed, dt)?;
+    if wheels.len() as f64 > ridelab::time_domain::MAX_STEPS {
+        return Err(RideError::field(
+            "road",
+            format!(
+                "the playback takes {} steps of {dt:.3e} s; at most {:e}: a faster --speed or a longer --dt",
+                wheels.len(),
+                ridelab::time_domain::MAX_STEPS
+            ),
+        ));
+    }
+    let opt = TimeOptions {
+        dt,
+        duration: (wheels.len() - 1) as f64 * dt,
+        decimate: a.decimate,
+        damper: damper_law(a)?,
+        ..TimeOptions::default()
+    };
+    let r = simulate_playback(a.model, &car, dt, &wheels.wheels, &opt)?;
+    simulate_output(a, &car, &r, &opt, Some(path))
+}
+
+/// The JSON, CSV or text of a run.
+fn simulate_output(
+    a: &SimulateArgs,
+    car: &Car,
+    r: &TimeResponse,
+    opt: &TimeOptions,
+    road_file: Option<&str>,
+) -> Result<String> {
     if a.json {
-        let dofs = a.model.build(&car).dof_names;
-        return json_with_units(&SimulateJson::new(&r, &opt, &dofs));
+        let dofs = a.model.build(car).dof_names;
+        let mut j = SimulateJson::new(r, opt, &dofs);
+        j.road_file = road_file.map(str::to_string);
+        return json_with_units(&j);
     }
     if a.csv {
-        ridelab::finite::check(&r)?;
-        return Ok(simulate_csv(&r));
+        ridelab::finite::check(r)?;
+        return Ok(simulate_csv(r));
     }
     let k = |v: f64| v / 1e3;
     let damper = match opt.damper {
@@ -127,8 +189,11 @@ pub(crate) fn simulate_cmd(a: SimulateArgs) -> Result<String> {
             k(r.equivalent_rate)
         ),
     };
+    let on = road_file.map_or(String::new(), |f| {
+        format!("the measured road {f} played back from rest at its start, ")
+    });
     Ok(format!(
-        "{} s at {} s steps: RMS BAcc {:.5} m/s^2, DTL {:.3} N, SWS {:.4} mm\n{damper}\n",
+        "{on}{} s at {} s steps: RMS BAcc {:.5} m/s^2, DTL {:.3} N, SWS {:.4} mm\n{damper}\n",
         opt.duration,
         opt.dt,
         r.rms[0],
@@ -168,6 +233,9 @@ struct SimulateJson<'a> {
     rms: BTreeMap<&'static str, f64>,
     damper_rate: f64,
     equivalent_rate: f64,
+    /// The measured profile played back (`--road FILE`); left out on an ISO road.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    road_file: Option<String>,
 }
 
 impl<'a> SimulateJson<'a> {
@@ -199,6 +267,7 @@ impl<'a> SimulateJson<'a> {
             rms: out.iter().zip(r.rms).map(|(k, v)| (*k, v)).collect(),
             damper_rate: r.damper_rate,
             equivalent_rate: r.equivalent_rate,
+            road_file: None,
         }
     }
 }
