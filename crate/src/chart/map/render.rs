@@ -7,7 +7,7 @@ use super::{
 };
 use crate::chart::axis::Scale;
 use crate::chart::colour::Rgb;
-use crate::chart::draw::{self, clip_polyline, drawing_error, font, round_all, Area};
+use crate::chart::draw::{self, clip_polyline, drawing_error, font, round_all, Area, LABEL_PX};
 use crate::chart::legend::legend_box;
 use crate::chart::marker::draw_marker;
 use crate::chart::Frame;
@@ -18,7 +18,54 @@ use plotters::chart::ChartBuilder;
 use plotters::coord::Shift;
 use plotters::drawing::DrawingArea;
 use plotters::element::{PathElement, Rectangle};
-use plotters::style::{Color, RGBAColor, RGBColor, ShapeStyle};
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use plotters::style::{Color, RGBAColor, RGBColor, ShapeStyle, WHITE};
+
+/// Decimals that tell neighbouring contour levels apart: those of the smallest gap.
+fn level_decimals(levels: &[f64]) -> usize {
+    let gap = levels
+        .windows(2)
+        .map(|w| (w[1] - w[0]).abs())
+        .filter(|g| *g > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    if !gap.is_finite() {
+        return 2;
+    }
+    (-(gap.log10().floor()) as i64).clamp(0, 6) as usize
+}
+
+/// `"25.00"` as `"25"`, `"0.50"` as `"0.5"`.
+fn trim_zeros(s: String) -> String {
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// Length of a polyline, px.
+fn path_length(p: &[(f64, f64)]) -> f64 {
+    p.windows(2)
+        .map(|w| (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1))
+        .sum()
+}
+
+/// The point half-way along a polyline (by length), px.
+fn point_at_half(p: &[(f64, f64)]) -> (f64, f64) {
+    let mut left = path_length(p) / 2.0;
+    for w in p.windows(2) {
+        let d = (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1);
+        if d >= left && d > 0.0 {
+            let t = left / d;
+            return (
+                w[0].0 + t * (w[1].0 - w[0].0),
+                w[0].1 + t * (w[1].1 - w[0].1),
+            );
+        }
+        left -= d;
+    }
+    p[p.len() - 1]
+}
 
 /// The map as an SVG document.
 pub fn map_chart_svg(chart: &MapChart) -> Result<String> {
@@ -104,6 +151,44 @@ fn draw_map<DB: DrawingBackend>(root: &Area<DB>, chart: &MapChart, l: &MapLayout
                 style(Rgb(255, 255, 255), 0.85, 1),
             ],
         )?;
+    }
+    // Each level's value (in the colour bar's unit) on a white tab at the middle of its
+    // longest visible piece, so a printed map reads without the colour bar; a tab that
+    // would overlap one already placed is left out (crowded levels keep their lines).
+    let decimals = level_decimals(&levels);
+    let mut placed: Vec<[i32; 4]> = Vec::new();
+    let tab = font(LABEL_PX - 1.0, false).pos(Pos::new(HPos::Center, VPos::Center));
+    for &level in &levels {
+        let c = contour(&grid, &chart.values, level)?;
+        let longest = c
+            .polylines
+            .iter()
+            .flat_map(|line| {
+                let px: Vec<(f64, f64)> = line.points.iter().map(to_px).collect();
+                clip_polyline(&f, &px)
+            })
+            .max_by(|a, b| path_length(a).total_cmp(&path_length(b)));
+        let Some(piece) = longest.filter(|p| path_length(p) > 60.0) else {
+            continue;
+        };
+        let (x, y) = point_at_half(&piece);
+        let text = trim_zeros(format!("{:.*}", decimals, level));
+        let half_w = (3.6 * text.len() as f64 + 3.0).round() as i32;
+        let (x, y) = (x.round() as i32, y.round() as i32);
+        let rect = [x - half_w - 2, y - 10, x + half_w + 2, y + 10];
+        if placed
+            .iter()
+            .any(|r| rect[0] < r[2] && r[0] < rect[2] && rect[1] < r[3] && r[1] < rect[3])
+        {
+            continue;
+        }
+        placed.push(rect);
+        root.draw(&Rectangle::new(
+            [(x - half_w, y - 8), (x + half_w, y + 8)],
+            WHITE.mix(0.85).filled(),
+        ))
+        .map_err(drawing_error)?;
+        root.draw_text(&text, &tab, (x, y)).map_err(drawing_error)?;
     }
 
     // The infeasible area: hatched over the wash; its boundary on the full grid.

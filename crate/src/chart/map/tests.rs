@@ -274,6 +274,28 @@ fn contours_and_markers_land_where_they_should() {
     for q in lines[0].points() {
         assert!((q.0 - x25).abs() <= 0.5, "{q:?} vs column {x25}");
     }
+    // Its level is written on the line, half-way along it (the axis's and the colour
+    // bar's "25" ticks lie outside the frame).
+    let label = all(&els, "text")
+        .into_iter()
+        .find(|e| {
+            e.text.trim() == "25"
+                && e.num("y") < f64::from(f.bottom)
+                && e.num("x") < f64::from(f.right)
+        })
+        .expect("the contour's level label");
+    let ys: Vec<f64> = lines[0].points().iter().map(|q| q.1).collect();
+    let y_mid = 0.5 * (ys[0] + ys[ys.len() - 1]);
+    assert!(
+        (label.num("x") - x25).abs() <= 1.0,
+        "label x {} vs {x25}",
+        label.num("x")
+    );
+    assert!(
+        (label.num("y") - y_mid).abs() <= 10.0,
+        "label y {} vs {y_mid}",
+        label.num("y")
+    );
     // Datum: a white diamond centred on (20 kN/m, 1.5 kNs/m); the outside marker is left
     // out.
     let white: Vec<_> = all(&els, "polygon")
