@@ -6,6 +6,8 @@
 // data (the results the page holds) and throws `{message, field}` when there is nothing
 // to draw.
 
+import { extent } from './planezoom.js';
+
 /** The chart colours, #rrggbb. */
 export const COL = {
   cloud: '#78a0d2',
@@ -42,17 +44,6 @@ export function output(key) {
 const line = (name, colour, points, size) => ({ name, colour, points, style: 'line', size });
 const marker = (name, colour, stroke, shape, points, size = 6) => ({ name, colour, stroke, points, style: { markers: shape }, size });
 
-/** `[lo, hi]` of finite `vs`. */
-function extent(vs) {
-  let lo = Infinity;
-  let hi = -Infinity;
-  for (const v of vs) {
-    if (!Number.isFinite(v)) continue;
-    if (v < lo) lo = v;
-    if (v > hi) hi = v;
-  }
-  return [lo, hi];
-}
 
 /** A linear range widened by 4 % each side (or by 5 % of the value when it is a point). */
 function widen([lo, hi]) {

@@ -11,7 +11,7 @@ const MIN_SPAN = 0.002;
 const MAX_SPAN = 20;
 
 /** `[lo, hi]` of the finite numbers `vs` (`[Infinity, -Infinity]` for none). */
-function extent(vs) {
+export function extent(vs) {
   let lo = Infinity;
   let hi = -Infinity;
   for (const v of vs) {

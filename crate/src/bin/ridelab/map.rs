@@ -3,7 +3,7 @@
 use crate::args::{
     car_loads_road_of, count, json, svg_target, write_svg, CarRoad, CasesArgs, ObjectiveArgs,
 };
-use crate::road::measured_model;
+use crate::road::{measured_model, one_scenario};
 use clap::Args;
 use ridelab::analysis::ModelKind;
 use ridelab::car::Car;
@@ -127,24 +127,11 @@ fn measured_map(
     settings: &MapSettings,
     path: &str,
 ) -> Result<MapReport> {
-    if a.cases.cases.is_some() || a.case.is_some() || !loads.is_empty() {
-        return Err(RideError::field(
-            "road",
-            "a measured road is one scenario: --cases, --case and a car file's load_cases take ISO classes (--class)",
-        ));
-    }
-    if a.compute == Compute::Gpu {
-        return Err(RideError::field(
-            "compute",
-            "gpu: the measured road's maps are computed on the CPU; use --compute cpu or auto",
-        ));
-    }
-    if a.comfort == Comfort::Wk {
-        return Err(RideError::field(
-            "comfort",
-            "wk is computed on ISO classes only in this version; use --comfort bacc with --road",
-        ));
-    }
+    one_scenario(
+        a.cases.cases.is_some() || a.case.is_some() || !loads.is_empty(),
+        a.compute == Compute::Gpu,
+        a.comfort,
+    )?;
     let g = &settings.grid;
     ridelab::budget::check_measured(
         (g.ks.n as u64) * (g.cs.n as u64),

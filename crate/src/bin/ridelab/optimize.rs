@@ -4,7 +4,7 @@ use crate::args::{
     car_loads_road_of, count, count_u64, json, svg_target, warning_lines, write_svg, AdaptiveArgs,
     BoxArgs, CarRoad, CasesArgs, ObjectiveArgs,
 };
-use crate::road::measured_model;
+use crate::road::{measured_model, one_scenario};
 use clap::Args;
 use ridelab::analysis::ModelKind;
 use ridelab::car::Car;
@@ -239,23 +239,13 @@ fn measured_optimize(
     path: &str,
 ) -> Result<String> {
     let refuse = |field: &str, why: &str| Err(RideError::field(field, why));
-    if a.cases.cases.is_some() || !loads.is_empty() {
-        return refuse("road", "a measured road is one scenario: --cases and a car file's load_cases take ISO classes (--class)");
-    }
+    one_scenario(
+        a.cases.cases.is_some() || !loads.is_empty(),
+        a.compute == Some(Compute::Gpu),
+        a.comfort,
+    )?;
     if a.adaptive.adaptive.is_some() {
         return refuse("adaptive", "the adaptive loop's surrogates are fitted on ISO classes in this version; leave out --adaptive with --road");
-    }
-    if a.compute == Some(Compute::Gpu) {
-        return refuse(
-            "compute",
-            "gpu: the measured road's models run on the CPU; use --compute cpu or auto",
-        );
-    }
-    if a.comfort == Comfort::Wk {
-        return refuse(
-            "comfort",
-            "wk is computed on ISO classes only in this version; use --comfort bacc with --road",
-        );
     }
     let EvaluatorSpec::Model(kind) = a.evaluator else {
         return refuse("evaluator", "the surrogates are fitted on ISO classes in this version; use --evaluator quarter or full with --road");

@@ -5,6 +5,7 @@ use crate::args::{json, CarRoad};
 use clap::Args;
 use ridelab::analysis::ModelKind;
 use ridelab::car::Car;
+use ridelab::comfort::Comfort;
 use ridelab::error::{Result, RideError};
 use ridelab::evaluate::Criteria;
 use ridelab::road::Tracks;
@@ -94,6 +95,31 @@ pub(crate) fn shaped_road(o: &CarRoad, path: &str) -> Result<(ShapedRoad, Profil
         other => other,
     })?;
     Ok((shaped, tracks))
+}
+
+/// What a measured road (one scenario, computed on the CPU with the unweighted BAcc)
+/// cannot be combined with, as map and optimize refuse it: cases (`--cases`, `--case`,
+/// a car file's load cases), `--compute gpu`, `--comfort wk`.
+pub(crate) fn one_scenario(cases: bool, gpu: bool, comfort: Comfort) -> Result<()> {
+    if cases {
+        return Err(RideError::field(
+            "road",
+            "a measured road is one scenario: --cases, --case and a car file's load_cases take ISO classes (--class)",
+        ));
+    }
+    if gpu {
+        return Err(RideError::field(
+            "compute",
+            "gpu: on a measured road the models run on the CPU; use --compute cpu or auto",
+        ));
+    }
+    if comfort == Comfort::Wk {
+        return Err(RideError::field(
+            "comfort",
+            "wk is computed on ISO classes only in this version; use --comfort bacc with --road",
+        ));
+    }
+    Ok(())
 }
 
 /// `kind`'s model of `car` on the measured road of `--road FILE` (map and optimize), and
