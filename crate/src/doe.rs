@@ -16,6 +16,7 @@
 
 use crate::design::DesignBox;
 use crate::error::{Result, RideError};
+use crate::math;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -365,13 +366,13 @@ impl Annealing {
         } else {
             1.0
         };
-        let cooling = (1e-4f64).powf(1.0 / self.moves.max(1) as f64);
+        let cooling = math::powf(1e-4f64, 1.0 / self.moves.max(1) as f64);
         let mut t = t0;
         let (mut e, mut best_e, mut best) = (0.0, 0.0, rows.clone());
         for _ in 0..self.moves {
             let (a, b) = pick(rng);
             let d = swap_delta(pairs, &rows, a, b);
-            if d <= 0.0 || rng.random::<f64>() < (-d / t).exp() {
+            if d <= 0.0 || rng.random::<f64>() < math::exp(-d / t) {
                 rows.swap(a, b);
                 e += d;
                 if e < best_e {

@@ -14,6 +14,7 @@
 //! The page shows N/m and N s/m as kN/m and kNs/m ([`page_units`]).
 
 use crate::error::{Result, RideError};
+use crate::math;
 
 /// The unit a limit is stated in (SI, as stored).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -107,7 +108,7 @@ pub fn num(v: f64) -> String {
         let decimals = if a == 0.0 {
             0
         } else {
-            (5 - a.log10().floor() as i32).max(0) as usize
+            (5 - math::log10(a).floor() as i32).max(0) as usize
         };
         let s = format!("{v:.decimals$}");
         if s.contains('.') {

@@ -19,6 +19,7 @@ pub mod explorer;
 pub mod finite;
 pub mod gpu;
 pub mod maps;
+pub mod math;
 pub mod model;
 pub mod optimize;
 pub mod report;

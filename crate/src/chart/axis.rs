@@ -8,6 +8,7 @@
 //! [`super::Frame`].
 
 use crate::error::{Result, RideError};
+use crate::math;
 use plotters::coord::ranged1d::{KeyPointHint, NoDefaultFormatting, Ranged, ValueFormatter};
 use std::ops::Range;
 
@@ -58,8 +59,8 @@ impl Scale {
                     format!("smallest value {min} must be > 0 on a log axis"),
                 ));
             }
-            let lo = 10f64.powf(min.log10().floor());
-            let mut hi = 10f64.powf(max.log10().ceil());
+            let lo = math::powf(10f64, math::log10(min).floor());
+            let mut hi = math::powf(10f64, math::log10(max).ceil());
             if hi <= lo {
                 hi = lo * 10.0;
             }
@@ -78,7 +79,7 @@ impl Scale {
     /// log axis).
     pub fn fraction(&self, v: f64) -> f64 {
         if self.log {
-            (v.log10() - self.lo.log10()) / (self.hi.log10() - self.lo.log10())
+            (math::log10(v) - math::log10(self.lo)) / (math::log10(self.hi) - math::log10(self.lo))
         } else {
             (v - self.lo) / (self.hi - self.lo)
         }
@@ -87,7 +88,10 @@ impl Scale {
     /// The value at fraction `t` (inverse of [`Scale::fraction`]).
     pub fn value(&self, t: f64) -> f64 {
         if self.log {
-            10f64.powf(self.lo.log10() + t * (self.hi.log10() - self.lo.log10()))
+            math::powf(
+                10f64,
+                math::log10(self.lo) + t * (math::log10(self.hi) - math::log10(self.lo)),
+            )
         } else {
             self.lo + t * (self.hi - self.lo)
         }
@@ -107,8 +111,8 @@ impl Scale {
         }
         if self.log {
             let (e0, e1) = (
-                self.lo.log10().floor() as i32,
-                self.hi.log10().ceil() as i32,
+                math::log10(self.lo).floor() as i32,
+                math::log10(self.hi).ceil() as i32,
             );
             let inside = |v: &f64| *v >= self.lo * (1.0 - 1e-9) && *v <= self.hi * (1.0 + 1e-9);
             let decades: Vec<f64> = (e0..=e1).map(decade).filter(inside).collect();
@@ -136,7 +140,7 @@ impl Scale {
             .map(|w| (w[1] - w[0]).abs())
             .fold(f64::INFINITY, f64::min);
         if self.log && is_decade(v) {
-            let e = v.log10().round() as i32;
+            let e = math::log10(v).round() as i32;
             return if (-3..=4).contains(&e) {
                 fixed(v, (-e).max(0) as usize)
             } else {
@@ -145,7 +149,7 @@ impl Scale {
         }
         if self.log {
             // 2 or 5 times a decade: as many decimals as the value needs.
-            let e = v.log10().floor() as i32;
+            let e = math::log10(v).floor() as i32;
             return if (-3..=4).contains(&e) {
                 fixed(v, (-e).max(0) as usize)
             } else {
@@ -166,7 +170,7 @@ fn decade(e: i32) -> f64 {
 }
 
 fn is_decade(v: f64) -> bool {
-    let e = v.log10().round() as i32;
+    let e = math::log10(v).round() as i32;
     (v / decade(e) - 1.0).abs() < 1e-9
 }
 
@@ -201,7 +205,7 @@ pub fn linear_ticks(lo: f64, hi: f64, max: usize) -> (Vec<f64>, f64) {
         return (Vec::new(), 0.0);
     }
     let tol = 1e-9 * (hi - lo);
-    let e0 = ((hi - lo) / max as f64).log10().floor() as i32 - 1;
+    let e0 = math::log10((hi - lo) / max as f64).floor() as i32 - 1;
     for e in e0..e0 + 4 {
         for m in [1.0, 2.0, 2.5, 5.0] {
             let step = m * decade(e);

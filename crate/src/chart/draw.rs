@@ -3,6 +3,7 @@
 
 use super::Frame;
 use crate::error::{Result, RideError};
+use crate::math;
 use plotters::backend::{DrawingBackend, SVGBackend};
 use plotters::coord::Shift;
 use plotters::drawing::{DrawingArea, DrawingAreaErrorKind, IntoDrawingArea};
@@ -250,14 +251,14 @@ pub(crate) fn simplify(points: &[(f64, f64)], tol: f64) -> Vec<(f64, f64)> {
     while let Some((a, b)) = stack.pop() {
         let (p, q) = (points[a], points[b]);
         let (dx, dy) = (q.0 - p.0, q.1 - p.1);
-        let len = dx.hypot(dy);
+        let len = math::hypot(dx, dy);
         let mut worst = (0.0f64, a);
         for (k, r) in points.iter().enumerate().take(b).skip(a + 1) {
             // Distance to the segment's line, or to `p` when the segment is a point.
             let d = if len > 0.0 {
                 ((r.0 - p.0) * dy - (r.1 - p.1) * dx).abs() / len
             } else {
-                (r.0 - p.0).hypot(r.1 - p.1)
+                math::hypot(r.0 - p.0, r.1 - p.1)
             };
             if d > worst.0 {
                 worst = (d, k);

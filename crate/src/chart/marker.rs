@@ -3,6 +3,7 @@
 use super::colour::Rgb;
 use super::draw::Area;
 use crate::error::Result;
+use crate::math;
 use plotters::backend::DrawingBackend;
 use plotters::element::{PathElement, Polygon};
 use plotters::style::{Color, ShapeStyle};
@@ -33,7 +34,7 @@ impl MarkerShape {
             MarkerShape::Circle => (0..16)
                 .map(|k| {
                     let a = std::f64::consts::PI * k as f64 / 8.0;
-                    (r * a.cos(), r * a.sin())
+                    (r * math::cos(a), r * math::sin(a))
                 })
                 .collect(),
             MarkerShape::Square => vec![(-r, -r), (r, -r), (r, r), (-r, r)],

@@ -23,6 +23,7 @@
 use super::exact::{variances, WhiteForm};
 use super::spectral::Spectrum;
 use crate::error::{Result, RideError};
+use crate::math;
 use crate::model::LinearModel;
 use crate::road::Road;
 use nalgebra::{DMatrix, DVector};
@@ -78,7 +79,7 @@ fn sections() -> [Section; 4] {
 /// `|Wk|` at `f` Hz (ISO 2631-1 Annex A), -.
 pub fn wk_gain(f: f64) -> f64 {
     let p = C64::new(0.0, 2.0 * PI * f);
-    sections().iter().map(|s| s.at(p)).product::<C64>().norm()
+    math::cabs(sections().iter().map(|s| s.at(p)).product::<C64>())
 }
 
 /// A state-space realisation `(A, B, C, D)` of `Wk` (8 states; input and output m/s^2).
@@ -165,7 +166,7 @@ fn wk_partial_fractions() -> [(C64, C64); 8] {
     for (k, s) in secs.iter().enumerate() {
         let [a0, a1] = s.a;
         // Roots of p^2 + a1 p + a0 (complex pairs for every section of Annex A).
-        let disc = C64::new(a1 * a1 / 4.0 - a0, 0.0).sqrt();
+        let disc = math::csqrt(C64::new(a1 * a1 / 4.0 - a0, 0.0));
         let roots = [-a1 / 2.0 + disc, -a1 / 2.0 - disc];
         for (r, &mu) in roots.iter().enumerate() {
             let other = roots[1 - r];
@@ -214,7 +215,7 @@ pub fn bacc_wk_modal(model: &LinearModel, road: &Road) -> Result<f64> {
         let scale = rho
             .iter()
             .flat_map(|r| r[0].iter())
-            .map(|r| r.norm())
+            .map(|r| math::cabs(*r))
             .fold(0.0, f64::max);
         // Residues of the weighted transfer per group, on `poles`.
         let mut res: Vec<Vec<C64>> = Vec::with_capacity(groups.len());
@@ -236,7 +237,7 @@ pub fn bacc_wk_modal(model: &LinearModel, road: &Road) -> Result<f64> {
                 .collect();
             let direct = wk_at(s0) * t_over_s(s0);
             let modal: C64 = rg.iter().zip(&poles).map(|(&r, &p)| r / (s0 - p)).sum();
-            if (direct - modal).norm() > 1e-9 * direct.norm().max(1e-300) {
+            if math::cabs(direct - modal) > 1e-9 * math::cabs(direct).max(1e-300) {
                 return Err(RideError::ModalInapplicable(
                     "weighted expansion check failed".into(),
                 ));
@@ -247,7 +248,7 @@ pub fn bacc_wk_modal(model: &LinearModel, road: &Road) -> Result<f64> {
             for (li, l) in groups.iter().enumerate().take(gi + 1) {
                 let dt = g.tau - l.tau;
                 let (rg, rl) = (&res[gi], &res[li]);
-                let rle: Vec<C64> = (0..np).map(|m| rl[m] * (poles[m] * dt).exp()).collect();
+                let rle: Vec<C64> = (0..np).map(|m| rl[m] * math::cexp(poles[m] * dt)).collect();
                 let mut t = C64::new(0.0, 0.0);
                 for k in 0..np {
                     let row = &inv_sum[k * np..(k + 1) * np];

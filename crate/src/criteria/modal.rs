@@ -31,6 +31,7 @@ use super::exact::{check_stationary, rms_of};
 use super::hqr;
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
+use crate::math;
 use crate::model::{LinearModel, N_OUT};
 use crate::road::Road;
 use nalgebra::{DMatrix, DVector};
@@ -65,7 +66,7 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
         for (gi, g) in groups.iter().enumerate() {
             for (li, l) in groups.iter().enumerate().take(gi + 1) {
                 let dt = g.tau - l.tau;
-                let e: Vec<C64> = lam.iter().map(|&lm| (lm * dt).exp()).collect();
+                let e: Vec<C64> = lam.iter().map(|&lm| math::cexp(lm * dt)).collect();
                 for (o, vo) in var.iter_mut().enumerate() {
                     let (rg, rl) = (&rho[gi][o], &rho[li][o]);
                     let rle: Vec<C64> = (0..ns).map(|m| rl[m] * e[m]).collect();
@@ -166,7 +167,7 @@ pub(super) fn expand(model: &LinearModel, road: &Road) -> Result<Expansion> {
     let mut phi: Vec<Vec<C64>> = Vec::with_capacity(ns);
     let mut norm: Vec<C64> = Vec::with_capacity(ns);
     for &l in &lam {
-        let shift = l + C64::new(1e-12, 1e-12) * l.norm();
+        let shift = l + C64::new(1e-12, 1e-12) * math::cabs(l);
         let mut x = DVector::<C64>::from_fn(n, |i, _| {
             C64::new(1.0 + 0.1 * i as f64, 0.3 - 0.05 * i as f64)
         });
@@ -241,7 +242,7 @@ pub(super) fn expand(model: &LinearModel, road: &Road) -> Result<Expansion> {
                 let direct = ((0..n).map(|i| r0[i] * x[i]).sum::<C64>() + g.yr[o]) / s0;
                 let modal: C64 =
                     (0..ns).map(|k| rho[gi][o][k] / (s0 - lam[k])).sum::<C64>() + g.g[o] / s0;
-                if (direct - modal).norm() > 1e-7 * direct.norm().max(1e-300) + 1e-300 {
+                if math::cabs(direct - modal) > 1e-7 * math::cabs(direct).max(1e-300) + 1e-300 {
                     return Err(RideError::ModalInapplicable(
                         "expansion check failed".into(),
                     ));

@@ -3,6 +3,7 @@
 //! coefficients are all positive (a stable characteristic polynomial).
 
 use super::hqr;
+use crate::math;
 use num_complex::Complex64 as C64;
 
 /// Most coordinates of a polynomial matrix (the symmetric half car has 4).
@@ -214,7 +215,7 @@ fn companion_roots(d: &[f64]) -> Option<Roots> {
     }
     // Companion matrix of the monic polynomial in x = s / omega0: first row
     // -d_i omega0^i / (d_deg omega0^deg), i = deg-1 .. 0, ones below the diagonal.
-    let omega0 = (d[0] / d[deg]).powf(1.0 / deg as f64);
+    let omega0 = math::powf(d[0] / d[deg], 1.0 / deg as f64);
     let mut a = [0.0; MAX_ROOTS * MAX_ROOTS];
     let mut pw = 1.0;
     for i in 0..deg {

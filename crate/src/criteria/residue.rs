@@ -67,6 +67,7 @@ use super::poly::{adjugate, l1, minor_det, recip, roots, value_and_slope, Poly, 
 use super::poly::{Roots, MAX_N, MAX_ROOTS};
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
+use crate::math;
 use crate::model::{LinearModel, N_OUT};
 use crate::road::Road;
 use nalgebra::DMatrix;
@@ -584,8 +585,8 @@ impl ResidueFamily {
                 for l in 0..g {
                     let dt = groups[g].tau - groups[l].tau;
                     for k in 0..NP {
-                        let (sin, cos) = (p.lam.im[k] * dt).sin_cos();
-                        let mag = (p.lam.re[k] * dt).exp();
+                        let (sin, cos) = math::sin_cos(p.lam.im[k] * dt);
+                        let mag = math::exp(p.lam.re[k] * dt);
                         ex[g][l].re[k] = mag * cos;
                         ex[g][l].im[k] = mag * sin;
                     }

@@ -16,6 +16,7 @@
 
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
+use crate::math;
 use crate::model::{Excitation, LinearModel, N_OUT};
 use crate::road::Road;
 use num_complex::Complex64 as C64;
@@ -100,7 +101,7 @@ impl<'a> Spectrum<'a> {
         let mut f = [C64::new(0.0, 0.0); 16];
         let mut yr = [C64::new(0.0, 0.0); N_OUT];
         for &(j, tau) in &self.exc.sources[s].channels {
-            let ph = C64::from_polar(1.0, -omega * tau);
+            let ph = math::cpolar(1.0, -omega * tau);
             for (i, fi) in f.iter_mut().enumerate().take(n) {
                 *fi += (md.kr[(i, j)] + iw * md.cr[(i, j)]) * ph;
             }
@@ -218,7 +219,7 @@ impl<'a> Spectrum<'a> {
     ) -> (f64, f64) {
         let q = adaptive_gk15(
             |th| {
-                let t = th.tan();
+                let t = math::tan(th);
                 let w = weight(FC * t);
                 let p = self.mapped_psd(th)[output] * w * w;
                 std::array::from_fn(|o| if o == 0 { p } else { 0.0 })
@@ -232,7 +233,7 @@ impl<'a> Spectrum<'a> {
 
     /// The PSDs times the Jacobian of `f = FC tan(theta)`.
     fn mapped_psd(&self, th: f64) -> [f64; N_OUT] {
-        let t = th.tan();
+        let t = math::tan(th);
         let jac = FC * (1.0 + t * t);
         self.psd(FC * t).map(|p| p * jac)
     }
@@ -242,7 +243,7 @@ fn theta(f: f64) -> f64 {
     if f.is_infinite() {
         PI / 2.0
     } else {
-        (f / FC).atan()
+        math::atan(f / FC)
     }
 }
 
@@ -279,7 +280,7 @@ fn warp_unbounded(sp: &Spectrum) -> bool {
         let t = sp.displacement_transfer(s, w);
         let big = sp.displacement_transfer(s, 2.0 * PI * 10.0);
         // |T(w)| stays O(1) instead of O(w) when the static gain is non-zero.
-        (0..N_OUT).any(|o| t[o].norm() > 1e-4 * big[o].norm().max(1e-300))
+        (0..N_OUT).any(|o| math::cabs(t[o]) > 1e-4 * math::cabs(big[o]).max(1e-300))
     })
 }
 
@@ -287,7 +288,7 @@ fn warp_unbounded(sp: &Spectrum) -> bool {
 fn solve_small(a: &mut [[C64; 3]; 3], b: &mut [C64; 3], n: usize) -> [C64; 3] {
     for k in 0..n {
         let p = (k..n)
-            .max_by(|&i, &j| a[i][k].norm().total_cmp(&a[j][k].norm()))
+            .max_by(|&i, &j| math::cabs(a[i][k]).total_cmp(&math::cabs(a[j][k])))
             .unwrap_or(k);
         a.swap(k, p);
         b.swap(k, p);

@@ -8,6 +8,7 @@ use crate::comfort::Comfort;
 use crate::dos::DosContext;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
+use crate::math;
 use crate::optimize::EvaluatorSpec;
 use crate::optimize::{
     minmax::{normalised_distances, pick, pseudo_weights, recheck, PickRule, Recheck},
@@ -231,7 +232,7 @@ fn spectra_of(
         let h = sp.displacement_transfer(0, omega);
         let p = sp.psd(fi);
         for o in outputs.clone() {
-            out.frf[o].push(h[o].norm());
+            out.frf[o].push(math::cabs(h[o]));
             out.psd[o].push(p[o]);
         }
     }
@@ -298,7 +299,7 @@ pub fn spectra(s: &Scenario, fit: &FittedSurrogate, nfreq: usize) -> Result<Spec
         ));
     }
     let f: Vec<f64> = (0..nfreq)
-        .map(|i| 0.1 * 1000f64.powf(i as f64 / (nfreq - 1) as f64))
+        .map(|i| 0.1 * math::powf(1000f64, i as f64 / (nfreq - 1) as f64))
         .collect();
     let lofi = model_spectra(ModelKind::Quarter, s, &f)?;
     let (surrogate, surrogate_route) = surrogate_spectra(s, fit, &f, &lofi)?;

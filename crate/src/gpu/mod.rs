@@ -34,6 +34,7 @@ use crate::criteria::criteria_spectral;
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
 use crate::maps::Grid;
+use crate::math;
 use crate::model::{full_car, N_OUT};
 use crate::road::{Road, Tracks};
 use cell::{cell_variances, pack_half, pack_node, HALF_STRIDE};
@@ -170,7 +171,7 @@ pub fn pole_bands(car: &Car, grid: &Grid) -> Result<Vec<PoleBand>> {
             let near = b
                 .iter()
                 .min_by(|x, y| {
-                    let d = |p: &&(f64, f64)| (p.0 - re).hypot(p.1 - im);
+                    let d = |p: &&(f64, f64)| math::hypot(p.0 - re, p.1 - im);
                     d(x).total_cmp(&d(y))
                 })
                 .copied()

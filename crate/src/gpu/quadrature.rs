@@ -31,6 +31,7 @@
 //! The weights fold in `1 / w^2`, so a kernel only sums products.
 
 use crate::error::{Result, RideError};
+use crate::math;
 use num_complex::Complex64 as C64;
 use std::f64::consts::PI;
 
@@ -81,7 +82,7 @@ impl PoleBand {
         } else {
             0.0
         };
-        d.hypot(self.decay)
+        math::hypot(d, self.decay)
     }
 }
 
@@ -109,7 +110,7 @@ impl FrequencyRule {
         }
         let f_max = bands
             .iter()
-            .map(|b| b.hi.hypot(b.decay))
+            .map(|b| math::hypot(b.hi, b.decay))
             .fold(0.0, f64::max);
         let f_tail = (TAIL_FACTOR * f_max).max(TAIL_MIN_HZ);
         let nearest = |f: f64| {
@@ -156,12 +157,12 @@ impl FrequencyRule {
                     combined.push(Node {
                         omega,
                         weight: half * w[k] / (omega * omega),
-                        cross: C64::from_polar(1.0, -omega * tau),
+                        cross: math::cpolar(1.0, -omega * tau),
                     });
                 }
             } else {
                 let c = filon_weights(&x, &w, kappa);
-                let shift = C64::from_polar(half, beta * mid);
+                let shift = math::cpolar(half, beta * mid);
                 for k in 0..NODES_PER_PANEL {
                     let f = mid + half * x[k];
                     let omega = 2.0 * PI * f;
@@ -210,7 +211,7 @@ pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
     let mut w = vec![0.0; n];
     let nf = n as f64;
     for i in 0..n.div_ceil(2) {
-        let mut z = (PI * (i as f64 + 0.75) / (nf + 0.5)).cos();
+        let mut z = math::cos(PI * (i as f64 + 0.75) / (nf + 0.5));
         let mut dp = 1.0;
         for _ in 0..100 {
             let (p, d) = legendre_and_derivative(n, z);
@@ -286,7 +287,7 @@ pub fn spherical_bessel(n: usize, x: f64) -> Vec<f64> {
             *jl = lead * sum;
         }
     } else {
-        let (s, c) = x.sin_cos();
+        let (s, c) = math::sin_cos(x);
         j[0] = s / x;
         if n > 1 {
             j[1] = s / (x * x) - c / x;

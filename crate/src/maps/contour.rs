@@ -17,6 +17,7 @@
 
 use super::grid::Grid;
 use crate::error::{Result, RideError};
+use crate::math;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
@@ -76,7 +77,7 @@ pub fn nice_levels(min: f64, max: f64, target: usize) -> Vec<f64> {
     if target == 0 || !(min.is_finite() && max.is_finite()) || max <= min {
         return Vec::new();
     }
-    let e0 = ((max - min) / target as f64).log10().floor() as i32 - 1;
+    let e0 = math::log10((max - min) / target as f64).floor() as i32 - 1;
     for e in e0..e0 + 4 {
         for m in [1.0, 2.0, 2.5, 5.0] {
             // k m 10^e, rounded once (a negative power of ten is not exact).

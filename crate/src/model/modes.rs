@@ -4,6 +4,7 @@
 
 use super::LinearModel;
 use crate::error::{Result, RideError};
+use crate::math;
 use nalgebra::DMatrix;
 use num_complex::Complex64 as C64;
 use serde::Serialize;
@@ -42,7 +43,7 @@ pub fn modes(model: &LinearModel) -> Result<Vec<Mode>> {
     let ac: DMatrix<C64> = ss.a.map(|v| C64::new(v, 0.0));
     let mut roots: Vec<(C64, Vec<C64>, Vec<f64>)> = Vec::new();
     for lam in eig.iter() {
-        if lam.im < -1e-12 * lam.norm() {
+        if lam.im < -1e-12 * math::cabs(*lam) {
             continue; // the conjugate of a pair already listed
         }
         if lam.re.is_nan() || lam.re >= 0.0 {
@@ -55,7 +56,7 @@ pub fn modes(model: &LinearModel) -> Result<Vec<Mode>> {
         roots.push((*lam, shape, share));
     }
     let oscillatory: Vec<usize> = (0..roots.len())
-        .filter(|&k| roots[k].0.im > 1e-12 * roots[k].0.norm())
+        .filter(|&k| roots[k].0.im > 1e-12 * math::cabs(roots[k].0))
         .collect();
     let shares: Vec<&[f64]> = oscillatory.iter().map(|&k| &roots[k].2[..]).collect();
     let mut coordinate: Vec<usize> = roots.iter().map(|r| dominant(&r.2)).collect();
@@ -66,7 +67,7 @@ pub fn modes(model: &LinearModel) -> Result<Vec<Mode>> {
         .iter()
         .zip(coordinate)
         .map(|((lam, shape, _), j)| {
-            let wn = lam.norm();
+            let wn = math::cabs(*lam);
             Mode {
                 frequency: wn / (2.0 * PI),
                 damped_frequency: lam.im.abs() / (2.0 * PI),
@@ -175,7 +176,7 @@ fn label_of(model: &LinearModel, shape: &[C64], dom: usize) -> String {
         return name.to_string();
     };
     let ratio = shape[mirror] / shape[dom];
-    if ratio.norm() < 0.5 {
+    if math::cabs(ratio) < 0.5 {
         return name.to_string();
     }
     let base = name.trim_end_matches(side).trim_end_matches('-');

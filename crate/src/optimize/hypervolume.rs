@@ -2,6 +2,7 @@
 //! and the distance between a front and a reference front.
 
 use super::problem::non_dominated;
+use crate::math;
 use serde::Serialize;
 
 /// Exact hypervolume (minimisation) of `points` against `reference`: the area of
@@ -106,7 +107,7 @@ fn mean_max_nearest(from: &[[f64; 2]], to: &[[f64; 2]]) -> (f64, f64) {
     for p in from {
         let d = to
             .iter()
-            .map(|q| (p[0] - q[0]).hypot(p[1] - q[1]))
+            .map(|q| math::hypot(p[0] - q[0], p[1] - q[1]))
             .fold(f64::INFINITY, f64::min);
         sum += d;
         max = max.max(d);

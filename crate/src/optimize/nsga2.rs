@@ -7,6 +7,7 @@
 
 use super::problem::{check_bounds, dominates, feasible_front, Eval, Problem, Solution};
 use crate::error::{Result, RideError};
+use crate::math;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
@@ -316,11 +317,11 @@ fn sbx(
         let (y1, y2) = (a[i].min(b[i]), a[i].max(b[i]));
         let u: f64 = rng.random();
         let beta_q = |beta: f64| {
-            let alpha = 2.0 - beta.powf(-(eta + 1.0));
+            let alpha = 2.0 - math::powf(beta, -(eta + 1.0));
             if u <= 1.0 / alpha {
-                (u * alpha).powf(1.0 / (eta + 1.0))
+                math::powf(u * alpha, 1.0 / (eta + 1.0))
             } else {
-                (1.0 / (2.0 - u * alpha)).powf(1.0 / (eta + 1.0))
+                math::powf(1.0 / (2.0 - u * alpha), 1.0 / (eta + 1.0))
             }
         };
         let lower = 0.5 * ((y1 + y2) - beta_q(1.0 + 2.0 * (y1 - lo) / (y2 - y1)) * (y2 - y1));
@@ -348,10 +349,13 @@ fn mutate(x: &mut [f64], bounds: &[(f64, f64)], pm: f64, eta: f64, rng: &mut Cha
         let power = 1.0 / (eta + 1.0);
         let delta_q = if u < 0.5 {
             let xy = 1.0 - (*xi - lo) / span;
-            (2.0 * u + (1.0 - 2.0 * u) * xy.powf(eta + 1.0)).powf(power) - 1.0
+            math::powf(2.0 * u + (1.0 - 2.0 * u) * math::powf(xy, eta + 1.0), power) - 1.0
         } else {
             let xy = 1.0 - (hi - *xi) / span;
-            1.0 - (2.0 * (1.0 - u) + 2.0 * (u - 0.5) * xy.powf(eta + 1.0)).powf(power)
+            1.0 - math::powf(
+                2.0 * (1.0 - u) + 2.0 * (u - 0.5) * math::powf(xy, eta + 1.0),
+                power,
+            )
         };
         *xi = (*xi + delta_q * span).clamp(lo, hi);
     }

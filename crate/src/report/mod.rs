@@ -37,6 +37,7 @@ use crate::dos::DesignObjectives;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::maps::{map_report, Grid, MapReport, MapSettings};
+use crate::math;
 use crate::model::Mode;
 use crate::optimize::{
     front_distance, optimize_report, EvaluatorSpec, FrontDistance, Method, Nsga2Params,
@@ -650,7 +651,7 @@ fn verify(car: &Car, road: &Road, seed: u64) -> Result<Verification> {
         })
         .collect::<Result<Vec<_>>>()?;
     let f: Vec<f64> = (0..121)
-        .map(|i| 0.1 * 1000f64.powf(i as f64 / 120.0))
+        .map(|i| 0.1 * math::powf(1000f64, i as f64 / 120.0))
         .collect();
     let frf = |model: &crate::model::LinearModel| -> Result<[Vec<f64>; 3]> {
         let sp = Spectrum::new(model, road)?;
@@ -658,7 +659,7 @@ fn verify(car: &Car, road: &Road, seed: u64) -> Result<Verification> {
         for &fi in &f {
             let h = sp.displacement_transfer(0, 2.0 * std::f64::consts::PI * fi);
             for k in 0..3 {
-                out[k].push(h[k].norm());
+                out[k].push(math::cabs(h[k]));
             }
         }
         Ok(out)

@@ -13,6 +13,7 @@
 use super::profile::Profile;
 use super::welch::{band_means, welch};
 use crate::error::{Result, RideError};
+use crate::math;
 use crate::road::{RoadClass, N0, N_MIN};
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -202,7 +203,7 @@ pub(super) fn iso_fit(n: &[f64], gd: &[f64], band: [f64; 2]) -> Result<IsoFit> {
     let pts: Vec<(f64, f64)> = band_means(n, gd, band[0], band[1], BANDS_PER_OCTAVE, 1)
         .into_iter()
         .filter(|(_, g)| *g > 0.0)
-        .map(|(x, g)| ((x / N0).log10(), g.log10()))
+        .map(|(x, g)| (math::log10(x / N0), math::log10(g)))
         .collect();
     if pts.len() < 3 {
         return Err(RideError::field(
@@ -223,7 +224,7 @@ pub(super) fn iso_fit(n: &[f64], gd: &[f64], band: [f64; 2]) -> Result<IsoFit> {
         .sum::<f64>()
         / m)
         .sqrt();
-    let gd_n0 = 10f64.powf(a);
+    let gd_n0 = math::powf(10f64, a);
     Ok(IsoFit {
         class: class_of(gd_n0),
         gd_n0,
@@ -235,7 +236,9 @@ pub(super) fn iso_fit(n: &[f64], gd: &[f64], band: [f64; 2]) -> Result<IsoFit> {
 
 /// The ISO 8608 class whose centre `16e-6 4^k` is nearest to `gd_n0` in log.
 pub fn class_of(gd_n0: f64) -> RoadClass {
-    let k = ((gd_n0 / 16e-6).ln() / 4f64.ln()).round().clamp(0.0, 7.0) as usize;
+    let k = (math::ln(gd_n0 / 16e-6) / math::ln(4f64))
+        .round()
+        .clamp(0.0, 7.0) as usize;
     RoadClass::ALL[k]
 }
 

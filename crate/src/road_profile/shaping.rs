@@ -38,6 +38,7 @@
 
 use super::welch::{band_means, band_ranges};
 use crate::error::{Result, RideError};
+use crate::math;
 use crate::road::N0;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra::{storage::Owned, DMatrix, DVector, Dyn};
@@ -106,7 +107,7 @@ impl Extension {
             let inv = |x: f64| if x.is_infinite() { 0.0 } else { 1.0 / (x * x) };
             (inv(fa) + inv(fc)) / (inv(f) + inv(fc))
         };
-        self.level * ratio.powf(0.5 * self.slope)
+        self.level * math::powf(ratio, 0.5 * self.slope)
     }
 
     /// The constant `Gv` far beyond the corner.
@@ -155,18 +156,18 @@ impl VelocityPsd {
     /// exactly white for `w = 2`.
     pub fn iso(gd_n0: f64, waviness: f64, speed: f64, band: [f64; 2]) -> VelocityPsd {
         let gv = |f: f64| {
-            (2.0 * PI * N0).powi(2) * gd_n0 * speed * (f / (N0 * speed)).powf(2.0 - waviness)
+            (2.0 * PI * N0).powi(2) * gd_n0 * speed * math::powf(f / (N0 * speed), 2.0 - waviness)
         };
         if waviness == 2.0 {
             return VelocityPsd::white(gv(1.0), band);
         }
-        let decades = (band[1] / band[0]).log10();
+        let decades = math::log10(band[1] / band[0]);
         let m = (decades * ISO_PER_DECADE).ceil().max(1.0) as usize;
         let f: Vec<f64> = (0..=m)
-            .map(|i| band[0] * (band[1] / band[0]).powf(i as f64 / m as f64))
+            .map(|i| band[0] * math::powf(band[1] / band[0], i as f64 / m as f64))
             .collect();
         let g: Vec<f64> = f.iter().map(|&x| gv(x)).collect();
-        let out = 2f64.powf(EXTENSION_SLOPE_OCTAVES);
+        let out = math::powf(2f64, EXTENSION_SLOPE_OCTAVES);
         VelocityPsd {
             below: Extension {
                 anchor_hz: band[0],
@@ -214,7 +215,7 @@ impl VelocityPsd {
         }
         let last = f[f.len() - 1];
         let target = band_means(&f, &g, f[0], last, TARGET_PER_OCTAVE, TARGET_MIN_BINS);
-        let out = 2f64.powf(EXTENSION_SLOPE_OCTAVES);
+        let out = math::powf(2f64, EXTENSION_SLOPE_OCTAVES);
         let (lo, hi) = (target[0], target[target.len() - 1]);
         let below = Extension {
             anchor_hz: lo.0,
@@ -267,14 +268,14 @@ impl VelocityPsd {
         let k = self.f.partition_point(|&x| x <= f).clamp(1, m - 1);
         let (f0, f1) = (self.f[k - 1], self.f[k]);
         let (g0, g1) = (self.gv[k - 1], self.gv[k]);
-        let t = (f / f0).ln() / (f1 / f0).ln();
-        g0 * (g1 / g0).powf(t)
+        let t = math::ln(f / f0) / math::ln(f1 / f0);
+        g0 * math::powf(g1 / g0, t)
     }
 
     /// The points the filter is fitted to and judged on, `(f Hz, Gv, in band)`, with
     /// `f = 0` and `f = infinity` for the asymptotes.
     fn fit_points(&self) -> Vec<(f64, f64, bool)> {
-        let step = 2f64.powf(1.0 / TARGET_PER_OCTAVE);
+        let step = math::powf(2f64, 1.0 / TARGET_PER_OCTAVE);
         let count = (EXTENSION_OCTAVES * TARGET_PER_OCTAVE) as i32;
         let mut pts = vec![(0.0, self.below.asymptote(true), false)];
         let lo = self.target.first().map_or(self.band[0], |t| t.0);
@@ -296,7 +297,7 @@ impl VelocityPsd {
 /// Least-squares log-log slope of `(f, Gv)` points, clamped to [-2, 2] (0 for fewer
 /// than two points).
 fn end_slope<'a>(pts: impl Iterator<Item = &'a (f64, f64)>) -> f64 {
-    let p: Vec<(f64, f64)> = pts.map(|(f, g)| (f.ln(), g.ln())).collect();
+    let p: Vec<(f64, f64)> = pts.map(|(f, g)| (math::ln(*f), math::ln(*g))).collect();
     if p.len() < 2 {
         return 0.0;
     }
@@ -430,12 +431,12 @@ impl ShapingFilter {
 fn fit_order(psd: &VelocityPsd, pts: &[(f64, f64, bool)], m: usize) -> Option<ShapingFilter> {
     let band = psd.band;
     let (wa, wb) = (2.0 * PI * band[0], 2.0 * PI * band[1]);
-    let out = 2f64.powf(EXTENSION_SLOPE_OCTAVES);
+    let out = math::powf(2f64, EXTENSION_SLOPE_OCTAVES);
     let inner: Vec<(f64, f64)> = pts.iter().filter(|p| p.2).map(|p| (p.0, p.1)).collect();
     let slope = end_slope(inner.iter());
     let starts = [
-        (wa.ln(), wb.ln(), 0.5),
-        ((wa / out).ln(), (wb * out).ln(), 0.5),
+        (math::ln(wa), math::ln(wb), 0.5),
+        (math::ln(wa / out), math::ln(wb * out), 0.5),
     ];
     starts
         .iter()
@@ -475,10 +476,10 @@ fn fit_from(
     let mut problem = FitProblem {
         pts: pts
             .iter()
-            .map(|&(f, g, _)| (2.0 * PI * f, g.ln()))
+            .map(|&(f, g, _)| (2.0 * PI * f, math::ln(g)))
             .collect(),
         m,
-        bounds: ((wa / 100.0).ln(), (wb * 100.0).ln()),
+        bounds: (math::ln(wa / 100.0), math::ln(wb * 100.0)),
         theta: DVector::from_vec(theta),
     };
     // Gain: match the mean level in log.
@@ -496,11 +497,11 @@ fn fit_from(
         return None;
     }
     let mut pairs: Vec<(f64, f64)> = (0..m)
-        .map(|i| (th[1 + i].exp(), th[1 + m + i].exp()))
+        .map(|i| (math::exp(th[1 + i]), math::exp(th[1 + m + i])))
         .collect();
     pairs.sort_by(|a, b| a.1.total_cmp(&b.1));
     let mut f = ShapingFilter {
-        gain: th[0].exp(),
+        gain: math::exp(th[0]),
         zeros: pairs.iter().map(|p| p.0).collect(),
         poles: pairs.iter().map(|p| p.1).collect(),
         max_error: 0.0,
@@ -544,7 +545,7 @@ impl FitProblem {
         let m = self.m;
         let mut r = DVector::zeros(self.pts.len() + 2 * m);
         for (k, &(w, lg)) in self.pts.iter().enumerate() {
-            let mut v = 2.0f64.ln() + 2.0 * th[0];
+            let mut v = math::ln(2.0f64) + 2.0 * th[0];
             for i in 0..m {
                 v += log_section(w, th[1 + i]) - log_section(w, th[1 + m + i]);
             }
@@ -568,12 +569,12 @@ fn log_section(w: f64, t: f64) -> f64 {
     } else if w.is_infinite() {
         0.0
     } else {
-        let x = 2.0 * (t - w.ln());
+        let x = 2.0 * (t - math::ln(w));
         // ln(1 + e^x), stable for large |x|.
         if x > 30.0 {
             x
         } else {
-            x.exp().ln_1p()
+            math::ln_1p(math::exp(x))
         }
     }
 }
@@ -585,8 +586,8 @@ fn d_log_section(w: f64, t: f64) -> f64 {
     } else if w.is_infinite() {
         0.0
     } else {
-        let x = 2.0 * (t - w.ln());
-        2.0 / (1.0 + (-x).exp())
+        let x = 2.0 * (t - math::ln(w));
+        2.0 / (1.0 + math::exp(-x))
     }
 }
 

@@ -19,6 +19,7 @@ use super::shaped::ShapedRoad;
 use crate::criteria::SpectralCriteria;
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
+use crate::math;
 use crate::model::{LinearModel, N_OUT};
 use crate::road::N_MIN;
 use nalgebra::DMatrix;
@@ -169,7 +170,7 @@ impl<'a> ShapedSpectrum<'a> {
             .map(|ch| {
                 let mut s = [C64::new(0.0, 0.0); N_OUT];
                 for &(j, w, tau) in ch {
-                    let ph = C64::from_polar(w, -omega * tau);
+                    let ph = math::cpolar(w, -omega * tau);
                     for o in 0..N_OUT {
                         s[o] += t[j][o] * ph;
                     }
@@ -219,13 +220,13 @@ impl<'a> ShapedSpectrum<'a> {
 
     /// RMS criteria over `[f_lo, infinity)` to relative tolerance `rtol` on the variance.
     pub fn rms(&self, f_lo: f64, rtol: f64) -> SpectralCriteria {
-        let th_lo = (f_lo / FC).atan();
+        let th_lo = math::atan(f_lo / FC);
         let mut edges: Vec<f64> = self
             .source_of
             .iter()
             .flat_map(|&s| self.road.sources[s].psd.f.iter().copied())
             .filter(|&f| f > f_lo)
-            .map(|f| (f / FC).atan())
+            .map(|f| math::atan(f / FC))
             .collect();
         edges.push(th_lo);
         edges.push(PI / 2.0);
@@ -254,7 +255,7 @@ impl<'a> ShapedSpectrum<'a> {
     }
 
     fn mapped_psd(&self, th: f64) -> [f64; N_OUT] {
-        let t = th.tan();
+        let t = math::tan(th);
         let jac = FC * (1.0 + t * t);
         self.psd(FC * t).map(|p| p * jac)
     }
@@ -282,10 +283,10 @@ pub fn criteria_shaped_spectral(
 /// Gaussian elimination with partial pivoting for `n <= 3` unknowns; `None` if singular.
 fn solve_small(mut a: [[C64; 3]; 3], mut b: [C64; 3], n: usize) -> Option<[C64; 3]> {
     for k in 0..n {
-        let p = (k..n).max_by(|&i, &j| a[i][k].norm().total_cmp(&a[j][k].norm()))?;
+        let p = (k..n).max_by(|&i, &j| math::cabs(a[i][k]).total_cmp(&math::cabs(a[j][k])))?;
         a.swap(k, p);
         b.swap(k, p);
-        if a[k][k].norm() == 0.0 {
+        if math::cabs(a[k][k]) == 0.0 {
             return None;
         }
         let inv = a[k][k].inv();

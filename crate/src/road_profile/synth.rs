@@ -20,6 +20,7 @@
 
 use super::profile::{Profile, MAX_SAMPLES, MAX_SPACING, MIN_SAMPLES, MIN_SPACING};
 use crate::error::{Result, RideError};
+use crate::math;
 use crate::road::{RoadClass, N0, N_MIN};
 use num_complex::Complex64 as C64;
 use rand::{Rng, SeedableRng};
@@ -145,7 +146,7 @@ impl Synthesis {
 
     /// The PSD realised, `Gd(n) = Gd(n0) (n / n0)^-w`, m^3 (before slabs).
     pub fn gd(&self, n: f64) -> f64 {
-        self.gd_n0 * (n / N0).powf(-self.waviness)
+        self.gd_n0 * math::powf(n / N0, -self.waviness)
     }
 }
 
@@ -195,7 +196,7 @@ pub fn synthesize(s: &Synthesis) -> Result<Profile> {
     let dn = 1.0 / (n as f64 * s.spacing);
     let mut rng = ChaCha8Rng::seed_from_u64(s.seed);
     // The sum and difference tracks' shares of the PSD, by the coherence (1 without).
-    let coh = |k: f64| s.coherence_n.map_or(1.0, |nc| (-k / nc).exp());
+    let coh = |k: f64| s.coherence_n.map_or(1.0, |nc| math::exp(-k / nc));
     let sum = realise(n, dn, s, &|k| 0.5 * (1.0 + coh(k)), &mut rng);
     let diff = s
         .coherence_n
@@ -236,7 +237,7 @@ fn realise(
             continue;
         }
         let amp = (2.0 * s.gd(nk) * share(nk) * dn).sqrt();
-        let z = C64::from_polar(0.5 * amp, ph);
+        let z = math::cpolar(0.5 * amp, ph);
         spec[k] = z;
         spec[n - k] = z.conj();
     }
@@ -267,7 +268,7 @@ fn slabs(n: usize, dx: f64, sl: &Slabs, rng: &mut ChaCha8Rng) -> Vec<f64> {
 fn standard_normal(rng: &mut ChaCha8Rng) -> f64 {
     let u1: f64 = 1.0 - rng.random::<f64>(); // (0, 1]
     let u2: f64 = rng.random();
-    (-2.0 * u1.ln()).sqrt() * (2.0 * PI * u2).cos()
+    (-2.0 * math::ln(u1)).sqrt() * math::cos(2.0 * PI * u2)
 }
 
 #[cfg(test)]

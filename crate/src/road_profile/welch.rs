@@ -19,6 +19,7 @@
 //! `sum_j P_xx(n_j) dn` is the variance of the (detrended) record.
 
 use super::{BAND_HZ, LOWEST_BIN, SEGMENT_DIVISOR};
+use crate::math;
 use num_complex::Complex64 as C64;
 use rustfft::FftPlanner;
 
@@ -98,7 +99,7 @@ pub fn welch(x: &[f64], y: Option<&[f64]>, dx: f64, seg: usize) -> Spectra {
     let k = (n - seg) / hop + 1;
     let offset = (n - seg - (k - 1) * hop) / 2;
     let window: Vec<f64> = (0..seg)
-        .map(|i| 0.5 * (1.0 - (2.0 * std::f64::consts::PI * i as f64 / seg as f64).cos()))
+        .map(|i| 0.5 * (1.0 - math::cos(2.0 * std::f64::consts::PI * i as f64 / seg as f64)))
         .collect();
     let u: f64 = window.iter().map(|w| w * w).sum();
     let fft = FftPlanner::new().plan_fft_forward(seg);
@@ -127,7 +128,7 @@ pub fn welch(x: &[f64], y: Option<&[f64]>, dx: f64, seg: usize) -> Spectra {
     }
     let scale = |j: usize| {
         let fold = if 2 * j == seg { 1.0 } else { 2.0 };
-        let d = 2.0 * (std::f64::consts::PI * j as f64 / seg as f64).sin() / dx;
+        let d = 2.0 * math::sin(std::f64::consts::PI * j as f64 / seg as f64) / dx;
         fold * dx / (u * k as f64 * d * d)
     };
     let nj: Vec<f64> = (1..=half).map(|j| j as f64 / (seg as f64 * dx)).collect();
@@ -182,7 +183,7 @@ pub fn band_ranges(
     per_octave: f64,
     min_bins: usize,
 ) -> Vec<(usize, usize)> {
-    let ratio = 2f64.powf(1.0 / per_octave);
+    let ratio = math::powf(2f64, 1.0 / per_octave);
     let first = x.partition_point(|&v| v < lo);
     let last = x.partition_point(|&v| v <= hi);
     let mut out = Vec::new();
@@ -222,9 +223,9 @@ pub fn band_means(
         .into_iter()
         .map(|(i, j)| {
             let count = (j - i) as f64;
-            let lx = x[i..j].iter().map(|v| v.ln()).sum::<f64>() / count;
+            let lx = x[i..j].iter().map(|v| math::ln(*v)).sum::<f64>() / count;
             let mp = p[i..j].iter().sum::<f64>() / count;
-            (lx.exp(), mp)
+            (math::exp(lx), mp)
         })
         .collect()
 }

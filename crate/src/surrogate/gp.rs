@@ -22,6 +22,7 @@ use crate::analysis::LoFi;
 use crate::design::DesignBox;
 use crate::error::Result;
 use crate::evaluate::{Criteria, Evaluator, CRITERIA_NAMES};
+use crate::math;
 
 /// Fewest samples of a GP correction: a mean and a variance are estimated per criterion,
 /// and leave-one-out needs one more.
@@ -59,7 +60,7 @@ impl SurrogateParams for GpParams {
             let (u, v) = setting.design_box.normalize(s.ks, s.cs);
             x.push([u, v]);
             for (k, yk) in y.iter_mut().enumerate() {
-                yk.push((s.hifi.to_array()[k] / lofi[k]).ln());
+                yk.push(math::ln(s.hifi.to_array()[k] / lofi[k]));
             }
         }
         let models = y
@@ -109,7 +110,7 @@ impl Evaluator for Gp {
         let lofi = self.lofi.evaluate(ks, cs)?.to_array();
         let (u, v) = self.design_box.normalize(ks, cs);
         Ok(Criteria::from_array(std::array::from_fn(|k| {
-            lofi[k] * self.models[k].mean(u, v).exp()
+            lofi[k] * math::exp(self.models[k].mean(u, v))
         })))
     }
 

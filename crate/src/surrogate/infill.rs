@@ -49,6 +49,7 @@ use crate::design::DesignBox;
 use crate::dos::{DesignObjectives, DosContext, Objective};
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
+use crate::math;
 use crate::optimize::{non_dominated, FrontPoint};
 use serde::{Deserialize, Serialize};
 
@@ -103,7 +104,7 @@ pub fn normal_cdf(z: f64) -> f64 {
 
 /// The standard normal density `phi(z) = exp(-z^2 / 2) / sqrt(2 pi)`.
 pub fn normal_pdf(z: f64) -> f64 {
-    (-0.5 * z * z).exp() / (2.0 * std::f64::consts::PI).sqrt()
+    math::exp(-0.5 * z * z) / (2.0 * std::f64::consts::PI).sqrt()
 }
 
 /// `psi(c) = E[(c - Y)^+]` for `Y ~ N(mu, s^2)` (module doc); `(c - mu)^+` when `s = 0`.
@@ -298,7 +299,7 @@ pub fn choose(
     for (u, v, on_front) in front.chain(grid) {
         let distance = taken
             .iter()
-            .map(|t| (u - t[0]).hypot(v - t[1]))
+            .map(|t| math::hypot(u - t[0], v - t[1]))
             .fold(f64::INFINITY, f64::min);
         if distance < set.min_distance {
             continue;

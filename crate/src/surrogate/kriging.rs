@@ -33,6 +33,7 @@
 //! nalgebra's Cholesky factorisation does the linear algebra.
 
 use crate::error::{Result, RideError};
+use crate::math;
 use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
 
 /// Nugget `nu` added to the diagonal of the correlation matrix (relative to `sigma^2`).
@@ -53,7 +54,7 @@ const SIGMA2_FLOOR: f64 = 1e-300;
 /// The correlation `exp(-theta_u (a_u - b_u)^2 - theta_v (a_v - b_v)^2)`.
 pub fn correlation(theta: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
     let (du, dv) = (a[0] - b[0], a[1] - b[1]);
-    (-theta[0] * du * du - theta[1] * dv * dv).exp()
+    math::exp(-theta[0] * du * du - theta[1] * dv * dv)
 }
 
 /// The correlation matrix `R_ij = R(x_i, x_j) + nu delta_ij` of the points `x`.
@@ -91,7 +92,9 @@ impl Kriging {
         let level = |i: usize| lo + (hi - lo) * i as f64 / (GRID_POINTS - 1) as f64;
         let mut best: Option<([f64; 2], Kriging)> = None;
         let consider = |t: [f64; 2], best: &mut Option<([f64; 2], Kriging)>| {
-            if let Some(k) = Kriging::fit_with(x, y, [10f64.powf(t[0]), 10f64.powf(t[1])]) {
+            if let Some(k) =
+                Kriging::fit_with(x, y, [math::powf(10f64, t[0]), math::powf(10f64, t[1])])
+            {
                 if best
                     .as_ref()
                     .is_none_or(|b| k.ln_likelihood > b.1.ln_likelihood)
@@ -146,8 +149,13 @@ impl Kriging {
         let resid = y.add_scalar(-mu);
         let alpha = chol.solve(&resid);
         let sigma2 = (resid.dot(&alpha) / n as f64).max(0.0);
-        let ln_det: f64 = chol.l_dirty().diagonal().iter().map(|d| 2.0 * d.ln()).sum();
-        let ln_likelihood = -0.5 * n as f64 * sigma2.max(SIGMA2_FLOOR).ln() - 0.5 * ln_det;
+        let ln_det: f64 = chol
+            .l_dirty()
+            .diagonal()
+            .iter()
+            .map(|d| 2.0 * math::ln(*d))
+            .sum();
+        let ln_likelihood = -0.5 * n as f64 * math::ln(sigma2.max(SIGMA2_FLOOR)) - 0.5 * ln_det;
         let finite = mu.is_finite()
             && one_r_inv_one > 0.0
             && ln_likelihood.is_finite()

@@ -12,6 +12,7 @@
 
 use super::Parameter;
 use crate::error::{Result, RideError};
+use crate::math;
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
@@ -56,9 +57,9 @@ impl Kernel {
     /// `phi(r)` with shape `e` (ignored by the thin-plate spline).
     fn phi(self, r: f64, e: f64) -> f64 {
         match self {
-            Kernel::Gauss => (-(e * r).powi(2)).exp(),
+            Kernel::Gauss => math::exp(-(e * r).powi(2)),
             Kernel::Multiquadric => (1.0 + (e * r).powi(2)).sqrt(),
-            Kernel::ThinPlate if r > 0.0 => r * r * r.ln(),
+            Kernel::ThinPlate if r > 0.0 => r * r * math::ln(r),
             Kernel::ThinPlate => 0.0,
         }
     }

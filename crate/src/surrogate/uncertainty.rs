@@ -45,6 +45,7 @@ use super::{Sample, Setting, Surrogate, SurrogateSpec};
 use crate::design::DesignBox;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
+use crate::math;
 use nalgebra::{Cholesky, DVector, Dyn};
 use serde::{Deserialize, Serialize};
 
@@ -212,7 +213,7 @@ impl LooField {
         let n = n as f64;
         let mut best: Option<(f64, f64, Cholesky<f64, Dyn>, Vec<[f64; 3]>)> = None;
         for step in 0..LOG10_THETA_STEPS {
-            let theta = 10f64.powf(3.0 * step as f64 / (LOG10_THETA_STEPS - 1) as f64);
+            let theta = math::powf(10f64, 3.0 * step as f64 / (LOG10_THETA_STEPS - 1) as f64);
             let Some(chol) = correlation_matrix([theta; 2], &x).cholesky() else {
                 continue;
             };
@@ -227,11 +228,11 @@ impl LooField {
                 .zip(&s2)
                 .map(|(e2, s2)| e2.map(|v| v / s2))
                 .collect();
-            let ln_s: f64 = s2.iter().map(|v| 0.5 * v.ln()).sum();
+            let ln_s: f64 = s2.iter().map(|v| 0.5 * math::ln(*v)).sum();
             let nlpl: f64 = (0..3)
                 .map(|k| {
                     let c2 = z2.iter().map(|z| z[k]).sum::<f64>() / n;
-                    ln_s + 0.5 * n * c2.max(Z2_FLOOR).ln()
+                    ln_s + 0.5 * n * math::ln(c2.max(Z2_FLOOR))
                 })
                 .sum();
             if nlpl.is_finite() && best.as_ref().is_none_or(|b| nlpl < b.0) {

@@ -25,6 +25,7 @@ pub use damper::{Damper, Knee, MAX_KNEE_VELOCITY};
 use crate::analysis::ModelKind;
 use crate::car::Car;
 use crate::error::{Result, RideError};
+use crate::math;
 use crate::model::{LinearModel, N_OUT};
 use crate::road::Road;
 use nalgebra::{DMatrix, DVector};
@@ -186,7 +187,7 @@ pub fn road_profile(
             continue;
         }
         let amp = (2.0 * road.displacement_psd(f) * df).sqrt();
-        let z = C64::from_polar(0.5 * amp, ph - 2.0 * PI * f * tau);
+        let z = math::cpolar(0.5 * amp, ph - 2.0 * PI * f * tau);
         spec[k] = z;
         spec[n - k] = z.conj();
     }
@@ -481,14 +482,14 @@ fn check_explicit_step(dynamics: &Dynamics, law: &Damper, h: f64) -> Result<()> 
     let fastest = a
         .complex_eigenvalues()
         .iter()
-        .map(|l| l.norm())
+        .map(|l| math::cabs(*l))
         .fold(0.0f64, f64::max);
     if fastest * h <= RK4_REACH {
         return Ok(());
     }
     let limit = RK4_REACH / fastest;
     // A round step below the limit: 1, 2 or 5 times a power of ten.
-    let decade = 10f64.powf(limit.log10().floor());
+    let decade = math::powf(10f64, math::log10(limit).floor());
     let suggest = [5.0, 2.0, 1.0]
         .into_iter()
         .map(|m| m * decade)

@@ -13,6 +13,7 @@ use crate::chart::marker::draw_marker;
 use crate::chart::Frame;
 use crate::error::Result;
 use crate::maps::{contour, nice_levels};
+use crate::math;
 use plotters::backend::DrawingBackend;
 use plotters::chart::ChartBuilder;
 use plotters::coord::Shift;
@@ -31,7 +32,7 @@ fn level_decimals(levels: &[f64]) -> usize {
     if !gap.is_finite() {
         return 2;
     }
-    (-(gap.log10().floor()) as i64).clamp(0, 6) as usize
+    (-(math::log10(gap).floor()) as i64).clamp(0, 6) as usize
 }
 
 /// `"25.00"` as `"25"`, `"0.50"` as `"0.5"`.
@@ -46,7 +47,7 @@ fn trim_zeros(s: String) -> String {
 /// Length of a polyline, px.
 fn path_length(p: &[(f64, f64)]) -> f64 {
     p.windows(2)
-        .map(|w| (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1))
+        .map(|w| math::hypot(w[1].0 - w[0].0, w[1].1 - w[0].1))
         .sum()
 }
 
@@ -54,7 +55,7 @@ fn path_length(p: &[(f64, f64)]) -> f64 {
 fn point_at_half(p: &[(f64, f64)]) -> (f64, f64) {
     let mut left = path_length(p) / 2.0;
     for w in p.windows(2) {
-        let d = (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1);
+        let d = math::hypot(w[1].0 - w[0].0, w[1].1 - w[0].1);
         if d >= left && d > 0.0 {
             let t = left / d;
             return (
