@@ -160,14 +160,14 @@ fn a_hifi_grid_says_which_path_drew_it() {
     let road = Road::default();
     let grid = Grid::over_box(&DesignBox::default(), 6, 5).unwrap();
     let hifi = HiFi::new(&car, &road).unwrap();
-    let cpu = HiFiGrid::compute(&car, &road, &grid, Compute::Cpu, 1).unwrap();
+    let cpu = HiFiGrid::compute(HiFi::new(&car, &road).unwrap(), &grid, Compute::Cpu, 1).unwrap();
     assert_eq!(cpu.path(), ComputePath::Cpu);
     assert_eq!(cpu.adapter(), None);
     assert_eq!(cpu.values(), evaluate_grid(&hifi, &grid, 1).unwrap());
     if mapper("compute gpu").is_none() {
         return;
     }
-    let gpu = HiFiGrid::compute(&car, &road, &grid, Compute::Gpu, 1).unwrap();
+    let gpu = HiFiGrid::compute(HiFi::new(&car, &road).unwrap(), &grid, Compute::Gpu, 1).unwrap();
     assert_eq!(gpu.path(), ComputePath::Gpu);
     assert!(gpu.adapter().is_some_and(|a| !a.is_empty()));
     assert!(max_rel(gpu.values(), cpu.values()) <= TOL);

@@ -134,6 +134,16 @@ impl RouteCounts {
     }
 }
 
+/// HiFi evaluators prepared in this process (valid cars and roads; clones not counted).
+static HIFI_BUILDS: AtomicU64 = AtomicU64::new(0);
+
+/// How many HiFi evaluators this process has prepared ([`HiFi::new`] and
+/// [`HiFi::with_modal_route`] with a valid car and road): a run's count is the difference
+/// across it (`tests/hifi_builds.rs`: one per `ridelab optimize --evaluator full`).
+pub fn hifi_builds() -> u64 {
+    HIFI_BUILDS.load(Ordering::Relaxed)
+}
+
 /// Thread-safe route counters of a [`HiFi`]: bookkeeping, not part of its value (clones
 /// copy the counts, and any two tallies compare equal).
 #[derive(Debug, Default)]
@@ -210,6 +220,7 @@ impl HiFi {
     pub fn with_modal_route(car: &Car, road: &Road) -> Result<HiFi> {
         car.validate()?;
         road.validate()?;
+        HIFI_BUILDS.fetch_add(1, Ordering::Relaxed);
         let (free, unit) = front_family(car);
         let project = |m: &LinearModel| match road.tracks {
             Tracks::Correlated => symmetric_half(m),

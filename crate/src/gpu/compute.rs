@@ -83,44 +83,33 @@ pub struct HiFiGrid {
 }
 
 impl HiFiGrid {
-    /// The HiFi of `car` on `road` over `grid` on the path `compute` asks for, with
-    /// `threads` threads on the CPU path. `Compute::Gpu` without an adapter (or in a
-    /// build without the `gpu` feature) is an error naming `compute`.
-    pub fn compute(
-        car: &crate::car::Car,
-        road: &crate::road::Road,
-        grid: &Grid,
-        compute: Compute,
-        threads: usize,
-    ) -> Result<HiFiGrid> {
-        if let Some(g) = HiFiGrid::on_gpu(car, road, grid, compute)? {
+    /// `hifi` over `grid` on the path `compute` asks for, with `threads` threads on the
+    /// CPU path. `Compute::Gpu` without an adapter (or in a build without the `gpu`
+    /// feature) is an error naming `compute`.
+    pub fn compute(hifi: HiFi, grid: &Grid, compute: Compute, threads: usize) -> Result<HiFiGrid> {
+        if let Some(g) = HiFiGrid::on_gpu(&hifi, grid, compute)? {
             return Ok(g);
         }
-        let hifi = HiFi::new(car, road)?;
         let values = crate::maps::evaluate_grid(&hifi, grid, threads)?;
         Ok(HiFiGrid::from_values(hifi, *grid, values, ComputePath::Cpu))
     }
 
-    /// The grid on the GPU when `compute` takes it there: `None` for `Cpu`, and for
-    /// `Auto` without a hardware adapter or where the route cannot run (a mode damped
-    /// too weakly for its rule, a device failure), so the caller's CPU path runs;
-    /// `Gpu` without an adapter, or failing, is an error (naming `compute` when there is
-    /// no adapter or no GPU path in this build).
-    pub fn on_gpu(
-        car: &crate::car::Car,
-        road: &crate::road::Road,
-        grid: &Grid,
-        compute: Compute,
-    ) -> Result<Option<HiFiGrid>> {
-        // The car, road and grid are checked first, whatever the path.
-        HiFi::new(car, road)?;
+    /// `hifi` over `grid` on the GPU when `compute` takes it there: `None` for `Cpu`, and
+    /// for `Auto` without a hardware adapter or where the route cannot run (a mode damped
+    /// too weakly for its rule, a device failure), so the caller's CPU path runs; `Gpu`
+    /// without an adapter, or failing, is an error (naming `compute` when there is no
+    /// adapter or no GPU path in this build). The grid off the GPU's points evaluates on
+    /// a copy of `hifi` (the HiFi is prepared once by the caller).
+    pub fn on_gpu(hifi: &HiFi, grid: &Grid, compute: Compute) -> Result<Option<HiFiGrid>> {
         grid.validate()?;
         #[cfg(all(feature = "gpu", not(target_arch = "wasm32")))]
         if let Some(m) = gpu_mapper(compute)? {
-            match super::MapInput::new(car, road, grid).and_then(|input| m.map(&input)) {
+            match super::MapInput::new(hifi.car(), hifi.road(), grid)
+                .and_then(|input| m.map(&input))
+            {
                 Ok(values) => {
                     return Ok(Some(HiFiGrid {
-                        hifi: HiFi::new(car, road)?,
+                        hifi: hifi.clone(),
                         grid: *grid,
                         values,
                         path: ComputePath::Gpu,

@@ -321,7 +321,12 @@ pub fn map_report_on(
         }
         (ModelKind::Full, _) => {
             settings.validate()?;
-            let hifi = HiFiGrid::compute(car, road, &settings.grid, compute, default_threads())?;
+            let hifi = HiFiGrid::compute(
+                HiFi::new(car, road)?,
+                &settings.grid,
+                compute,
+                default_threads(),
+            )?;
             let mut r = map_report_with(&hifi, car, road, settings)?;
             r.compute = hifi.path();
             r.adapter = hifi.adapter().map(str::to_string);

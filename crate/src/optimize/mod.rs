@@ -29,7 +29,7 @@ pub use nsga2::{nsga2, Nsga2Params};
 pub use problem::{dominates, non_dominated, Eval, Problem, Solution};
 pub use report::{
     optimize_model, optimize_model_with, optimize_on_models, optimize_report, optimize_report_on,
-    optimize_report_with, EvaluatorSpec, OptimizeReport, SameModel,
+    optimize_report_with, EvaluatorSpec, OptimizeReport, OptimizeRequest, SameModel,
 };
 pub use stm::{stm, StmParams};
 pub use study::{run_study, Method, Study};

@@ -62,12 +62,26 @@ impl EvaluatorSpec {
         design_box: &DesignBox,
         plan: PlanSpec,
     ) -> Result<Box<dyn Evaluator + Sync>> {
+        match self {
+            EvaluatorSpec::Model(ModelKind::Quarter) => Ok(Box::new(LoFi::new(car, road))),
+            _ => self.build_on(&HiFi::new(car, road)?, design_box, plan),
+        }
+    }
+
+    /// [`Self::build`] on a HiFi prepared already (its car and road): the full car is a
+    /// copy of it, a surrogate's samples are its evaluations.
+    pub fn build_on(
+        &self,
+        hifi: &HiFi,
+        design_box: &DesignBox,
+        plan: PlanSpec,
+    ) -> Result<Box<dyn Evaluator + Sync>> {
+        let (car, road) = (hifi.car(), hifi.road());
         Ok(match self {
             EvaluatorSpec::Model(ModelKind::Quarter) => Box::new(LoFi::new(car, road)),
-            EvaluatorSpec::Model(ModelKind::Full) => Box::new(HiFi::new(car, road)?),
+            EvaluatorSpec::Model(ModelKind::Full) => Box::new(hifi.clone()),
             EvaluatorSpec::Surrogate(spec) => {
-                let hifi = HiFi::new(car, road)?;
-                let samples = sample_plan(&hifi, &plan.plan()?, design_box)?;
+                let samples = sample_plan(hifi, &plan.plan()?, design_box)?;
                 let setting = Setting::new(car, road, design_box)?;
                 Box::new(spec.fit(&setting, &samples, &LmOptions::default())?)
             }
@@ -198,18 +212,18 @@ pub fn optimize_report_with(
     objectives: DesignObjectives,
     comfort: Comfort,
 ) -> Result<OptimizeReport> {
-    objectives.validate()?;
-    let model = match (comfort, evaluator) {
-        (Comfort::Bacc, _) => evaluator.build(car, road, design_box, plan)?,
-        (Comfort::Wk, EvaluatorSpec::Model(kind)) => comfort.evaluator(kind, car, road)?,
-        (Comfort::Wk, EvaluatorSpec::Surrogate(_)) => {
-            return Err(RideError::field(
-                "comfort",
-                "wk needs --evaluator quarter or full: the surrogates are fitted to the unweighted BAcc",
-            ))
-        }
-    };
-    optimize_model_with(car, road, design_box, model, method, objectives, comfort)
+    OptimizeRequest {
+        evaluator,
+        plan,
+        comfort,
+        compute: Some(Compute::Cpu),
+        ..OptimizeRequest::new(car, road, *design_box, method.clone(), objectives)
+    }
+    .run()
+    .map(|mut r| {
+        r.compute = None;
+        r
+    })
 }
 
 /// [`optimize_report`] on an evaluator built already (the adaptive loop's surrogate).
@@ -286,12 +300,7 @@ pub fn optimize_on_models(
 }
 
 /// [`optimize_report_with`] with the HiFi on the path `compute` asks for (`None`: auto,
-/// unreported). STM on the full car with the unweighted BAcc evaluates its
-/// `grid x grid` starting grid on the GPU when `compute` takes it there
-/// ([`HiFiGrid::on_gpu`]: `Auto` only on a hardware adapter); the refinements, the
-/// datum and the re-check stay on the CPU HiFi. Anything else runs on the CPU, and
-/// `Compute::Gpu` there is an error naming `compute`. The report's `compute` is set when
-/// `compute` is given or the GPU ran.
+/// unreported): [`OptimizeRequest::run`].
 #[allow(clippy::too_many_arguments)]
 pub fn optimize_report_on(
     car: &Car,
@@ -304,45 +313,136 @@ pub fn optimize_report_on(
     comfort: Comfort,
     compute: Option<Compute>,
 ) -> Result<OptimizeReport> {
-    let asked = compute.unwrap_or_default();
-    let stm_grid = match (evaluator, method, comfort) {
-        (EvaluatorSpec::Model(ModelKind::Full), Method::Stm(p), Comfort::Bacc) => Some(p.grid),
-        _ => None,
-    };
-    let gpu = match stm_grid {
-        Some(n) if asked != Compute::Cpu => {
-            if let Method::Stm(p) = method {
-                p.validate()?;
-            }
-            HiFiGrid::on_gpu(car, road, &Grid::over_box(design_box, n, n)?, asked)?
+    OptimizeRequest {
+        evaluator,
+        plan,
+        comfort,
+        compute,
+        ..OptimizeRequest::new(car, road, *design_box, method.clone(), objectives)
+    }
+    .run()
+}
+
+/// One optimisation as `ridelab optimize` asks for it: the front of `car`'s front spring
+/// and damper on `road` over `design_box` by `method` on `evaluator`, its pick by `pick`
+/// against the datum, re-checked on the HiFi. [`Self::run`] prepares the HiFi once and
+/// every part uses it: the full car evaluator, a surrogate's samples, the GPU grid's
+/// off-grid points, the datum and the re-check (`tests/hifi_builds.rs`).
+#[derive(Debug, Clone)]
+pub struct OptimizeRequest<'a> {
+    /// The datum car (its front spring and damper are the datum design).
+    pub car: &'a Car,
+    /// The road.
+    pub road: &'a Road,
+    /// The design box, N/m and N s/m.
+    pub design_box: DesignBox,
+    /// The model the front is drawn on.
+    pub evaluator: EvaluatorSpec,
+    /// A surrogate's HiFi sampling plan.
+    pub plan: PlanSpec,
+    /// STM or NSGA-II.
+    pub method: Method,
+    /// The design objectives.
+    pub objectives: DesignObjectives,
+    /// The comfort measure in the BAcc slot of the front, the datum and the re-check.
+    pub comfort: Comfort,
+    /// The HiFi's path (`None`: auto, unreported).
+    pub compute: Option<Compute>,
+    /// The pick rule on the front.
+    pub pick: PickRule,
+}
+
+impl<'a> OptimizeRequest<'a> {
+    /// The full car, a surrogate's plan `ae:10`, unweighted BAcc, the path auto, the
+    /// min-max pick.
+    pub fn new(
+        car: &'a Car,
+        road: &'a Road,
+        design_box: DesignBox,
+        method: Method,
+        objectives: DesignObjectives,
+    ) -> Self {
+        OptimizeRequest {
+            car,
+            road,
+            design_box,
+            evaluator: EvaluatorSpec::Model(ModelKind::Full),
+            plan: PlanSpec::AudzeEglais(10),
+            method,
+            objectives,
+            comfort: Comfort::Bacc,
+            compute: None,
+            pick: PickRule::MinMax,
         }
-        None if asked == Compute::Gpu => {
+    }
+
+    /// Runs it. STM on the full car with the unweighted BAcc evaluates its
+    /// `grid x grid` starting grid on the GPU when `compute` takes it there
+    /// ([`HiFiGrid::on_gpu`]: `Auto` only on a hardware adapter); the refinements, the
+    /// datum and the re-check stay on the CPU HiFi. Anything else runs on the CPU, and
+    /// `Compute::Gpu` there is an error naming `compute`. The report's `compute` is set
+    /// when `compute` is given or the GPU ran.
+    pub fn run(&self) -> Result<OptimizeReport> {
+        let (car, road, design_box) = (self.car, self.road, &self.design_box);
+        let asked = self.compute.unwrap_or_default();
+        let stm_grid = match (self.evaluator, &self.method, self.comfort) {
+            (EvaluatorSpec::Model(ModelKind::Full), Method::Stm(p), Comfort::Bacc) => Some(p),
+            _ => None,
+        };
+        if stm_grid.is_none() && asked == Compute::Gpu {
             return Err(RideError::field(
                 "compute",
                 "gpu: the GPU path evaluates STM's grid on the full car with the unweighted \
                  BAcc (--evaluator full --method stm --comfort bacc); use --compute cpu or auto",
-            ))
+            ));
         }
-        _ => None,
-    };
-    let Some(grid) = gpu else {
-        let mut r = optimize_report_with(
-            car, road, design_box, evaluator, plan, method, objectives, comfort,
+        if let (Comfort::Wk, EvaluatorSpec::Surrogate(_)) = (self.comfort, self.evaluator) {
+            return Err(RideError::field(
+                "comfort",
+                "wk needs --evaluator quarter or full: the surrogates are fitted to the unweighted BAcc",
+            ));
+        }
+        self.objectives.validate()?;
+        // The one HiFi of the run.
+        let hifi = HiFi::new(car, road)?;
+        let gpu = match stm_grid {
+            Some(p) if asked != Compute::Cpu => {
+                p.validate()?;
+                HiFiGrid::on_gpu(&hifi, &Grid::over_box(design_box, p.grid, p.grid)?, asked)?
+            }
+            _ => None,
+        };
+        let path = match &gpu {
+            Some(_) => Some(ComputePath::Gpu),
+            None => self.compute.map(|_| ComputePath::Cpu),
+        };
+        let adapter = gpu.as_ref().and_then(|g| g.adapter().map(str::to_string));
+        let model: Box<dyn Evaluator + Sync> = match (gpu, self.comfort, self.evaluator) {
+            (Some(grid), _, _) => Box::new(grid),
+            (None, Comfort::Bacc, e) => e.build_on(&hifi, design_box, self.plan)?,
+            (None, Comfort::Wk, EvaluatorSpec::Model(ModelKind::Full)) => {
+                Box::new(WkComfort::full(hifi.clone()))
+            }
+            (None, Comfort::Wk, _) => Box::new(WkComfort::quarter(car, road)),
+        };
+        let reference: Box<dyn Evaluator + Sync> = match self.comfort {
+            Comfort::Bacc => Box::new(hifi),
+            Comfort::Wk => Box::new(WkComfort::full(hifi)),
+        };
+        let mut r = optimize_on_models(
+            car,
+            design_box,
+            model,
+            &*reference,
+            &self.method,
+            self.objectives.clone(),
+            self.comfort,
         )?;
-        r.compute = compute.map(|_| ComputePath::Cpu);
-        return Ok(r);
-    };
-    let adapter = grid.adapter().map(str::to_string);
-    let mut r = optimize_model_with(
-        car,
-        road,
-        design_box,
-        Box::new(grid),
-        method,
-        objectives,
-        comfort,
-    )?;
-    r.compute = Some(ComputePath::Gpu);
-    r.adapter = adapter;
-    Ok(r)
+        if self.pick != PickRule::MinMax {
+            r.repick_on(self.pick, &*reference, design_box)?;
+        }
+        r.compute = path;
+        r.adapter = adapter;
+        Ok(r)
+    }
 }

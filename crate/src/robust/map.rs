@@ -5,7 +5,7 @@
 
 use super::cases::{Case, CaseSet, Combine};
 use super::objective::Combination;
-use crate::analysis::{HiFiRoads, ModelKind};
+use crate::analysis::{HiFi, HiFiRoads, ModelKind};
 use crate::car::Car;
 use crate::comfort::Comfort;
 use crate::dos::{DesignObjectives, Objective};
@@ -324,7 +324,8 @@ fn shared_maps(cases: &[Case], settings: &MapSettings, compute: Compute) -> Opti
     let grid = &settings.grid;
     let mut hifis: Vec<Option<HiFiGrid>> = Vec::with_capacity(cases.len());
     for c in cases {
-        hifis.push(HiFiGrid::on_gpu(&c.car, &c.road, grid, compute).ok()?);
+        let hifi = HiFi::new(&c.car, &c.road).ok()?;
+        hifis.push(HiFiGrid::on_gpu(&hifi, grid, compute).ok()?);
     }
     let cpu: Vec<usize> = (0..cases.len()).filter(|&k| hifis[k].is_none()).collect();
     if !cpu.is_empty() {

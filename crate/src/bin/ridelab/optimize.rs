@@ -15,7 +15,7 @@ use ridelab::dos::DesignObjectives;
 use ridelab::error::{Result, RideError};
 use ridelab::gpu::{Compute, ComputePath};
 use ridelab::optimize::{
-    optimize_on_models, optimize_report_on, EvaluatorSpec, Method, Nsga2Params, OptimizeReport,
+    optimize_on_models, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, OptimizeRequest,
     PickRule, StmParams,
 };
 use ridelab::road_profile::RoadScenario;
@@ -147,17 +147,15 @@ pub(crate) fn optimize(a: OptimizeArgs) -> Result<String> {
     }
     let (mut out, looped) = match a.adaptive.options() {
         None => (
-            optimize_report_on(
-                &car,
-                &road,
-                &design_box,
-                a.evaluator,
-                a.plan,
-                &method,
-                objectives,
-                a.comfort,
-                a.compute,
-            )?,
+            OptimizeRequest {
+                evaluator: a.evaluator,
+                plan: a.plan,
+                comfort: a.comfort,
+                compute: a.compute,
+                pick: a.pick,
+                ..OptimizeRequest::new(&car, &road, design_box, method.clone(), objectives)
+            }
+            .run()?,
             None,
         ),
         Some(_) if a.compute == Some(Compute::Gpu) => {
@@ -188,7 +186,7 @@ pub(crate) fn optimize(a: OptimizeArgs) -> Result<String> {
             (out, Some(r.adaptive))
         }
     };
-    if a.pick != PickRule::MinMax {
+    if looped.is_some() && a.pick != PickRule::MinMax {
         out.repick(a.pick, &car, &road, &design_box)?;
     }
     if let Some(path) = &svg {
