@@ -181,6 +181,27 @@ test('moving the Ks slider changes the readout and the marker', { timeout: TIMEO
   await context.close();
 });
 
+test('a slider step crosses into the wasm twice on the main thread (setDesign, designStep)', { timeout: TIMEOUT }, async () => {
+  // It was four (setDesign, the LoFi report, the surrogate's criteria, the HiFi readout)
+  // and five with Wk comfort (the plane's model's criteria); issue #28.
+  for (const hash of ['', '#comfort=wk']) {
+    const { page, context, log } = await open(hash);
+    const calls = () => page.evaluate(() => window.__ridelab.engine.host.wasmCalls);
+    await page.focus('#ks-range');
+    for (let i = 0; i < 3; i++) {
+      const before = await calls();
+      await page.keyboard.press('ArrowRight');
+      await settle(page);
+      assert.equal((await calls()) - before, 2, `${hash || 'default'}: step ${i + 1}`);
+    }
+    assert.equal(await page.evaluate(() => window.__ridelab.state.ks), 19960 + 3 * 100);
+    const r = await page.evaluate(() => window.__ridelab.hifi.design);
+    assert.equal(r.ks, 19960 + 3 * 100, 'the HiFi column follows');
+    assertClean(log);
+    await context.close();
+  }
+});
+
 /** Native reference numbers: the `ridelab` CLI (RIDELAB_CLI, else target/debug or target/release). */
 function nativeReference() {
   const car = path.join(ROOT, 'assets/cars/sedan.json');

@@ -146,17 +146,16 @@ export class Compute {
    * A new design point of the same scenario: its LoFi report, surrogate criteria and
    * criteria by the objective plane's model (`plane`), and with `withHifi` its HiFi
    * readout too (the report without its frequency-route check, about 0.1 ms, on the main
-   * thread so every view follows the slider in one frame; null when it fails). The full
-   * HiFi report follows from the HiFi worker (`hifiReport`).
+   * thread so every view follows the slider in one frame; null when it fails), all in one
+   * wasm call (`designStep`, after the session's `setDesign`; with robust cases one more
+   * for the maps' criteria). The full HiFi report follows from the HiFi worker
+   * (`hifiReport`).
    */
   async design(s, desc, withHifi) {
-    const lofi = await this.main.call('analyse', s, 'lofi');
-    const sur = await this.main.call('criteria', s, 'surrogate');
-    const plane = planeModel(s) === 'surrogate' ? sur : await this.main.call('criteria', s, planeModel(s));
+    const r = await this.main.call('designStep', s, planeModel(s), withHifi);
     const mapDesign = await mapDesignOf(this.main, s);
-    let hifi = null;
-    if (withHifi) hifi = await this.main.call('readout', s, 'hifi').catch(() => null);
-    return { lofi, surrogate: { ...sur, dtl_relative: sur.dtl / desc.staticWheelLoad }, plane, hifi, mapDesign };
+    const sur = r.surrogate;
+    return { lofi: r.lofi, surrogate: { ...sur, dtl_relative: sur.dtl / desc.staticWheelLoad }, plane: r.plane ?? sur, hifi: r.hifi, mapDesign };
   }
 
   /** A HiFi report on the HiFi worker (`s`: a design or the datum state). */

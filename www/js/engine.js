@@ -17,7 +17,7 @@ export const FUNCTIONS = [
 
 /** The methods of the core's `Explorer` session: an engine call is `(method, state, ...args)`. */
 export const SESSION_METHODS = [
-  'describe', 'analyse', 'readout', 'criteria', 'mapCriteria', 'maps', 'front', 'spectra', 'timeResponse', 'surrogateFit',
+  'describe', 'analyse', 'readout', 'designStep', 'criteria', 'mapCriteria', 'maps', 'front', 'spectra', 'timeResponse', 'surrogateFit',
   'studyReport',
 ];
 
@@ -71,14 +71,23 @@ export class Host {
     /** The adaptive loop (`AdaptiveRun`) and the scenario key it was started for. */
     this.adaptive = null;
     this.adaptiveKey = null;
+    /** Calls into the wasm module so far (setters and session methods; tests read it). */
+    this.wasmCalls = 0;
   }
 
   /** The session moved to `state` (throws the core's error naming the field). */
   at(state) {
     const key = scenarioKey(state);
-    if (!this.explorer) this.explorer = new this.api.Explorer(state);
-    else if (key !== this.scenarioKey) this.explorer.setState(state);
-    else if (state.ks !== this.ks || state.cs !== this.cs) this.explorer.setDesign(state.ks, state.cs);
+    if (!this.explorer) {
+      this.wasmCalls++;
+      this.explorer = new this.api.Explorer(state);
+    } else if (key !== this.scenarioKey) {
+      this.wasmCalls++;
+      this.explorer.setState(state);
+    } else if (state.ks !== this.ks || state.cs !== this.cs) {
+      this.wasmCalls++;
+      this.explorer.setDesign(state.ks, state.cs);
+    }
     this.scenarioKey = key;
     this.ks = state.ks;
     this.cs = state.cs;
@@ -87,6 +96,7 @@ export class Host {
 
   /** Runs one engine call: synchronously, or a promise for the GPU path's calls. */
   run(method, args) {
+    this.wasmCalls++;
     if (FUNCTIONS.includes(method)) return this.api[method](...args);
     // The robust maps' cases are evaluated on the CPU (as `ridelab map --cases`).
     if (this.gpu && method === 'maps' && ['hifi', 'error'].includes(args[1]) && !args[0].cases) return this.gpuMaps(...args);

@@ -25,7 +25,7 @@ pub use adaptive::{PageLoop, PageStep, PageUncertainty, MAX_CHECK_LEVELS};
 pub use fields::ui_field;
 pub use hifi_front::{HifiFrontView, PlaneCheck};
 pub use maps::{MapModel, ModelMap};
-pub use session::{EvaluatorKind, Session};
+pub use session::{DesignStep, EvaluatorKind, Session};
 pub use state::{Scenario, State, FIT_FIELDS, REPORT_FIELDS, STATE_FIELDS};
 pub use studies::{FrontModel, FrontResult, Spectra, TimeResult};
 pub use surrogate::{fit, fit_report, FitKey, FittedSurrogate};

@@ -222,6 +222,30 @@ impl Session {
         readout(kind, &self.scenario.design, &self.scenario.road)
     }
 
+    /// What the page shows of a new design on a slider step, in one call: its LoFi
+    /// report, its surrogate criteria, its criteria on the objective plane's model
+    /// `plane` (`None` when that is the surrogate) and with `with_hifi` its HiFi readout
+    /// (`None` when that fails or is not finite: the HiFi worker's full report says why).
+    /// Errors as the first of [`Self::report`] and [`Self::criteria`] to fail.
+    pub fn design_step(&mut self, plane: EvaluatorKind, with_hifi: bool) -> Result<DesignStep> {
+        let lofi = self.report(ModelKind::Quarter)?;
+        let surrogate = self.criteria(EvaluatorKind::Surrogate)?;
+        let plane = match plane {
+            EvaluatorKind::Surrogate => None,
+            other => Some(self.criteria(other)?),
+        };
+        let hifi = with_hifi
+            .then(|| self.readout(ModelKind::Full).ok())
+            .flatten()
+            .filter(|r| crate::finite::check(r).is_ok());
+        Ok(DesignStep {
+            lofi,
+            surrogate,
+            plane,
+            hifi,
+        })
+    }
+
     /// The map of `model` on the `nx` x `ny` cell-centre grid of the design box, its
     /// objectives judged against the model's own datum (errors name `nx` or `ny`). The
     /// LoFi's and HiFi's BAcc plane is the scenario's comfort measure; the surrogate's and
@@ -568,6 +592,19 @@ impl Session {
         let f = &self.scenario.design.front;
         (f.spring, f.damper)
     }
+}
+
+/// A slider step's results ([`Session::design_step`]).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct DesignStep {
+    /// The design's LoFi report (as `ridelab eval --model quarter`).
+    pub lofi: Report,
+    /// The design's surrogate criteria (m/s^2, N, m).
+    pub surrogate: Criteria,
+    /// Its criteria on the objective plane's model; `None` when that is the surrogate.
+    pub plane: Option<Criteria>,
+    /// Its HiFi readout, when asked for and it succeeds.
+    pub hifi: Option<Readout>,
 }
 
 /// The evaluators behind [`Session::criteria`].

@@ -134,6 +134,16 @@ impl Explorer {
         to_js(&self.0.readout(kind).map_err(js_error)?)
     }
 
+    /// A slider step in one call (`Session::design_step`): `{lofi, surrogate, plane,
+    /// hifi}`, the design's LoFi report, surrogate criteria, criteria on the objective
+    /// plane's model `plane` (null when that is "surrogate") and with `withHifi` its HiFi
+    /// readout (null when it fails).
+    #[wasm_bindgen(js_name = designStep)]
+    pub fn design_step(&mut self, plane: &str, with_hifi: bool) -> Result<JsValue, JsValue> {
+        let kind = EvaluatorKind::parse(plane).map_err(js_error)?;
+        to_js(&self.0.design_step(kind, with_hifi).map_err(js_error)?)
+    }
+
     /// The criteria `{bacc, dtl, sws}` (m/s^2, N, m) of the design by the fast
     /// evaluators the maps and optimisers use: `model` "lofi", "hifi" or "surrogate" (with
     /// Wk comfort the LoFi's and HiFi's `bacc` is Wk-weighted; the surrogate's never is),
