@@ -40,6 +40,15 @@ export function assertClean(log) {
   assert.deepEqual(log.foreign, [], 'requests to other hosts');
 }
 
+/** Texts `got` and `want` equal line by line; a failure names the first differing line. */
+export function assertSameLines(got, want, what) {
+  const a = got.split('\n');
+  const b = want.split('\n');
+  const first = a.findIndex((line, k) => line !== b[k]);
+  assert.equal(first, -1, `${what} differ from line ${first + 1}: ${a[first]?.slice(0, 300)} | ${b[first]?.slice(0, 300)}`);
+  assert.equal(a.length, b.length);
+}
+
 /** Pixels of canvas `id` within `tol` (sum of |channel differences|) of colour `rgb`. */
 export function countColour(page, id, rgb, tol = 40) {
   return page.evaluate(

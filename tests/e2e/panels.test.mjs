@@ -10,7 +10,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { openPage, settled } from './browser.mjs';
-import { useSuite, assertClean, countColour, readZip, ROOT, OUT } from './harness.mjs';
+import { useSuite, assertClean, assertSameLines, countColour, readZip, ROOT, OUT } from './harness.mjs';
 
 const TIMEOUT = 120_000;
 const suite = useSuite();
@@ -725,11 +725,7 @@ test('Download report: the page builds the study report of the view, byte for by
   const dir = path.join(OUT, 'report-cli');
   execFileSync(cli(), ['report', '--car', 'suv', '--class', 'C', '--approach', 'rba-mul-rbf-mq', '--plan', 'ae:10', '--out', dir], { encoding: 'utf8', maxBuffer: 64 << 20 });
   const want = fs.readFileSync(path.join(dir, 'report.html'), 'utf8');
-  const a = html.split('\n');
-  const b = want.split('\n');
-  const first = a.findIndex((line, k) => line !== b[k]);
-  assert.equal(first, -1, `page and CLI reports differ from line ${first + 1}: ${a[first]?.slice(0, 200)} | ${b[first]?.slice(0, 200)}`);
-  assert.equal(a.length, b.length);
+  assertSameLines(html, want, 'page and CLI reports');
   assert.match(html, /No design in the box meets the design objectives/);
   assertClean(log);
   await context.close();

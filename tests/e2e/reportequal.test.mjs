@@ -7,7 +7,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { openPage, settled } from './browser.mjs';
-import { useSuite, assertClean, ROOT, OUT } from './harness.mjs';
+import { useSuite, assertClean, assertSameLines, ROOT, OUT } from './harness.mjs';
 
 const suite = useSuite();
 const cli = () => process.env.RIDELAB_CLI || path.join(ROOT, 'target/debug/ridelab');
@@ -63,11 +63,7 @@ for (const [name, car, klass, speed] of scenarios()) {
     const dir = path.join(OUT, `report-cli-${name}`);
     execFileSync(cli(), ['report', '--car', carFile, '--class', klass, '--speed', String(speed), '--approach', 'rba-mul-rbf-mq', '--plan', 'ae:10', '--out', dir], { encoding: 'utf8', maxBuffer: 64 << 20, stdio: ['ignore', 'pipe', 'pipe'] });
     const want = fs.readFileSync(path.join(dir, 'report.html'), 'utf8');
-    const a = html.split('\n');
-    const b = want.split('\n');
-    const first = a.findIndex((line, k) => line !== b[k]);
-    assert.equal(first, -1, `page and CLI reports differ from line ${first + 1}: ${a[first]?.slice(0, 300)} | ${b[first]?.slice(0, 300)}`);
-    assert.equal(a.length, b.length);
+    assertSameLines(html, want, 'page and CLI reports');
     assertClean(log);
     await context.close();
   });

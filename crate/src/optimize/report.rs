@@ -212,6 +212,7 @@ pub fn optimize_report_with(
     objectives: DesignObjectives,
     comfort: Comfort,
 ) -> Result<OptimizeReport> {
+    // On the CPU, as this entry point always ran; its report leaves `compute` out.
     OptimizeRequest {
         evaluator,
         plan,
