@@ -100,6 +100,11 @@ impl HiFiGrid {
     /// without an adapter, or failing, is an error (naming `compute` when there is no
     /// adapter or no GPU path in this build). The grid off the GPU's points evaluates on
     /// a copy of `hifi` (the HiFi is prepared once by the caller).
+    // `hifi` is read on the native GPU path only.
+    #[cfg_attr(
+        not(all(feature = "gpu", not(target_arch = "wasm32"))),
+        allow(unused_variables)
+    )]
     pub fn on_gpu(hifi: &HiFi, grid: &Grid, compute: Compute) -> Result<Option<HiFiGrid>> {
         grid.validate()?;
         #[cfg(all(feature = "gpu", not(target_arch = "wasm32")))]
