@@ -16,6 +16,7 @@ pub mod dos;
 pub mod error;
 pub mod evaluate;
 pub mod explorer;
+pub(crate) mod fft;
 pub mod finite;
 pub mod gpu;
 pub mod maps;

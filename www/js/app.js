@@ -40,6 +40,7 @@ import { LessonPanel } from './lessonpanel.js';
 import { ClassFront } from './classfront.js';
 import { isLessonHash } from './lessons.js';
 import { RobustPanel, withLoadCases } from './robustpanel.js';
+import { RoadPanel } from './roadpanel.js';
 import { fromSession } from './restore.js';
 import { fieldName, wireTime } from './timecontrols.js';
 import { registerServiceWorker } from './offline.js';
@@ -568,9 +569,14 @@ async function main() {
   });
   const ids = { name: 'cf-name', make: 'cf-make', code: 'cf-code', copy: 'cf-copy', text: 'cf-text', file: 'cf-file', apply: 'cf-apply', clear: 'cf-clear', status: 'cf-status', problems: 'cf-problems', table: 'cf-table', drop: 'cf-drop' };
   const classFront = new ClassFront(Object.fromEntries(Object.entries(ids).map(([k, id]) => [k, $(id)])), { store, controller, compute });
+  ui.road = new RoadPanel({
+    box: $('road-box'), file: $('road-file'), msg: $('msg-road'), summary: $('road-summary'), canvas: $('road-psd'), table: $('road-table'), notes: $('road-notes'),
+  }, { store, compute });
+  $('tab-car').addEventListener('click', () => requestAnimationFrame(() => ui.road.redraw()));
   controller.onViewsChanged = () => {
     lessons.viewsChanged();
     classFront.viewsChanged();
+    ui.road.viewsChanged();
   };
   installTestHooks({ store, controller, compute, ui, boot, lessons, exportData: () => exportDataOf(store, ui) });
   wire({ store, controller, controls, render, ui, guide, bench, compute, lessons });

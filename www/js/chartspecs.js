@@ -319,3 +319,56 @@ export function adaptiveSpec(a, { width = 420, height = 220, title = '', legend 
     ],
   };
 }
+
+/** ISO 8608's reference spatial frequency n0, cycle/m, and its classification band. */
+const ISO_N0 = 0.1;
+const ISO_BAND = [0.011, 2.83];
+/** ISO 8608's class boundaries Gd(n0), m³: the geometric means of the class centres 16e-6 4^k (A|B .. G|H). */
+export const ISO_BOUNDARIES = [1, 2, 3, 4, 5, 6, 7].map((k) => 16e-6 * 2 * 4 ** (k - 1));
+
+/**
+ * A measured road's displacement PSD (`d`: the core's `describeRoad`, as `ridelab road
+ * FILE --json`), log-log over spatial frequency: every Welch bin faint and the 1/12-octave
+ * band means over the band the profile resolves, the ISO 8608 fit over its band and the
+ * class boundaries (waviness 2, clipped to the chart) in grey.
+ */
+export function roadPsdSpec(d, { width = 640, height = 400, title = '' } = {}) {
+  if (!d) throw { message: 'no road profile yet: drop a CSV file', field: 'road' };
+  // Only what the profile resolves (below it the detrend's and the window's leakage).
+  const [rl, rh] = d.resolved_band;
+  const pos = (ns, gs) => ns.map((n, i) => [n, gs[i]]).filter(([n, g]) => n >= rl && n <= rh && g > 0 && Number.isFinite(g));
+  const bins = pos(d.psd.n, d.psd.gd);
+  const bands = pos(d.psd_bands.n, d.psd_bands.gd);
+  const f = d.iso8608;
+  const fitAt = (n) => f.gd_n0 * (n / ISO_N0) ** -f.waviness;
+  const [xl, xh] = extent(bands.map((p) => p[0]));
+  const xRange = [10 ** Math.floor(Math.log10(Math.min(xl, ISO_BAND[0]))), 10 ** Math.ceil(Math.log10(Math.max(xh, ISO_BAND[1])))];
+  const [yl, yh] = extent(bands.map((p) => p[1]));
+  const yRange = [10 ** Math.floor(Math.log10(yl) - 0.5), 10 ** Math.ceil(Math.log10(yh) + 0.5)];
+  // A boundary Gd = b (n / n0)^-2 is straight on log-log: its ends clipped to the chart.
+  const boundary = (b, k) => {
+    const lo = Math.max(xRange[0], ISO_N0 * Math.sqrt(b / yRange[1]));
+    const hi = Math.min(xRange[1], ISO_N0 * Math.sqrt(b / yRange[0]));
+    if (!(hi > lo)) return null;
+    return line(k === 0 ? 'ISO 8608 class boundaries (A|B lowest)' : '', COL.linear, [[lo, b * (lo / ISO_N0) ** -2], [hi, b * (hi / ISO_N0) ** -2]], 1);
+  };
+  return {
+    title,
+    xLabel: 'spatial frequency n [cycle/m]',
+    yLabel: 'displacement PSD Gd [m³]',
+    xLog: true,
+    yLog: true,
+    xRange,
+    yRange,
+    width,
+    height,
+    // The PSD falls with n: the lower left is free for the key.
+    legend: 'lowerLeft',
+    series: [
+      ...ISO_BOUNDARIES.map(boundary).filter(Boolean),
+      { ...line('Welch bins', COL.cloud, bins, 1), opacity: 0.5 },
+      line('1/12-octave band means', COL.lofi, bands, 2.5),
+      line(`ISO fit: class ${f.class}, w = ${f.waviness.toFixed(2)}`, COL.stm, [f.band[0], f.band[1]].map((n) => [n, fitAt(n)]), 2.5),
+    ],
+  };
+}

@@ -245,6 +245,16 @@ export class Compute {
     return this.heavy.call('adaptiveUncertainty', s, UNCERTAINTY_GRID.nx, UNCERTAINTY_GRID.ny, VALIDATION_LEVELS);
   }
 
+  /** A road profile file's bytes described (`ridelab road FILE --json`; heavy worker). */
+  describeRoad(bytes) {
+    return this.heavy.call('describeRoad', bytes);
+  }
+
+  /** The design of `s` and its datum on the road profile `bytes` (named `file`), both models (`ridelab eval --road FILE`; heavy worker). */
+  designOnRoad(s, bytes, file) {
+    return this.heavy.call('designOnRoad', s, bytes, file);
+  }
+
   /** FRFs and PSDs of the design (heavy worker). */
   spectra(s) {
     return this.heavy.call('spectra', s, NFREQ);

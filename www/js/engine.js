@@ -12,7 +12,7 @@ import { GpuPath } from './gpupath.js';
 /** The wasm functions that need no session (with SESSION_METHODS, the worker's whitelist). */
 export const FUNCTIONS = [
   'version', 'defaultState', 'presets', 'roadClasses', 'parseCar', 'checkState', 'surrogates',
-  'objectives', 'stateKeys', 'lineChartSvg', 'mapChartSvg',
+  'objectives', 'stateKeys', 'lineChartSvg', 'mapChartSvg', 'describeRoad', 'designOnRoad',
 ];
 
 /** The methods of the core's `Explorer` session: an engine call is `(method, state, ...args)`. */

@@ -34,6 +34,11 @@ export function installTestHooks({ store, controller, compute, ui, boot, lessons
     get presets() {
       return store.presets;
     },
+    /** The measured road (js/roadpanel.js): `{name, desc, on}` (`on`: the design and datum on it), or null. */
+    get road() {
+      const r = ui.road && ui.road.road;
+      return r ? { name: r.name, desc: r.desc, on: ui.road.judged && ui.road.judged.on, key: ui.road.judged && ui.road.judged.key } : null;
+    },
     /** The class front (js/classfront.js): `{key, rows, problems}` or null. */
     get classFront() {
       return store.classFront;

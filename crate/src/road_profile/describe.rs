@@ -87,6 +87,9 @@ pub struct RoadDescription {
     pub tracks: usize,
     /// The ISO 8608 fit (of the mean of the tracks' PSDs with two).
     pub iso8608: IsoFit,
+    /// The spatial frequencies the profile resolves, cycle/m: from the lowest trusted Welch
+    /// bin to half the Nyquist frequency (the PSD outside it is not to be read).
+    pub resolved_band: [f64; 2],
     /// The Welch PSD at every bin (DC left out).
     pub psd: PsdSeries,
     /// The same in 1/12-octave band means (the fit's data; the mean of the tracks).
@@ -180,6 +183,7 @@ pub fn describe(profile: &Profile) -> Result<RoadDescription> {
         length_m: profile.length(),
         tracks: profile.tracks(),
         iso8608: fit,
+        resolved_band: [r_lo, r_hi],
         psd: PsdSeries {
             n: s.n.clone(),
             gd: s.pxx.clone(),
@@ -255,6 +259,7 @@ fn units() -> BTreeMap<&'static str, &'static str> {
         ("iso8608.waviness", "-"),
         ("iso8608.band", "cycle/m"),
         ("iso8608.residual", "- (RMS of log10 Gd / fit)"),
+        ("resolved_band", "cycle/m"),
         ("psd.n", "cycle/m"),
         ("psd.gd", "m^3 (m^2 per cycle/m), one-sided"),
         ("psd.gd_right", "m^3 (m^2 per cycle/m), one-sided"),

@@ -2,10 +2,11 @@
 //! design map and optimiser run on a profile file (`--road FILE`) as on an ISO class.
 
 use super::exact::criteria_shaped;
+use super::profile::Profile;
 use super::shaped::{ProfileTracks, ShapedRoad};
 use crate::analysis::ModelKind;
 use crate::car::Car;
-use crate::error::Result;
+use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::road::Road;
 use serde::Serialize;
@@ -98,5 +99,63 @@ impl RoadScenario {
             RoadScenario::Iso(r) => format!("class {:?} at {} m/s", r.class, r.speed),
             RoadScenario::Measured(m) => format!("{} at {} m/s", m.file, m.speed),
         }
+    }
+}
+
+/// `e` with its field named as the road's (`road: column elevation_m, row 17`), as every
+/// reader of a profile file reports it.
+pub fn road_error(e: RideError) -> RideError {
+    match e {
+        RideError::Field { field, reason } => RideError::field(format!("road: {field}"), reason),
+        other => RideError::field("road", other.to_string()),
+    }
+}
+
+/// A design and its datum judged on a measured road by both models, RMS `[BAcc m/s^2,
+/// DTL N, SWS m]` by the exact route ([`criteria_shaped`]): what the page shows for a
+/// dropped profile file, each number equal to `ridelab eval --road FILE --model quarter`
+/// (or `full`) at that design, speed and tracks.
+#[derive(Debug, Clone, Serialize)]
+pub struct DesignOnRoad {
+    /// The road (file, speed, tracks, band, the shaping filters' error).
+    pub road: MeasuredRoad,
+    /// The quarter car (LoFi) at the design.
+    pub quarter: Criteria,
+    /// The full car (HiFi) at the design.
+    pub full: Criteria,
+    /// The quarter car at the datum (the car's own front spring and damper).
+    pub datum_quarter: Criteria,
+    /// The full car at the datum.
+    pub datum_full: Criteria,
+    /// Notes from shaping the road at this speed (band clipped, resampling, ...).
+    pub notes: Vec<String>,
+}
+
+impl DesignOnRoad {
+    /// `datum` with its front spring `ks` (N/m) and damper `cs` (N s/m), and `datum`
+    /// itself, on `profile` (named `file`) at `speed` (m/s) with `tracks`; errors name
+    /// `road: ...` (the profile's column and row, or what the speed needs of it), `ks` or
+    /// `cs`.
+    pub fn compute(
+        datum: &Car,
+        ks: f64,
+        cs: f64,
+        profile: &Profile,
+        file: &str,
+        speed: f64,
+        tracks: ProfileTracks,
+    ) -> Result<DesignOnRoad> {
+        crate::domain::SPEED.check("speed", speed)?;
+        let shaped = ShapedRoad::from_profile(profile, speed, tracks).map_err(road_error)?;
+        let car = datum.with_front(ks, cs)?;
+        let on = |kind: ModelKind, car: &Car| criteria_shaped(&kind.build(car), &shaped);
+        Ok(DesignOnRoad {
+            road: MeasuredRoad::of(file, &shaped, tracks),
+            quarter: on(ModelKind::Quarter, &car)?,
+            full: on(ModelKind::Full, &car)?,
+            datum_quarter: on(ModelKind::Quarter, datum)?,
+            datum_full: on(ModelKind::Full, datum)?,
+            notes: shaped.notes.clone(),
+        })
     }
 }

@@ -40,7 +40,7 @@ mod welch;
 
 pub use describe::{describe, CoherenceSeries, IsoFit, PsdSeries, RoadDescription, WelchInfo};
 pub use exact::criteria_shaped;
-pub use measured::{MeasuredModel, MeasuredRoad, RoadScenario};
+pub use measured::{road_error, DesignOnRoad, MeasuredModel, MeasuredRoad, RoadScenario};
 pub use playback::{playback, WheelRoad};
 pub use profile::{
     Profile, MAX_BYTES, MAX_GAP_RATIO, MAX_ROUGHNESS_RMS, MAX_SAMPLES, MAX_SPACING, MIN_SAMPLES,

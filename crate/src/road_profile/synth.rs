@@ -241,9 +241,7 @@ fn realise(
         spec[k] = z;
         spec[n - k] = z.conj();
     }
-    rustfft::FftPlanner::new()
-        .plan_fft_inverse(n)
-        .process(&mut spec);
+    crate::fft::Dft::new(n).inverse(&mut spec);
     spec.into_iter().map(|c| c.re).collect()
 }
 

@@ -19,9 +19,9 @@
 //! `sum_j P_xx(n_j) dn` is the variance of the (detrended) record.
 
 use super::{BAND_HZ, LOWEST_BIN, SEGMENT_DIVISOR};
+use crate::fft::Dft;
 use crate::math;
 use num_complex::Complex64 as C64;
-use rustfft::FftPlanner;
 
 /// Whether `m` is `2^a 3^b 5^c` (a fast FFT length).
 fn smooth(mut m: usize) -> bool {
@@ -102,24 +102,23 @@ pub fn welch(x: &[f64], y: Option<&[f64]>, dx: f64, seg: usize) -> Spectra {
         .map(|i| 0.5 * (1.0 - math::cos(2.0 * std::f64::consts::PI * i as f64 / seg as f64)))
         .collect();
     let u: f64 = window.iter().map(|w| w * w).sum();
-    let fft = FftPlanner::new().plan_fft_forward(seg);
+    let mut fft = Dft::new(seg);
     let half = seg / 2;
     let mut pxx = vec![0.0; half];
     let mut pyy = y.map(|_| vec![0.0; half]);
     let mut pxy = y.map(|_| vec![C64::new(0.0, 0.0); half]);
     let mut bx = vec![C64::new(0.0, 0.0); seg];
     let mut by = vec![C64::new(0.0, 0.0); seg];
-    let mut scratch = vec![C64::new(0.0, 0.0); fft.get_inplace_scratch_len()];
     for s in 0..k {
         let start = offset + s * hop;
         prepare(&x[start..start + seg], &window, &mut bx);
-        fft.process_with_scratch(&mut bx, &mut scratch);
+        fft.forward(&mut bx);
         for j in 1..=half {
             pxx[j - 1] += bx[j].norm_sqr();
         }
         if let (Some(y), Some(pyy), Some(pxy)) = (y, pyy.as_mut(), pxy.as_mut()) {
             prepare(&y[start..start + seg], &window, &mut by);
-            fft.process_with_scratch(&mut by, &mut scratch);
+            fft.forward(&mut by);
             for j in 1..=half {
                 pyy[j - 1] += by[j].norm_sqr();
                 pxy[j - 1] += bx[j].conj() * by[j];

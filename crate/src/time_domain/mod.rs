@@ -191,8 +191,7 @@ pub fn road_profile(
         spec[k] = z;
         spec[n - k] = z.conj();
     }
-    let mut planner = rustfft::FftPlanner::new();
-    planner.plan_fft_inverse(n).process(&mut spec);
+    crate::fft::Dft::new(n).inverse(&mut spec);
     spec.into_iter().map(|c| c.re).collect()
 }
 

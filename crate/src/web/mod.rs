@@ -15,11 +15,13 @@ mod charts;
 mod explorer;
 #[cfg(feature = "gpu")]
 mod gpu;
+mod road;
 mod screen;
 pub use charts::{line_chart_svg_js, map_chart_svg_js};
 pub use explorer::Explorer;
 #[cfg(feature = "gpu")]
 pub use gpu::GpuMaps;
+pub use road::{describe_road, design_on_road};
 pub use screen::{draw_line_chart_js, draw_map_frame_js};
 
 use crate::car::{Car, PRESETS};

@@ -10,8 +10,8 @@ use ridelab::error::{Result, RideError};
 use ridelab::evaluate::Criteria;
 use ridelab::road::Tracks;
 use ridelab::road_profile::{
-    criteria_shaped, criteria_shaped_spectral, describe, MeasuredModel, MeasuredRoad, Profile,
-    ProfileTracks, RoadDescription, ShapedRoad,
+    criteria_shaped, criteria_shaped_spectral, describe, road_error, MeasuredModel, MeasuredRoad,
+    Profile, ProfileTracks, RoadDescription, ShapedRoad,
 };
 use serde::Serialize;
 
@@ -30,10 +30,7 @@ pub(crate) struct RoadArgs {
 pub(crate) fn read_profile(path: &str) -> Result<Profile> {
     let bytes = std::fs::read(path)
         .map_err(|e| RideError::field("road", format!("cannot read '{path}': {e}")))?;
-    Profile::from_csv_bytes(&bytes).map_err(|e| match e {
-        RideError::Field { field, reason } => RideError::field(format!("road: {field}"), reason),
-        other => RideError::field("road", other.to_string()),
-    })
+    Profile::from_csv_bytes(&bytes).map_err(road_error)
 }
 
 pub(crate) fn road_cmd(a: RoadArgs) -> Result<String> {
@@ -90,10 +87,7 @@ pub(crate) fn shaped_road(o: &CarRoad, path: &str) -> Result<(ShapedRoad, Profil
         Some(Tracks::Correlated) => ProfileTracks::Correlated,
         Some(Tracks::Independent) => ProfileTracks::Independent,
     };
-    let shaped = ShapedRoad::from_profile(&profile, speed, tracks).map_err(|e| match e {
-        RideError::Field { field, reason } => RideError::field(format!("road: {field}"), reason),
-        other => other,
-    })?;
+    let shaped = ShapedRoad::from_profile(&profile, speed, tracks).map_err(road_error)?;
     Ok((shaped, tracks))
 }
 

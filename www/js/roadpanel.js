@@ -1,0 +1,171 @@
+// The measured road of the Car & road tab (issue #31). A profile file (CSV
+// `distance_m,elevation_m[,elevation_right_m]`), chosen or dropped, is described by the
+// core as `ridelab road FILE --json` does (Welch PSD, ISO 8608 class and waviness) and
+// drawn against ISO 8608's class boundaries; the design and its datum are judged on it by
+// both models (`designOnRoad`, each number as `ridelab eval --road FILE`) at the road's
+// speed, again whenever the design, the car, the speed or the tracks change. A refused
+// file names its column and row and leaves the last good road. The file is not kept in
+// the link or a saved session; the panel says so.
+
+import { Plot } from './plot.js';
+import { roadPsdSpec } from './chartspecs.js';
+import { plainWords } from './controls.js';
+import { fmt } from './format.js';
+
+/** The core's limit on a profile file, bytes (crate/src/road_profile/profile.rs MAX_BYTES is the check; this only spares reading a huge file). */
+const MAX_FILE_BYTES = 64 * 1024 * 1024;
+/** Quiet time after a design change before the road is judged again, ms. */
+const SETTLE_MS = 150;
+
+/** The rows of the judgement table: key, name, unit, scale from SI. */
+const ROWS = [
+  ['bacc', 'BAcc', 'm/s²', 1],
+  ['dtl', 'DTL', 'N', 1],
+  ['sws', 'SWS', 'mm', 1000],
+];
+
+/** The state fields the judgement depends on. */
+const judgedOn = (s) => JSON.stringify([s.car, s.carJson ?? null, s.ks, s.cs, s.speed, s.tracks]);
+
+export class RoadPanel {
+  /**
+   * `els`: `{box, file, msg, summary, canvas, table, notes}`; `store` (the state), and
+   * `compute` (js/compute.js: `describeRoad`, `designOnRoad` in the heavy worker).
+   */
+  constructor(els, { store, compute }) {
+    this.els = els;
+    this.store = store;
+    this.compute = compute;
+    this.plot = new Plot(els.canvas, { aspect: 0.6 });
+    /** The road shown: `{name, bytes, desc}`; its judgement `{key, on}` (`on`: the core's DesignOnRoad). */
+    this.road = null;
+    this.judged = null;
+    this.timer = null;
+    /** Requests started (only the latest one's answer is shown). */
+    this.asked = 0;
+    els.file.addEventListener('change', () => {
+      const f = els.file.files && els.file.files[0];
+      els.file.value = '';
+      if (f) this.load(f);
+    });
+    els.box.addEventListener('dragover', (ev) => {
+      ev.preventDefault();
+      els.box.classList.add('dropping');
+    });
+    els.box.addEventListener('dragleave', () => els.box.classList.remove('dropping'));
+    els.box.addEventListener('drop', (ev) => {
+      ev.preventDefault();
+      els.box.classList.remove('dropping');
+      const f = ev.dataTransfer && ev.dataTransfer.files[0];
+      if (f) this.load(f);
+    });
+    els.box.addEventListener('toggle', () => this.redraw());
+  }
+
+  /** Reads, describes and judges `file` (a File or Blob with a `name`); a refused file keeps the last good road. */
+  async load(file) {
+    const name = file.name || 'road.csv';
+    const n = ++this.asked;
+    this.els.msg.textContent = '';
+    if (file.size > MAX_FILE_BYTES) {
+      this.els.msg.textContent = `${name}: ${(file.size / 1e6).toFixed(0)} MB is larger than a profile file may be; ${this.keeps()}`;
+      return;
+    }
+    this.els.summary.textContent = `Reading ${name}…`;
+    try {
+      const bytes = new Uint8Array(await file.arrayBuffer());
+      const desc = await this.compute.describeRoad(bytes);
+      const on = await this.compute.designOnRoad(this.store.state, bytes, name);
+      if (n !== this.asked) return;
+      this.road = { name, bytes, desc };
+      this.judged = { key: judgedOn(this.store.state), on };
+      this.show();
+    } catch (e) {
+      if (n !== this.asked) return;
+      this.els.msg.textContent = `${name}: ${plainWords(e.message || e)}; ${this.keeps()}`;
+      if (this.road) this.show();
+      else this.els.summary.textContent = '';
+    }
+  }
+
+  /** What a refused file leaves shown, in words. */
+  keeps() {
+    return this.road ? `${this.road.name} stays.` : 'no road is loaded.';
+  }
+
+  /** After the views changed: the road judged again at the new design, car, speed or tracks (once the sliders rest). */
+  viewsChanged() {
+    if (!this.road || (this.judged && this.judged.key === judgedOn(this.store.state))) return;
+    clearTimeout(this.timer);
+    this.timer = setTimeout(() => this.judge(), SETTLE_MS);
+  }
+
+  async judge() {
+    const road = this.road;
+    const s = this.store.state;
+    const n = ++this.asked;
+    try {
+      const on = await this.compute.designOnRoad(s, road.bytes, road.name);
+      if (n !== this.asked) return;
+      this.els.msg.textContent = '';
+      this.judged = { key: judgedOn(s), on };
+    } catch (e) {
+      if (n !== this.asked) return;
+      // A speed the profile is too short for: the message says how long it must be.
+      this.els.msg.textContent = `${road.name}: ${plainWords(e.message || e)}`;
+      this.judged = { key: judgedOn(s), on: null };
+    }
+    this.show();
+  }
+
+  show() {
+    const { desc, name } = this.road;
+    const f = desc.iso8608;
+    this.els.summary.textContent =
+      `${name}: ${desc.samples} samples every ${fmt(desc.spacing_m, 3)} m (${fmt(desc.length_m / 1000, 3)} km), ` +
+      `${desc.tracks} track${desc.tracks === 2 ? 's' : ''}. ISO 8608 class ${f.class}, ` +
+      `Gd(n0 = 0.1 cycle/m) ${f.gd_n0.toExponential(2)} m³, waviness ${f.waviness.toFixed(2)} ` +
+      `(fit over ${fmt(f.band[0], 2)}–${fmt(f.band[1], 3)} cycle/m, residual ${f.residual.toFixed(3)} in log10).`;
+    this.els.box.dataset.roadClass = f.class;
+    this.drawTable();
+    this.redraw();
+  }
+
+  drawTable() {
+    const t = this.els.table;
+    const on = this.judged && this.judged.on;
+    t.hidden = !on;
+    const notes = [...(this.road.desc.notes || []), ...(on ? on.notes : [])];
+    this.els.notes.textContent = notes.length ? `Notes: ${notes.join('; ')}.` : '';
+    if (!on) return;
+    const r = on.road;
+    t.querySelector('caption').textContent =
+      `The design and the datum on ${r.file} at ${Number(r.speed.toPrecision(4))} m/s, ${r.tracks} tracks ` +
+      `(exact route; the shaping filter's PSD error ${(100 * r.fit_error).toFixed(1)} % over ${fmt(r.band_hz[0], 2)}–${fmt(r.band_hz[1], 3)} Hz; BAcc unweighted)`;
+    const pct = (a, b) => `${a >= b ? '+' : '−'}${Math.abs(100 * (a / b - 1)).toFixed(1)} %`;
+    const body = t.querySelector('tbody');
+    body.replaceChildren(...ROWS.map(([k, label, unit, scale]) => {
+      const tr = document.createElement('tr');
+      const cells = [
+        `${label} <span class="unit">${unit}</span>`,
+        fmt(on.quarter[k] * scale, 4), pct(on.quarter[k], on.datum_quarter[k]),
+        fmt(on.full[k] * scale, 4), pct(on.full[k], on.datum_full[k]),
+      ];
+      cells.forEach((html, i) => {
+        const td = document.createElement(i === 0 ? 'th' : 'td');
+        if (i === 0) td.scope = 'row';
+        td.innerHTML = html;
+        tr.append(td);
+      });
+      return tr;
+    }));
+  }
+
+  /** The PSD chart, when the panel is open and a road is loaded. */
+  redraw() {
+    const shown = Boolean(this.road);
+    this.els.canvas.hidden = !shown;
+    if (!shown || !this.els.box.open || !this.els.canvas.clientWidth) return;
+    this.plot.draw(roadPsdSpec(this.road.desc));
+  }
+}
