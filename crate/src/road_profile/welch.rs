@@ -107,21 +107,46 @@ pub fn welch(x: &[f64], y: Option<&[f64]>, dx: f64, seg: usize) -> Spectra {
     let mut pxx = vec![0.0; half];
     let mut pyy = y.map(|_| vec![0.0; half]);
     let mut pxy = y.map(|_| vec![C64::new(0.0, 0.0); half]);
-    let mut bx = vec![C64::new(0.0, 0.0); seg];
-    let mut by = vec![C64::new(0.0, 0.0); seg];
-    for s in 0..k {
-        let start = offset + s * hop;
-        prepare(&x[start..start + seg], &window, &mut bx);
-        fft.forward(&mut bx);
+    // Two real segments go through one complex transform (`x + i y`, then split by
+    // symmetry): the two tracks' segments together, one track's segments in pairs.
+    let mut bz = vec![C64::new(0.0, 0.0); seg];
+    let mut add = |bz: &[C64], both: bool, track2: bool| {
         for j in 1..=half {
-            pxx[j - 1] += bx[j].norm_sqr();
+            let (a, b) = (bz[j], bz[seg - j].conj());
+            let first = (a + b) * 0.5;
+            let second = (a - b) * C64::new(0.0, -0.5);
+            pxx[j - 1] += first.norm_sqr();
+            if !both {
+                continue;
+            }
+            match (track2, pyy.as_mut(), pxy.as_mut()) {
+                (true, Some(pyy), Some(pxy)) => {
+                    pyy[j - 1] += second.norm_sqr();
+                    pxy[j - 1] += first.conj() * second;
+                }
+                _ => pxx[j - 1] += second.norm_sqr(),
+            }
         }
-        if let (Some(y), Some(pyy), Some(pxy)) = (y, pyy.as_mut(), pxy.as_mut()) {
-            prepare(&y[start..start + seg], &window, &mut by);
-            fft.forward(&mut by);
-            for j in 1..=half {
-                pyy[j - 1] += by[j].norm_sqr();
-                pxy[j - 1] += bx[j].conj() * by[j];
+    };
+    let at = |s: usize| offset + s * hop;
+    match y {
+        Some(y) => {
+            for s in 0..k {
+                prepare(&x[at(s)..at(s) + seg], &window, &mut bz, false);
+                prepare(&y[at(s)..at(s) + seg], &window, &mut bz, true);
+                fft.forward(&mut bz);
+                add(&bz, true, true);
+            }
+        }
+        None => {
+            for s in (0..k).step_by(2) {
+                prepare(&x[at(s)..at(s) + seg], &window, &mut bz, false);
+                let both = s + 1 < k;
+                if both {
+                    prepare(&x[at(s + 1)..at(s + 1) + seg], &window, &mut bz, true);
+                }
+                fft.forward(&mut bz);
+                add(&bz, both, false);
             }
         }
     }
@@ -154,8 +179,9 @@ pub fn welch(x: &[f64], y: Option<&[f64]>, dx: f64, seg: usize) -> Spectra {
     }
 }
 
-/// Copies `x` into `buf` with its least-squares line removed and the window applied.
-fn prepare(x: &[f64], window: &[f64], buf: &mut [C64]) {
+/// Copies `x` into `buf`'s real parts (`imag`: its imaginary parts; a real copy zeroes
+/// them) with its least-squares line removed and the window applied.
+fn prepare(x: &[f64], window: &[f64], buf: &mut [C64], imag: bool) {
     let m = x.len() as f64;
     let tm = 0.5 * (m - 1.0);
     let xm = x.iter().sum::<f64>() / m;
@@ -168,7 +194,11 @@ fn prepare(x: &[f64], window: &[f64], buf: &mut [C64]) {
     let slope = if sxx > 0.0 { sxy / sxx } else { 0.0 };
     for (i, (v, b)) in x.iter().zip(buf.iter_mut()).enumerate() {
         let d = v - xm - slope * (i as f64 - tm);
-        *b = C64::new(d * window[i], 0.0);
+        if imag {
+            b.im = d * window[i];
+        } else {
+            *b = C64::new(d * window[i], 0.0);
+        }
     }
 }
 
