@@ -73,6 +73,15 @@ def rows():
     for tracks in ["correlated", "independent"]:
         t, _ = run(["map", "--model", "full", "--ks-range", "10000:40000:160", "--cs-range", "500:4000:120", "--compute", "cpu", "--tracks", tracks, "--json"])
         out.append((f"`ridelab map --model full` 160 x 120, {tracks} tracks", f"{t:.2f} s", ""))
+    # A measured road (#31): describing the shipped profiles, and the HiFi map on one
+    # against the same map on its ISO class (the bound: at most 2x).
+    for road in ["concrete-slab-5m.csv", "class-c-waviness-2.5.csv"]:
+        t, o = run(["road", f"assets/roads/{road}", "--json"])
+        out.append((f"`ridelab road assets/roads/{road}`, whole process", f"{t:.2f} s", f"{runs(o['samples'])} samples, {o['tracks']} track{'s' if o['tracks'] == 2 else ''}, {o['length_m'] / 1000:g} km"))
+    grid = ["--ks-range", "10000:40000:160", "--cs-range", "500:4000:120", "--json"]
+    iso, _ = run(["map", "--model", "full", "--class", "C", "--compute", "cpu", *grid])
+    t, _ = run(["map", "--model", "full", "--road", "assets/roads/class-c-waviness-2.5.csv", *grid])
+    out.append(("`ridelab map --model full --road assets/roads/class-c-waviness-2.5.csv` 160 x 120", f"{t:.2f} s", f"{t / iso:.1f}x the same map on class C ({iso:.2f} s)"))
     wasm = sorted((ROOT / "dist").glob("*.wasm"))
     if wasm:
         raw = wasm[0].read_bytes()

@@ -8,13 +8,14 @@
 //! 8th digit of a criterion (2e-8 relative on the shipped class C profile), where the
 //! page must equal the CLI to 1e-9. It also keeps rustfft's many kernels out of the wasm. This transform does the same
 //! arithmetic in the same order on every target, its twiddles from [`crate::math`]
-//! (libm on both): an iterative radix-2 FFT for powers of two and Bluestein's chirp-z
-//! algorithm over it for any other length.
+//! (libm on both): a mixed-radix FFT for lengths whose prime factors are 2, 3 and 5 (the
+//! Welch segments' and the time records' lengths) and Bluestein's chirp-z algorithm over
+//! a power of two for any other length.
 //!
 //! Forward transform: `X_k = sum_j x_j exp(-2 pi i j k / n)`, `k = 0..n`.
 //! Bluestein: with `jk = (j^2 + k^2 - (k - j)^2) / 2`, `X_k = c_k^* sum_j (x_j c_j^*)
-//! c_{k-j}` where `c_m = exp(i pi m^2 / n)`: a convolution, done by radix-2 FFTs of a
-//! length `m >= 2 n - 1`.
+//! c_{k-j}` where `c_m = exp(i pi m^2 / n)`: a convolution, done by FFTs of a power of
+//! two `m >= 2 n - 1`.
 
 use crate::math;
 use num_complex::Complex64 as C64;
@@ -27,12 +28,12 @@ pub struct Dft {
 }
 
 enum Plan {
-    /// `n` a power of two: radix-2 directly.
-    Radix2(Radix2),
-    /// Bluestein over a radix-2 transform of length `m`: the chirp `c_j^*` (`j < n`) and
-    /// the transform of the convolution kernel `c_{m'}` (`m' = -(n-1)..n-1`, wrapped).
+    /// `n` a product of 2, 3 and 5: mixed radix directly.
+    Direct(MixedRadix),
+    /// Bluestein over a power-of-two transform of length `m`: the chirp `c_j^*` (`j < n`)
+    /// and the transform of the convolution kernel `c_{m'}` (`m' = -(n-1)..n-1`, wrapped).
     Bluestein {
-        inner: Radix2,
+        inner: MixedRadix,
         chirp: Vec<C64>,
         kernel: Vec<C64>,
         work: Vec<C64>,
@@ -43,14 +44,17 @@ impl Dft {
     /// The transform of length `n >= 1`.
     pub fn new(n: usize) -> Dft {
         let n = n.max(1);
-        if n.is_power_of_two() {
+        if let Some(direct) = MixedRadix::new(n) {
             return Dft {
                 n,
-                plan: Plan::Radix2(Radix2::new(n)),
+                plan: Plan::Direct(direct),
             };
         }
         let m = (2 * n - 1).next_power_of_two();
-        let inner = Radix2::new(m);
+        // A power of two always factors.
+        let Some(inner) = MixedRadix::new(m) else {
+            unreachable!("{m} is a power of two")
+        };
         // c_j = exp(i pi j^2 / n), with j^2 taken mod 2 n so the angle stays small.
         let c = |j: usize| {
             let j2 = (j as u128 * j as u128 % (2 * n) as u128) as f64;
@@ -64,14 +68,15 @@ impl Dft {
             kernel[j] = c(j);
             kernel[m - j] = c(j);
         }
-        inner.forward(&mut kernel);
+        let mut work = vec![C64::new(0.0, 0.0); m];
+        inner.forward(&mut kernel, &mut work);
         Dft {
             n,
             plan: Plan::Bluestein {
                 inner,
                 chirp,
                 kernel,
-                work: vec![C64::new(0.0, 0.0); m],
+                work,
             },
         }
     }
@@ -88,7 +93,10 @@ impl Dft {
     pub fn forward(&mut self, x: &mut [C64]) {
         debug_assert_eq!(x.len(), self.n);
         match &mut self.plan {
-            Plan::Radix2(r) => r.forward(x),
+            Plan::Direct(r) => {
+                let mut input = x.to_vec();
+                r.run(&mut input, x);
+            }
             Plan::Bluestein {
                 inner,
                 chirp,
@@ -96,16 +104,17 @@ impl Dft {
                 work,
             } => {
                 let m = work.len();
-                for (w, (xj, cj)) in work.iter_mut().zip(x.iter().zip(chirp.iter())) {
+                let mut a = vec![C64::new(0.0, 0.0); m];
+                for (w, (xj, cj)) in a.iter_mut().zip(x.iter().zip(chirp.iter())) {
                     *w = xj * cj;
                 }
-                work[x.len()..].fill(C64::new(0.0, 0.0));
-                inner.forward(work);
+                inner.run(&mut a, work);
                 for (w, k) in work.iter_mut().zip(kernel.iter()) {
                     // The inverse through the forward transform of the conjugate.
                     *w = (*w * k).conj();
                 }
-                inner.forward(work);
+                a.copy_from_slice(work);
+                inner.run(&mut a, work);
                 let scale = 1.0 / m as f64;
                 for (xk, (w, ck)) in x.iter_mut().zip(work.iter().zip(chirp.iter())) {
                     *xk = w.conj() * scale * ck;
@@ -115,48 +124,80 @@ impl Dft {
     }
 }
 
-/// An iterative radix-2 decimation-in-time FFT of a power-of-two length.
-struct Radix2 {
-    /// `exp(-2 pi i k / n)`, `k < n / 2`.
+/// A recursive decimation-in-time FFT of a length whose factors are 2, 3 and 5: a length
+/// `n = p m` is `p` transforms of length `m` (every `p`th sample from offset `r`), then
+/// `m` butterflies of size `p`: `X_{k + q m} = sum_r W_p^{r q} (W_n^{r k} Y_r[k])`.
+struct MixedRadix {
+    /// The radices, outermost first.
+    factors: Vec<usize>,
+    /// `W_n^j = exp(-2 pi i j / n)`, `j < n`.
     twiddles: Vec<C64>,
 }
 
-impl Radix2 {
-    fn new(n: usize) -> Radix2 {
-        Radix2 {
-            twiddles: (0..n / 2)
-                .map(|k| {
-                    let (s, c) = math::sin_cos(-2.0 * PI * k as f64 / n as f64);
+impl MixedRadix {
+    /// The plan for `n`, or `None` when `n` has a prime factor above 5.
+    fn new(n: usize) -> Option<MixedRadix> {
+        let mut factors = Vec::new();
+        let mut rest = n;
+        for p in [2, 3, 5] {
+            while rest.is_multiple_of(p) {
+                factors.push(p);
+                rest /= p;
+            }
+        }
+        (rest == 1).then(|| MixedRadix {
+            factors,
+            twiddles: (0..n)
+                .map(|j| {
+                    let (s, c) = math::sin_cos(-2.0 * PI * j as f64 / n as f64);
                     C64::new(c, s)
                 })
                 .collect(),
-        }
+        })
     }
 
-    fn forward(&self, x: &mut [C64]) {
-        let n = x.len();
-        if n < 2 {
+    /// `out` = the transform of `input` (both of the plan's length; `input` is left as it was).
+    fn run(&self, input: &mut [C64], out: &mut [C64]) {
+        self.step(input, 1, out, &self.factors);
+    }
+
+    /// As [`MixedRadix::run`], `x` transformed in place through `scratch` (same length).
+    fn forward(&self, x: &mut [C64], scratch: &mut [C64]) {
+        scratch.copy_from_slice(x);
+        self.step(scratch, 1, x, &self.factors);
+    }
+
+    /// `out` (length `n`) = the transform of `input[0], input[stride], ...`.
+    fn step(&self, input: &[C64], stride: usize, out: &mut [C64], factors: &[usize]) {
+        let n = out.len();
+        let Some((&p, inner)) = factors.split_first() else {
+            out[0] = input[0];
             return;
+        };
+        let m = n / p;
+        for r in 0..p {
+            self.step(
+                &input[r * stride..],
+                stride * p,
+                &mut out[r * m..(r + 1) * m],
+                inner,
+            );
         }
-        let bits = n.trailing_zeros();
-        for i in 0..n {
-            let j = i.reverse_bits() >> (usize::BITS - bits);
-            if j > i {
-                x.swap(i, j);
+        // W_n^j is the plan's W_N^(j N / n); W_p^j its W_N^(j N / p).
+        let top = self.twiddles.len();
+        let (wn, wp) = (top / n, top / p);
+        let mut y = [C64::new(0.0, 0.0); 5];
+        for k in 0..m {
+            for r in 0..p {
+                y[r] = out[r * m + k] * self.twiddles[(r * k % n) * wn];
             }
-        }
-        let mut len = 2;
-        while len <= n {
-            let stride = n / len;
-            for start in (0..n).step_by(len) {
-                for k in 0..len / 2 {
-                    let t = x[start + k + len / 2] * self.twiddles[k * stride];
-                    let u = x[start + k];
-                    x[start + k] = u + t;
-                    x[start + k + len / 2] = u - t;
+            for q in 0..p {
+                let mut sum = y[0];
+                for r in 1..p {
+                    sum += y[r] * self.twiddles[(r * q % p) * wp];
                 }
+                out[q * m + k] = sum;
             }
-            len *= 2;
         }
     }
 }
@@ -169,7 +210,7 @@ mod tests {
     /// other lengths (primes among them): within 1e-12 of the largest coefficient.
     #[test]
     fn equals_the_dft_by_its_definition() {
-        for n in [1, 2, 8, 64, 3, 7, 12, 100, 257, 750] {
+        for n in [1, 2, 8, 64, 3, 5, 7, 12, 100, 257, 750, 1000] {
             let x: Vec<C64> = (0..n)
                 .map(|j| {
                     C64::new(

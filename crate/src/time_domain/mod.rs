@@ -168,8 +168,10 @@ pub struct TimeResponse {
     pub equivalent_rate: f64,
 }
 
-/// Road profile samples `x(n dt - tau)`, `n = 0..N-1`, of one track (periodic, length N).
-pub fn road_profile(
+/// Road profile samples `x(n dt - tau)`, `n = 0..N-1`, of one track (periodic, length N),
+/// by `dft` (planned for length N once per run: a run realises every wheel's track).
+fn road_profile(
+    dft: &mut crate::fft::Dft,
     road: &Road,
     n: usize,
     dt: f64,
@@ -191,7 +193,7 @@ pub fn road_profile(
         spec[k] = z;
         spec[n - k] = z.conj();
     }
-    crate::fft::Dft::new(n).inverse(&mut spec);
+    dft.inverse(&mut spec);
     spec.into_iter().map(|c| c.re).collect()
 }
 
@@ -241,11 +243,21 @@ fn run(model: &LinearModel, road: &Road, opt: &TimeOptions, rate: f64) -> Result
         })
         .collect();
     let mut r_wheel: Vec<Vec<f64>> = vec![Vec::new(); wheels];
+    let mut dft = crate::fft::Dft::new(n);
     for src in &exc.sources {
         // All wheels of a source share its phases (the first wheel's track).
         let track = model.wheels[src.channels[0].0].track;
         for &(j, tau) in &src.channels {
-            r_wheel[j] = road_profile(road, n, h, opt.f_min, opt.f_max, &phases[track], tau);
+            r_wheel[j] = road_profile(
+                &mut dft,
+                road,
+                n,
+                h,
+                opt.f_min,
+                opt.f_max,
+                &phases[track],
+                tau,
+            );
         }
     }
     let warm = ((20.0f64.min(opt.duration)) / h).round() as usize;
