@@ -34,10 +34,10 @@ export function installTestHooks({ store, controller, compute, ui, boot, lessons
     get presets() {
       return store.presets;
     },
-    /** The measured road (js/roadpanel.js): `{name, desc, on}` (`on`: the design and datum on it), or null. */
+    /** The measured road (js/roadpanel.js): `{name, desc, on, key, timing}` (`on`: the design and datum on it; `timing`: the file's description and judgement, ms), or null. */
     get road() {
       const r = ui.road && ui.road.road;
-      return r ? { name: r.name, desc: r.desc, on: ui.road.judged && ui.road.judged.on, key: ui.road.judged && ui.road.judged.key } : null;
+      return r ? { name: r.name, desc: r.desc, on: ui.road.judged && ui.road.judged.on, key: ui.road.judged && ui.road.judged.key, timing: ui.road.timing } : null;
     },
     /** The class front (js/classfront.js): `{key, rows, problems}` or null. */
     get classFront() {
