@@ -12,8 +12,8 @@ import { roadPsdSpec } from './chartspecs.js';
 import { plainWords } from './controls.js';
 import { fmt } from './format.js';
 
-/** The core's limit on a profile file, bytes (crate/src/road_profile/profile.rs MAX_BYTES is the check; this only spares reading a huge file). */
-const MAX_FILE_BYTES = 64 * 1024 * 1024;
+/** The core's limit on a profile file, 128 MiB (crate/src/road_profile/profile.rs MAX_BYTES is the check; this only spares reading a larger file). */
+const MAX_FILE_BYTES = 128 * 1024 * 1024;
 /** Quiet time after a design change before the road is judged again, ms. */
 const SETTLE_MS = 150;
 
@@ -69,7 +69,7 @@ export class RoadPanel {
     const n = ++this.asked;
     this.els.msg.textContent = '';
     if (file.size > MAX_FILE_BYTES) {
-      this.els.msg.textContent = `${name}: ${(file.size / 1e6).toFixed(0)} MB is larger than a profile file may be; ${this.keeps()}`;
+      this.els.msg.textContent = `${name}: ${(file.size / 2 ** 20).toFixed(0)} MiB is larger than a profile file may be (128 MiB); ${this.keeps()}`;
       return;
     }
     this.els.summary.textContent = `Reading ${name}…`;
