@@ -63,25 +63,31 @@ async function judgedNow(page) {
   return page.evaluate(() => ({ road: window.__ridelab.road, state: window.__ridelab.state }));
 }
 
-function sameAsCli(road, s, file, twoTracks = false) {
+function sameAsCli(road, s, datum, file, twoTracks = false) {
   for (const [model, key] of [['quarter', 'quarter'], ['full', 'full']]) {
     const want = cliEval(model, file, s, twoTracks);
     for (const c of ['bacc', 'dtl', 'sws']) close(road.on[key][c], want[c], `${model} ${c} at Ks ${s.ks}, Cs ${s.cs}, ${s.speed} m/s`);
-    const datum = cliEval(model, file, { ...s, ...DATUM }, twoTracks);
-    for (const c of ['bacc', 'dtl', 'sws']) close(road.on[`datum_${key}`][c], datum[c], `${model} datum ${c}`);
+    const atDatum = cliEval(model, file, { ...s, ...datum }, twoTracks);
+    for (const c of ['bacc', 'dtl', 'sws']) close(road.on[`datum_${key}`][c], atDatum[c], `${model} datum ${c}`);
   }
 }
 
-/** The datum design of the page's car (from the description). */
-let DATUM = null;
-
-test('a dropped road: described and judged as the CLI does, kept through bad files', { timeout: TIMEOUT }, async () => {
-  const { page, context, log } = await openPage(suite.browser, `${suite.srv.url}#car=sedan&class=B&speed=20&tracks=correlated`, { width: 1600, height: 1000 });
+/**
+ * Opens the page at `hash` in a `width` x `height` window with the Car & road tab's road
+ * section open and `file` chosen; `datum`: the page's car's datum design.
+ */
+async function openWithRoad(hash, [width, height], file) {
+  const { page, context, log } = await openPage(suite.browser, `${suite.srv.url}${hash}`, { width, height });
   await settled(page, 100);
-  DATUM = await page.evaluate(() => ({ ks: window.__ridelab.desc.datumKs, cs: window.__ridelab.desc.datumCs }));
+  const datum = await page.evaluate(() => ({ ks: window.__ridelab.desc.datumKs, cs: window.__ridelab.desc.datumCs }));
   await page.click('#tab-car');
   await page.evaluate(() => (document.getElementById('road-box').open = true));
-  await choose(page, ROAD);
+  await choose(page, file);
+  return { page, context, log, datum };
+}
+
+test('a dropped road: described and judged as the CLI does, kept through bad files', { timeout: TIMEOUT }, async () => {
+  const { page, context, log, datum } = await openWithRoad('#car=sedan&class=B&speed=20&tracks=correlated', [1600, 1000], ROAD);
 
   // The description is the CLI's.
   const want = cli(['road', ROAD]);
@@ -92,7 +98,7 @@ test('a dropped road: described and judged as the CLI does, kept through bad fil
   assert.equal(road.desc.samples, want.samples);
   const summary = await page.textContent('#road-summary');
   assert.match(summary, new RegExp(`class ${want.iso8608.class}, Gd\\(n0 = 0.1 cycle/m\\) \\S+ m³, waviness ${want.iso8608.waviness.toFixed(2)}`));
-  sameAsCli(road, state, ROAD, true);
+  sameAsCli(road, state, datum, ROAD, true);
 
   // A new design and a new speed: judged again, still the CLI's.
   await page.fill('#ks-num', '30.5');
@@ -102,7 +108,7 @@ test('a dropped road: described and judged as the CLI does, kept through bad fil
   ({ road, state } = await judgedNow(page));
   assert.equal(state.ks, 30500);
   assert.equal(road.on.road.speed, 27);
-  sameAsCli(road, state, ROAD, true);
+  sameAsCli(road, state, datum, ROAD, true);
 
   // The table shows the numbers in the page's units with the change against the datum.
   const rows = await page.$$eval('#road-table tbody tr', (trs) => trs.map((tr) => tr.textContent));
@@ -154,21 +160,16 @@ test('a one-track road drives the wheels as the page\'s tracks say, as the CLI w
   const file = path.join(OUT, 'one-track.csv');
   fs.mkdirSync(OUT, { recursive: true });
   fs.writeFileSync(file, text);
-  const { page, context, log } = await openPage(suite.browser, `${suite.srv.url}#car=suv&class=C&speed=15&tracks=independent`, { width: 1280, height: 720 });
-  await settled(page, 100);
-  DATUM = await page.evaluate(() => ({ ks: window.__ridelab.desc.datumKs, cs: window.__ridelab.desc.datumCs }));
-  await page.click('#tab-car');
-  await page.evaluate(() => (document.getElementById('road-box').open = true));
-  await choose(page, file);
+  const { page, context, log, datum } = await openWithRoad('#car=suv&class=C&speed=15&tracks=independent', [1280, 720], file);
   let { road, state } = await judgedNow(page);
   assert.equal(road.desc.tracks, 1);
   assert.equal(road.on.road.tracks, 'independent');
-  sameAsCli(road, state, file);
+  sameAsCli(road, state, datum, file);
   // The page's tracks choice follows to the road.
   await page.selectOption('#tracks', 'correlated');
   ({ road, state } = await judgedNow(page));
   assert.equal(road.on.road.tracks, 'correlated');
-  sameAsCli(road, state, file);
+  sameAsCli(road, state, datum, file);
   assertClean(log);
   await context.close();
 });
