@@ -1,16 +1,23 @@
 //! Timings of a measured road profile's path: reading a 4 km profile at 5 cm (80 000
 //! samples, two tracks) from CSV text, describing it (Welch PSD of both tracks, coherence,
 //! ISO 8608 fit; the target is under 100 ms), shaping it at 20 m/s (Welch PSDs and the
-//! filter fits), and the criteria on the shaped road by the exact route (quarter car and
-//! full car) and by the frequency route on the raw PSD (full car, 1e-6).
+//! filter fits), and the criteria on the shaped road by the exact routes (the modal route
+//! and the augmented Lyapunov equations behind it; quarter car and full car) and by the
+//! frequency route on the raw PSD (full car, 1e-6); the baseline is the full car's modal
+//! route on the ISO class C road (the ISO map's route where the residue route declines).
 //!
 //! Run: `cargo bench -p ridelab --bench road_profile`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use ridelab::analysis::{HiFi, ModelKind};
+use ridelab::criteria::criteria_modal;
+use ridelab::evaluate::Evaluator;
 use ridelab::model::{full_car, quarter_car};
+use ridelab::road::{Road, RoadClass};
+use ridelab::road_profile::MeasuredModel;
 use ridelab::road_profile::{
-    criteria_shaped, criteria_shaped_spectral, describe, synthesize, Profile, ProfileTracks,
-    ShapedRoad, Synthesis,
+    criteria_shaped, criteria_shaped_modal, criteria_shaped_spectral, describe, synthesize,
+    Profile, ProfileTracks, ShapedRoad, Synthesis,
 };
 use ridelab::Car;
 use std::hint::black_box;
@@ -41,10 +48,34 @@ fn road_profile(c: &mut Criterion) {
     let car = Car::datum();
     let quarter = quarter_car(&car.quarter());
     let full = full_car(&car);
-    g.bench_function("exact route, quarter car", |b| {
+    g.bench_function("modal route, quarter car", |b| {
+        b.iter(|| criteria_shaped_modal(black_box(&quarter), &road).unwrap())
+    });
+    g.bench_function("modal route, full car", |b| {
+        b.iter(|| criteria_shaped_modal(black_box(&full), &road).unwrap())
+    });
+    let class_c = Road {
+        class: RoadClass::C,
+        ..Road::default()
+    };
+    g.bench_function("ISO class C, modal route, full car (baseline)", |b| {
+        b.iter(|| criteria_modal(black_box(&full), &class_c).unwrap())
+    });
+    // A design point as a map evaluates it: the full car's residue route with the road's
+    // filters (MeasuredModel), against the ISO HiFi's residue route.
+    let measured = MeasuredModel::new(ModelKind::Full, &car, road.clone());
+    let hifi = HiFi::new(&car, &class_c).unwrap();
+    g.bench_function("residue route with the filters, full car point", |b| {
+        b.iter(|| measured.evaluate(black_box(25e3), 1500.0).unwrap())
+    });
+    g.bench_function(
+        "ISO class C, residue route, full car point (baseline)",
+        |b| b.iter(|| hifi.evaluate(black_box(25e3), 1500.0).unwrap()),
+    );
+    g.bench_function("Lyapunov route, quarter car", |b| {
         b.iter(|| criteria_shaped(black_box(&quarter), &road).unwrap())
     });
-    g.bench_function("exact route, full car", |b| {
+    g.bench_function("Lyapunov route, full car", |b| {
         b.iter(|| criteria_shaped(black_box(&full), &road).unwrap())
     });
     g.bench_function("frequency route 1e-6, full car", |b| {

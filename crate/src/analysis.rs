@@ -84,15 +84,20 @@ pub fn quarter_criteria(q: &QuarterCar, road: &Road) -> Result<Criteria> {
     }
 }
 
+/// `car`'s front quarter car with the front spring `ks` (N/m) and damper `cs` (N s/m):
+/// the car's own faults first (they name its field), then the design's domain.
+pub(crate) fn front_quarter(car: &Car, ks: f64, cs: f64) -> Result<QuarterCar> {
+    let mut q = car.quarter();
+    q.ks = ks;
+    q.cs = cs;
+    q.validate()?;
+    DesignDomain::new(q.ms, q.kt).check(ks, cs)?;
+    Ok(q)
+}
+
 impl Evaluator for LoFi {
     fn evaluate(&self, ks: f64, cs: f64) -> Result<Criteria> {
-        let mut q = self.car.quarter();
-        q.ks = ks;
-        q.cs = cs;
-        // The car's own faults first (they name its field), then the design's domain.
-        q.validate()?;
-        DesignDomain::new(q.ms, q.kt).check(ks, cs)?;
-        quarter_criteria(&q, &self.road)
+        quarter_criteria(&front_quarter(&self.car, ks, cs)?, &self.road)
     }
     fn name(&self) -> String {
         "quarter".into()
@@ -464,24 +469,47 @@ fn front_family(car: &Car) -> (Car, Car) {
 /// halves with weights 1/2 on independent tracks (module doc of
 /// [`crate::model::antisymmetric_half`]), each half driven as one source.
 fn residue_route(car: &Car, road: &Road) -> Result<ResidueRoute> {
+    let symmetric = half_family(car, road, Half::Symmetric)?;
+    match road.tracks {
+        Tracks::Correlated => ResidueRoute::new(vec![(symmetric, 1.0)]),
+        Tracks::Independent => ResidueRoute::new(vec![
+            (symmetric, 0.5),
+            (half_family(car, road, Half::Antisymmetric)?, 0.5),
+        ]),
+    }
+}
+
+/// One half of a mirror-symmetric full car ([`symmetric_half`], [`antisymmetric_half`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Half {
+    /// Heave, pitch and the wheels moving together: driven by the tracks' mean.
+    Symmetric,
+    /// Roll and the wheels moving against each other: driven by the tracks' half
+    /// difference.
+    Antisymmetric,
+}
+
+/// The residue family of `half` of `car`'s full car over the front design, driven as one
+/// source at `road`'s speed and intensity (its tracks setting is not used), started from
+/// the car's own design.
+pub fn half_family(car: &Car, road: &Road, half: Half) -> Result<ResidueFamily> {
     let one_source = Road {
         tracks: Tracks::Correlated,
         ..*road
     };
     let (free, unit) = front_family(car);
-    let (free, unit) = (full_car(&free), full_car(&unit));
-    let reference = (car.front.spring, car.front.damper);
-    let family = |half: fn(&LinearModel) -> LinearModel| {
-        let u = half(&unit);
-        ResidueFamily::new(&half(&free), &u.k, &u.c, &one_source, reference)
+    let project = match half {
+        Half::Symmetric => symmetric_half,
+        Half::Antisymmetric => antisymmetric_half,
     };
-    let symmetric = family(symmetric_half)?;
-    match road.tracks {
-        Tracks::Correlated => ResidueRoute::new(vec![(symmetric, 1.0)]),
-        Tracks::Independent => {
-            ResidueRoute::new(vec![(symmetric, 0.5), (family(antisymmetric_half)?, 0.5)])
-        }
-    }
+    let u = project(&full_car(&unit));
+    ResidueFamily::new(
+        &project(&full_car(&free)),
+        &u.k,
+        &u.c,
+        &one_source,
+        (car.front.spring, car.front.damper),
+    )
 }
 
 impl Evaluator for HiFi {

@@ -14,10 +14,12 @@ use crate::error::{Result, RideError};
 pub const MAX_RUNS: u64 = 4_000_000;
 
 /// Most model runs one command may ask for on a measured road (`--road FILE`): there a
-/// run is the exact route on the model augmented with the road's shaping filters, about
-/// 0.7 ms for the HiFi on the shipped slab road (a 41 x 41 HiFi map took 0.69 s on 2
-/// cores, STM 201 with 3 levels, 48 517 runs, 33 s on one), so this is at most about
-/// 70 s of model time.
+/// HiFi run takes the residue route with the road's shaping filters, about 20 us
+/// ([`crate::road_profile::MeasuredModel`]; the default STM, 201 with 3 levels, 48 517
+/// runs, took 0.96 s on the shipped slab road), the modal route where that declines
+/// (about 0.13 ms) and the Lyapunov route where a filter's partial fractions cancel
+/// (about 1.5 ms), so this is at most about 2 s of model time, and 150 s in that worst
+/// case.
 pub const MAX_MEASURED_RUNS: u64 = 100_000;
 
 /// [`check`] on a measured road: refuses `runs` above [`MAX_MEASURED_RUNS`].
@@ -28,7 +30,7 @@ pub fn check_measured(runs: u64, field: &str, what: &str, options: &str) -> Resu
     Err(RideError::field(
         field,
         format!(
-            "{what} asks for about {} model runs on a measured road; one command takes at most {} there (about 70 s of model time): lower {options}",
+            "{what} asks for about {} model runs on a measured road; one command takes at most {} there (about 2 s of model time, up to 150 s where the road's filter needs the slow route): lower {options}",
             group(runs),
             group(MAX_MEASURED_RUNS)
         ),

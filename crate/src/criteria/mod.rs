@@ -22,9 +22,10 @@ pub use exact::criteria_exact;
 pub use iso2631::{
     bacc_wk, bacc_wk_exact, bacc_wk_modal, bacc_wk_spectral, comfort_label, wk_gain,
 };
+pub(crate) use modal::{add_source_variances, expand_sources, inverse_sums, Channel};
 pub use modal::{criteria_fast_exact, criteria_modal};
 pub use residue::{
-    Certified, Decline, Residue, ResidueFamily, ResidueRoads, ResidueRoute, MAX_DOF,
-    RESIDUE_TOLERANCE,
+    Certified, Decline, PoleZeroFilter, Residue, ResidueFamily, ResidueRoads, ResidueRoute,
+    ShapedResidueRoute, MAX_DOF, RESIDUE_TOLERANCE,
 };
 pub use spectral::{criteria_spectral, SpectralCriteria, Spectrum};

@@ -40,7 +40,7 @@ use num_complex::Complex64 as C64;
 const ZERO: C64 = C64::new(0.0, 0.0);
 
 /// A wheel group of one source: delay, input polynomials and output feed-through.
-pub(super) struct Group {
+pub(crate) struct Group {
     pub tau: f64,
     kr: Vec<f64>,
     cr: Vec<f64>,
@@ -56,51 +56,73 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
         sources,
         intensity,
     } = expand(model, road)?;
-    let ns = lam.len();
-    // 1 / -(lambda_k + lambda_m), shared by every output and wheel-group pair.
-    let inv_sum: Vec<C64> = (0..ns * ns)
-        .map(|km| -(lam[km / ns] + lam[km % ns]).inv())
-        .collect();
+    let inv_sum = inverse_sums(&lam);
     let mut var = [0.0; N_OUT];
     for (groups, rho) in &sources {
-        for (gi, g) in groups.iter().enumerate() {
-            for (li, l) in groups.iter().enumerate().take(gi + 1) {
-                let dt = g.tau - l.tau;
-                let e: Vec<C64> = lam.iter().map(|&lm| math::cexp(lm * dt)).collect();
-                for (o, vo) in var.iter_mut().enumerate() {
-                    let (rg, rl) = (&rho[gi][o], &rho[li][o]);
-                    let rle: Vec<C64> = (0..ns).map(|m| rl[m] * e[m]).collect();
-                    let mut t = ZERO;
-                    for k in 0..ns {
-                        let row = &inv_sum[k * ns..(k + 1) * ns];
-                        let inner: C64 = (0..ns).map(|m| rle[m] * row[m]).sum();
-                        t += rg[k] * inner;
-                    }
-                    let mut t = t.re;
-                    if gi != li {
-                        t *= 2.0; // the (l, g) ordered pair gives the same value
-                        let bx: C64 = (0..ns).map(|k| rl[k] * (e[k] - 1.0) / lam[k]).sum();
-                        t -= 2.0 * g.g[o] * bx.re;
-                    }
-                    *vo += intensity * t;
+        let gains: Vec<(f64, [f64; N_OUT])> = groups.iter().map(|g| (g.tau, g.g)).collect();
+        add_source_variances(&mut var, &lam, &inv_sum, &gains, rho, intensity);
+    }
+    rms_of(var)
+}
+
+/// `1 / -(lambda_k + lambda_m)` for every pair of poles, row-major: shared by every
+/// output and wheel-group pair of the closed form.
+pub(crate) fn inverse_sums(lam: &[C64]) -> Vec<C64> {
+    let ns = lam.len();
+    (0..ns * ns)
+        .map(|km| -(lam[km / ns] + lam[km % ns]).inv())
+        .collect()
+}
+
+/// Adds one source's variances to `var` by the closed form of the module doc: its wheel
+/// groups `(tau_g, G_g)` (by increasing delay) with the residues `rho[g][o][k]` of their
+/// transfers on the poles `lam` (`inv_sum` from [`inverse_sums`]), times the source's
+/// two-sided `intensity`.
+pub(crate) fn add_source_variances(
+    var: &mut [f64; N_OUT],
+    lam: &[C64],
+    inv_sum: &[C64],
+    groups: &[(f64, [f64; N_OUT])],
+    rho: &Residues,
+    intensity: f64,
+) {
+    let ns = lam.len();
+    for (gi, &(g_tau, g_gain)) in groups.iter().enumerate() {
+        for (li, &(l_tau, _)) in groups.iter().enumerate().take(gi + 1) {
+            let dt = g_tau - l_tau;
+            let e: Vec<C64> = lam.iter().map(|&lm| math::cexp(lm * dt)).collect();
+            for (o, vo) in var.iter_mut().enumerate() {
+                let (rg, rl) = (&rho[gi][o], &rho[li][o]);
+                let rle: Vec<C64> = (0..ns).map(|m| rl[m] * e[m]).collect();
+                let mut t = ZERO;
+                for k in 0..ns {
+                    let row = &inv_sum[k * ns..(k + 1) * ns];
+                    let inner: C64 = (0..ns).map(|m| rle[m] * row[m]).sum();
+                    t += rg[k] * inner;
                 }
-            }
-        }
-        for g in groups {
-            for l in groups {
-                for (o, v) in var.iter_mut().enumerate() {
-                    *v += intensity * g.g[o] * l.g[o] * g.tau.min(l.tau);
+                let mut t = t.re;
+                if gi != li {
+                    t *= 2.0; // the (l, g) ordered pair gives the same value
+                    let bx: C64 = (0..ns).map(|k| rl[k] * (e[k] - 1.0) / lam[k]).sum();
+                    t -= 2.0 * g_gain[o] * bx.re;
                 }
+                *vo += intensity * t;
             }
         }
     }
-    rms_of(var)
+    for &(g_tau, g_gain) in groups {
+        for &(l_tau, l_gain) in groups {
+            for (o, v) in var.iter_mut().enumerate() {
+                *v += intensity * g_gain[o] * l_gain[o] * g_tau.min(l_tau);
+            }
+        }
+    }
 }
 
 /// The modal expansion of a model on a road: the poles `lambda_k` of the first-order
 /// form and, per source, its wheel groups with the residues `rho[g][o][k]` of
 /// `T_g(s) / s` (the transfer from group `g`'s road velocity to output `o`).
-pub(super) struct Expansion {
+pub(crate) struct Expansion {
     /// The poles, rad/s.
     pub lam: Vec<C64>,
     /// Per source: the wheel groups (by increasing delay) and `rho[g][o][k]`.
@@ -110,12 +132,33 @@ pub(super) struct Expansion {
 }
 
 /// `rho[g][o][k]`: group, output, pole.
-pub(super) type Residues = Vec<Vec<Vec<C64>>>;
+pub(crate) type Residues = Vec<Vec<Vec<C64>>>;
 
 /// The expansion of `model` on `road`, checked against a direct solve at 3 Hz; declines
 /// with `Err(ModalInapplicable(..))` where it is not accurate.
 pub(super) fn expand(model: &LinearModel, road: &Road) -> Result<Expansion> {
     road.validate()?;
+    let exc = model.excitation(road);
+    let sources: Vec<Vec<Channel>> = exc
+        .sources
+        .iter()
+        .map(|s| s.channels.iter().map(|&(j, tau)| (j, tau, 1.0)).collect())
+        .collect();
+    expand_sources(model, &sources, exc.intensity)
+}
+
+/// A wheel's input column, its delay (s) and its weight in a source.
+pub(crate) type Channel = (usize, f64, f64);
+
+/// The expansion of `model` driven by independent white road-velocity `sources` of
+/// two-sided `intensity` (m^2/s), each a list of weighted, delayed wheels; checked
+/// against a direct solve at 3 Hz, declining with `Err(ModalInapplicable(..))` where it is
+/// not accurate.
+pub(crate) fn expand_sources(
+    model: &LinearModel,
+    sources_in: &[Vec<Channel>],
+    intensity: f64,
+) -> Result<Expansion> {
     let n = model.n();
     for (name, mat) in [("M", &model.m), ("C", &model.c), ("K", &model.k)] {
         let tol = 1e-12 * mat.amax();
@@ -196,7 +239,6 @@ pub(super) fn expand(model: &LinearModel, road: &Road) -> Result<Expansion> {
         norm.push(nk);
     }
 
-    let exc = model.excitation(road);
     let row = |o: usize, s: C64| -> Vec<C64> {
         let r = &model.outputs[o];
         (0..n)
@@ -207,9 +249,9 @@ pub(super) fn expand(model: &LinearModel, road: &Road) -> Result<Expansion> {
         .iter()
         .map(|&l| std::array::from_fn(|o| row(o, l)))
         .collect();
-    let mut sources = Vec::with_capacity(exc.sources.len());
-    for src in &exc.sources {
-        let groups = groups(model, &kinv, &minv, &src.channels)?;
+    let mut sources = Vec::with_capacity(sources_in.len());
+    for channels in sources_in {
+        let groups = groups(model, &kinv, &minv, channels)?;
         // rho[g][o][k]
         let rho: Vec<Vec<Vec<C64>>> = groups
             .iter()
@@ -254,23 +296,24 @@ pub(super) fn expand(model: &LinearModel, road: &Road) -> Result<Expansion> {
     Ok(Expansion {
         lam,
         sources,
-        intensity: exc.intensity,
+        intensity,
     })
 }
 
-/// Wheel groups of one source with their static gains; refuses unbounded responses.
+/// Wheel groups of one source (its weighted wheels summed per delay) with their static
+/// gains; refuses unbounded responses.
 fn groups(
     model: &LinearModel,
     kinv: &DMatrix<f64>,
     minv: &DMatrix<f64>,
-    channels: &[(usize, f64)],
+    channels: &[Channel],
 ) -> Result<Vec<Group>> {
     let n = model.n();
     let mut groups: Vec<Group> = Vec::new();
-    for &(j, tau) in channels {
-        let kr: Vec<f64> = (0..n).map(|i| model.kr[(i, j)]).collect();
-        let cr: Vec<f64> = (0..n).map(|i| model.cr[(i, j)]).collect();
-        let yr: [f64; N_OUT] = std::array::from_fn(|o| model.outputs[o].r[j]);
+    for &(j, tau, w) in channels {
+        let kr: Vec<f64> = (0..n).map(|i| model.kr[(i, j)] * w).collect();
+        let cr: Vec<f64> = (0..n).map(|i| model.cr[(i, j)] * w).collect();
+        let yr: [f64; N_OUT] = std::array::from_fn(|o| model.outputs[o].r[j] * w);
         match groups
             .iter_mut()
             .find(|g| (g.tau - tau).abs() <= 1e-12 * (1.0 + tau))

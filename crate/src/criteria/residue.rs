@@ -74,7 +74,9 @@ use nalgebra::DMatrix;
 use num_complex::Complex64 as C64;
 
 mod roads;
+mod shaped;
 pub use roads::ResidueRoads;
+pub use shaped::{PoleZeroFilter, ShapedResidueRoute};
 
 /// Most generalised coordinates of a family (the symmetric half car has 4).
 pub const MAX_DOF: usize = MAX_N;

@@ -1,33 +1,43 @@
 //! A LoFi or HiFi model of a car on a measured road, as an [`Evaluator`]: what lets every
 //! design map and optimiser run on a profile file (`--road FILE`) as on an ISO class.
 
-use super::exact::criteria_shaped;
+use super::modal::criteria_shaped_fast;
 use super::profile::Profile;
-use super::shaped::{ProfileTracks, ShapedRoad};
-use crate::analysis::ModelKind;
+use super::shaped::{ProfileTracks, ShapedRoad, ShapedSource};
+use crate::analysis::{half_family, Half, ModelKind};
 use crate::car::Car;
+use crate::criteria::ShapedResidueRoute;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::road::Road;
 use serde::Serialize;
 
 /// `kind`'s model of `car` with the front spring and damper replaced, on `road`: RMS
-/// `[BAcc m/s^2, DTL N, SWS m]` by the exact route ([`criteria_shaped`]: Lyapunov
-/// equations of the model augmented with the road's shaping filters) at each design.
+/// `[BAcc m/s^2, DTL N, SWS m]` by the exact routes at each design: for the full car the
+/// residue route with the road's filters ([`ShapedResidueRoute`]: the car's two halves,
+/// the sum of the tracks driving one and their difference the other) where it
+/// certifies the point, else the modal route with the filters, else the Lyapunov
+/// equations of the model augmented with them ([`criteria_shaped_fast`]).
 #[derive(Debug, Clone)]
 pub struct MeasuredModel {
     kind: ModelKind,
     car: Car,
     road: ShapedRoad,
+    residue: Option<ShapedResidueRoute>,
 }
 
 impl MeasuredModel {
     /// The model of `car` (its front design is the datum) on the shaped `road`.
     pub fn new(kind: ModelKind, car: &Car, road: ShapedRoad) -> MeasuredModel {
+        let residue = match kind {
+            ModelKind::Full => residue_route(car, &road),
+            ModelKind::Quarter => None,
+        };
         MeasuredModel {
             kind,
             car: car.clone(),
             road,
+            residue,
         }
     }
 
@@ -37,10 +47,48 @@ impl MeasuredModel {
     }
 }
 
+/// The full car's residue route on `road` where its sources split over the car's halves:
+/// one source on both tracks (the symmetric half), the tracks' sum and difference (both
+/// halves, weight 1), or independent tracks with one filter (both halves, weight 1/2:
+/// each half sees half the power); `None` otherwise, or where a family cannot be built.
+pub(super) fn residue_route(car: &Car, road: &ShapedRoad) -> Option<ShapedResidueRoute> {
+    let iso = Road {
+        speed: road.speed,
+        ..Road::default()
+    };
+    let part = |half: Half, weight: f64, source: &ShapedSource| {
+        Some((
+            half_family(car, &iso, half).ok()?,
+            weight,
+            source.filter.pole_zero()?,
+        ))
+    };
+    let parts = match road.sources.as_slice() {
+        [s] if s.weights == [1.0, 1.0] => vec![part(Half::Symmetric, 1.0, s)?],
+        [s, d] if s.weights == [1.0, 1.0] && d.weights == [1.0, -1.0] => vec![
+            part(Half::Symmetric, 1.0, s)?,
+            part(Half::Antisymmetric, 1.0, d)?,
+        ],
+        [r, l] if r.weights == [1.0, 0.0] && l.weights == [0.0, 1.0] && r.filter == l.filter => {
+            vec![
+                part(Half::Symmetric, 0.5, r)?,
+                part(Half::Antisymmetric, 0.5, r)?,
+            ]
+        }
+        _ => return None,
+    };
+    ShapedResidueRoute::new(parts).ok()
+}
+
 impl Evaluator for MeasuredModel {
     fn evaluate(&self, ks: f64, cs: f64) -> Result<Criteria> {
         let car = self.car.with_front(ks, cs)?;
-        criteria_shaped(&self.kind.build(&car), &self.road)
+        if let Some(route) = &self.residue {
+            if let Some(c) = route.criteria(ks, cs)? {
+                return Ok(c);
+            }
+        }
+        criteria_shaped_fast(&self.kind.build(&car), &self.road)
     }
 
     /// `"quarter"` or `"full"`, as on an ISO road.
@@ -112,7 +160,7 @@ pub fn road_error(e: RideError) -> RideError {
 }
 
 /// A design and its datum judged on a measured road by both models, RMS `[BAcc m/s^2,
-/// DTL N, SWS m]` by the exact route ([`criteria_shaped`]): what the page shows for a
+/// DTL N, SWS m]` by the exact routes of [`MeasuredModel`]: what the page shows for a
 /// dropped profile file, each number equal to `ridelab eval --road FILE --model quarter`
 /// (or `full`) at that design, speed and tracks.
 #[derive(Debug, Clone, Serialize)]
@@ -147,14 +195,18 @@ impl DesignOnRoad {
     ) -> Result<DesignOnRoad> {
         crate::domain::SPEED.check("speed", speed)?;
         let shaped = ShapedRoad::from_profile(profile, speed, tracks).map_err(road_error)?;
-        let car = datum.with_front(ks, cs)?;
-        let on = |kind: ModelKind, car: &Car| criteria_shaped(&kind.build(car), &shaped);
+        datum.with_front(ks, cs)?;
+        let (quarter, full) = (
+            MeasuredModel::new(ModelKind::Quarter, datum, shaped.clone()),
+            MeasuredModel::new(ModelKind::Full, datum, shaped.clone()),
+        );
+        let (k0, c0) = (datum.front.spring, datum.front.damper);
         Ok(DesignOnRoad {
             road: MeasuredRoad::of(file, &shaped, tracks),
-            quarter: on(ModelKind::Quarter, &car)?,
-            full: on(ModelKind::Full, &car)?,
-            datum_quarter: on(ModelKind::Quarter, datum)?,
-            datum_full: on(ModelKind::Full, datum)?,
+            quarter: quarter.evaluate(ks, cs)?,
+            full: full.evaluate(ks, cs)?,
+            datum_quarter: quarter.evaluate(k0, c0)?,
+            datum_full: full.evaluate(k0, c0)?,
             notes: shaped.notes.clone(),
         })
     }

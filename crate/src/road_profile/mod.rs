@@ -13,8 +13,10 @@
 //!   default (white velocity, `w = 2`) outside it ([`VelocityPsd`]); a small stable
 //!   rational filter ([`ShapingFilter`]) driven by unit white noise reproduces it with a
 //!   stated error;
-//! - **the criteria by two routes**: exact ([`criteria_shaped`]: Lyapunov equations of the
-//!   model augmented with the filter, the front-rear delay exact through `exp(A tau)`) and
+//! - **the criteria by two routes**: exact ([`criteria_shaped_fast`]: the modal route
+//!   [`criteria_shaped_modal`], the model's modes times the filters' partial fractions, and
+//!   where it declines [`criteria_shaped`], Lyapunov equations of the model augmented with
+//!   the filter, the front-rear delay exact through `exp(A tau)`) and
 //!   in frequency ([`criteria_shaped_spectral`]: `|H(f)|^2 Gv(f)` integrated on the raw
 //!   Welch PSD, the delays as exact phase factors);
 //! - **playback** ([`playback`]): the profile itself as the wheels' road input of a
@@ -30,6 +32,7 @@ mod describe;
 mod exact;
 mod lyap;
 mod measured;
+mod modal;
 mod playback;
 mod profile;
 mod shaped;
@@ -41,6 +44,7 @@ mod welch;
 pub use describe::{describe, CoherenceSeries, IsoFit, PsdSeries, RoadDescription, WelchInfo};
 pub use exact::criteria_shaped;
 pub use measured::{road_error, DesignOnRoad, MeasuredModel, MeasuredRoad, RoadScenario};
+pub use modal::{criteria_shaped_fast, criteria_shaped_modal};
 pub use playback::{playback, WheelRoad};
 pub use profile::{
     Profile, MAX_BYTES, MAX_GAP_RATIO, MAX_ROUGHNESS_RMS, MAX_SAMPLES, MAX_SPACING, MIN_SAMPLES,

@@ -25,8 +25,9 @@
 //! - a 1/6-octave grid over four octaves either side of the band and both asymptotes
 //!   (`f = 0`, `f = infinity`), against the extensions,
 //!
-//! for 4, 6 and 8 poles (two starts each), keeping the fewest poles within 10 % of the
-//! best error. Its error in the band ([`ShapingFilter::max_error`]) is the largest
+//! for 4, 6 and 8 poles (two starts each), keeping the fewest poles within 25 % of the
+//! best error whose partial fractions do not cancel (for the fast routes,
+//! [`crate::criteria::PoleZeroFilter::new`]), else the fewest within 10 % of the best. Its error in the band ([`ShapingFilter::max_error`]) is the largest
 //! relative error of the power in a third-octave band (at least 8 Welch bins, so that the
 //! estimate's own scatter, about 20 % from bin to bin, does not pass for the filter's),
 //! `sum_k 2 |F(f_k)|^2 / sum_k Gv(f_k) - 1` over the band's bins: where `|H|^2` is nearly
@@ -37,6 +38,7 @@
 //! A white `Gv` (waviness exactly 2) gives the constant filter `F = sqrt(Gv / 2)`.
 
 use super::welch::{band_means, band_ranges};
+use crate::criteria::PoleZeroFilter;
 use crate::error::{Result, RideError};
 use crate::math;
 use crate::road::N0;
@@ -354,15 +356,21 @@ impl ShapingFilter {
             return Ok(ShapingFilter::constant(psd.below.level, psd.band));
         }
         let pts = psd.fit_points();
-        let fits: Vec<ShapingFilter> = ORDERS
+        let mut fits: Vec<ShapingFilter> = ORDERS
             .iter()
             .filter_map(|&m| fit_order(psd, &pts, m))
             .collect();
         let score = |f: &ShapingFilter| f.max_error.max(f.max_error_outside);
         let best = fits.iter().map(score).fold(f64::INFINITY, f64::min);
-        // The fewest poles within 10 % of the best error.
-        fits.into_iter()
-            .find(|f| score(f) <= 1.1 * best)
+        // The fewest poles within 10 % of the best error; first among the filters whose
+        // partial fractions do not cancel (within 25 % of the best error), which the modal
+        // and residue routes take (nearly repeated poles send every design to the
+        // Lyapunov route, ten times slower).
+        let pick = fits
+            .iter()
+            .position(|f| score(f) <= 1.25 * best && f.pole_zero().is_some())
+            .or_else(|| fits.iter().position(|f| score(f) <= 1.1 * best));
+        pick.map(|i| fits.swap_remove(i))
             .ok_or_else(|| RideError::Numerical("the shaping filter fit did not converge".into()))
     }
 
@@ -378,11 +386,21 @@ impl ShapingFilter {
 
     /// `F(i omega)` at `f` Hz.
     pub fn response(&self, f: f64) -> num_complex::Complex64 {
-        let s = num_complex::Complex64::new(0.0, 2.0 * PI * f);
+        self.at(num_complex::Complex64::new(0.0, 2.0 * PI * f))
+    }
+
+    /// `F(s)` at a complex `s`, rad/s.
+    pub fn at(&self, s: num_complex::Complex64) -> num_complex::Complex64 {
         self.zeros.iter().zip(&self.poles).fold(
             num_complex::Complex64::new(self.gain, 0.0),
             |acc, (z, p)| acc * (s + z) / (s + p),
         )
+    }
+
+    /// The filter with its partial fractions, for the modal and residue routes; `None`
+    /// when its partial fractions cancel ([`PoleZeroFilter::new`]).
+    pub fn pole_zero(&self) -> Option<PoleZeroFilter> {
+        PoleZeroFilter::new(self.gain, &self.zeros, &self.poles)
     }
 
     /// The velocity PSD the filter gives, `2 |F(i 2 pi f)|^2`, m^2/s^2 per Hz (`f` may be

@@ -264,3 +264,77 @@ fn a_design_on_a_dropped_road_agrees_with_its_iso_class() {
         field(20.0, &short)
     );
 }
+
+/// The full car's residue route on shaped roads ([`crate::criteria::ShapedResidueRoute`])
+/// equals the Lyapunov route on the whole full car to 1e-9 over a 7 x 7 grid spanning the
+/// design box, for the sedan and the SUV with and without tyre damping, on a one-track
+/// profile (both tracks, then independent tracks: one filter, both halves at weight 1/2)
+/// and a two-track profile (its sum and difference on the two halves), at 12 and 30 m/s;
+/// and it certifies nearly every point (the rest go to the modal route, which is checked
+/// against the Lyapunov route in `modal.rs`).
+#[test]
+fn the_full_cars_residue_route_on_shaped_roads_is_the_lyapunov_route() {
+    let one = synthesize(&Synthesis {
+        gd_n0: RoadClass::C.gd_n0(),
+        waviness: 2.6,
+        length: 1500.0,
+        seed: 9,
+        ..Synthesis::default()
+    })
+    .unwrap();
+    let two = synthesize(&Synthesis {
+        gd_n0: RoadClass::D.gd_n0(),
+        waviness: 1.8,
+        length: 1500.0,
+        coherence_n: Some(0.25),
+        seed: 10,
+        ..Synthesis::default()
+    })
+    .unwrap();
+    let mut roads = Vec::new();
+    for speed in [12.0, 30.0] {
+        roads.push(ShapedRoad::from_profile(&one, speed, ProfileTracks::Correlated).unwrap());
+        roads.push(ShapedRoad::from_profile(&one, speed, ProfileTracks::Independent).unwrap());
+        roads.push(ShapedRoad::from_profile(&two, speed, ProfileTracks::Measured).unwrap());
+    }
+    let (mut worst, mut certified, mut points, mut routed) = (0.0_f64, 0, 0, 0);
+    for name in ["sedan", "suv"] {
+        for ct in [0.0, 150.0] {
+            let mut car = Car::preset(name).unwrap();
+            car.front.tire_damping = ct;
+            car.rear.tire_damping = ct;
+            for road in &roads {
+                // A filter whose partial fractions cancel has no residue route.
+                let Some(route) = measured::residue_route(&car, road) else {
+                    continue;
+                };
+                routed += 1;
+                for i in 0..7 {
+                    for j in 0..7 {
+                        let ks = 10e3 + 5e3 * i as f64;
+                        let cs = 500.0 + 3500.0 * j as f64 / 6.0;
+                        points += 1;
+                        let Some(a) = route.criteria(ks, cs).unwrap() else {
+                            continue;
+                        };
+                        certified += 1;
+                        let model = full_car(&car.with_front(ks, cs).unwrap());
+                        let b = criteria_shaped(&model, road).unwrap();
+                        for (x, y) in a.to_array().iter().zip(b.to_array()) {
+                            worst = worst.max((x / y - 1.0).abs());
+                        }
+                    }
+                }
+            }
+        }
+    }
+    eprintln!(
+        "shaped residue route: {routed} of 24 roads and cars, {certified} of {points} points, worst {worst:e}"
+    );
+    assert!(routed >= 12, "{routed} of 24 routed");
+    assert!(
+        certified * 10 >= points * 9,
+        "{certified} of {points} certified"
+    );
+    assert!(worst < 1e-9, "worst relative difference {worst:e}");
+}

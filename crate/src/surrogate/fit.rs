@@ -11,11 +11,10 @@
 //! (for VBA a transformed Ks or Cs <= 0) gets a large constant residual, so Levenberg-Marquardt
 //! rejects the step and shrinks its trust region.
 
-use super::{quarter_criteria, Sample, Scheme};
+use super::{Sample, Scheme, SurrogateLoFi};
 use crate::car::QuarterCar;
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
-use crate::road::Road;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra::storage::Owned;
 use nalgebra::{DMatrix, DVector, Dyn};
@@ -127,7 +126,7 @@ impl FitDiagnostics {
 /// The least-squares problem of one fit, as the `levenberg-marquardt` crate sees it.
 struct Problem<'a, T> {
     tuning: &'a T,
-    road: &'a Road,
+    lofi: &'a SurrogateLoFi,
     samples: &'a [Sample],
     criteria: &'a [usize],
     a: DVector<f64>,
@@ -151,7 +150,7 @@ impl<T: Tuning> Problem<'_, T> {
         let mut r = Vec::with_capacity(self.samples.len() * self.criteria.len());
         for s in self.samples {
             let q = self.tuning.quarter(a, s.ks, s.cs).ok()?;
-            let p = quarter_criteria(&q, self.road).ok()?.to_array();
+            let p = self.lofi.quarter_criteria(&q).ok()?.to_array();
             let f = s.hifi.to_array();
             r.extend(self.criteria.iter().map(|&k| (p[k] - f[k]) / f[k]));
         }
@@ -207,13 +206,13 @@ pub struct Fitted {
     pub diagnostics: FitDiagnostics,
 }
 
-/// Fits `tuning` to the criteria `criteria` of `samples` on `road` (see the module doc):
+/// Fits `tuning` to the criteria `criteria` of `samples` on `lofi`'s road (see the module doc):
 /// Levenberg-Marquardt from the neutral tuning and `options.starts - 1` seeded random starts,
 /// keeping the admissible result of least cost. Errors (naming `plan`) when no start ends
 /// admissible with a finite cost.
 pub fn least_squares<T: Tuning>(
     tuning: &T,
-    road: &Road,
+    lofi: &SurrogateLoFi,
     samples: &[Sample],
     criteria: &[usize],
     label: String,
@@ -241,7 +240,7 @@ pub fn least_squares<T: Tuning>(
         let Some(a0) = a0 else { continue };
         let problem = Problem {
             tuning,
-            road,
+            lofi,
             samples,
             criteria,
             a: DVector::from_vec(a0),
@@ -286,7 +285,7 @@ pub fn least_squares<T: Tuning>(
 /// Fits `tuning` in `scheme`: one fit over all criteria, or one per criterion.
 pub fn fit_scheme<T: Tuning>(
     tuning: &T,
-    road: &Road,
+    lofi: &SurrogateLoFi,
     samples: &[Sample],
     scheme: Scheme,
     options: &LmOptions,
@@ -296,7 +295,7 @@ pub fn fit_scheme<T: Tuning>(
         .iter()
         .enumerate()
         .map(|(g, criteria)| {
-            least_squares(tuning, road, samples, criteria, scheme.label(g), options)
+            least_squares(tuning, lofi, samples, criteria, scheme.label(g), options)
         })
         .collect()
 }
@@ -333,10 +332,10 @@ pub fn check_tuning(
 /// Criteria of the tuned quarter car at `(ks, cs)` for tuning `a`.
 pub(crate) fn tuned_criteria<T: Tuning>(
     tuning: &T,
-    road: &Road,
+    lofi: &SurrogateLoFi,
     a: &[f64],
     ks: f64,
     cs: f64,
 ) -> Result<Criteria> {
-    quarter_criteria(&tuning.quarter(a, ks, cs)?, road)
+    lofi.quarter_criteria(&tuning.quarter(a, ks, cs)?)
 }

@@ -14,11 +14,11 @@
 
 use super::fit::FitDiagnostics;
 use super::kriging::Kriging;
+use super::SurrogateLoFi;
 use super::{
     check_samples, relative_cost, require_samples, Approach, Parameter, Sample, Scheme, Setting,
     Surrogate, SurrogateParams, SurrogateSpec,
 };
-use crate::analysis::LoFi;
 use crate::design::DesignBox;
 use crate::error::Result;
 use crate::evaluate::{Criteria, Evaluator, CRITERIA_NAMES};
@@ -98,7 +98,7 @@ impl SurrogateParams for GpParams {
 /// A fitted GP correction of the LoFi.
 #[derive(Debug, Clone)]
 pub struct Gp {
-    lofi: LoFi,
+    lofi: SurrogateLoFi,
     design_box: DesignBox,
     /// One Kriging model of `ln(F_k / f~_k)` per criterion.
     models: Vec<Kriging>,

@@ -34,6 +34,7 @@ pub mod gp;
 mod guard;
 pub mod infill;
 pub mod kriging;
+mod lofi;
 pub mod metrics;
 pub mod pba;
 pub mod rba;
@@ -47,25 +48,26 @@ pub mod vba;
 pub use datafit::{DataFit, DataFitParams};
 pub use fit::{FitDiagnostics, LmOptions, Tuning};
 pub use gp::{Gp, GpParams};
+pub use lofi::SurrogateLoFi;
 pub use metrics::{ByCriterion, ErrorMap, Metrics};
 pub use pba::{PbaParams, Scaling};
 pub use rba::{Form, Rba, RbaParams};
 pub use response::{Kernel, ResponseKind};
 pub use spec::{Approach, PlanSpec, SurrogateSpec};
 pub use study::{
-    study, study_in, surrogate_report, surrogate_report_in, StudyReport, SurrogateReport,
-    ValidationSet,
+    study, study_in, surrogate_report, surrogate_report_in, surrogate_report_on, StudyReport,
+    SurrogateReport, ValidationSet,
 };
 pub use tuned::Tuned;
 pub use vba::{Transform, VbaParams};
 
-use crate::analysis::LoFi;
 use crate::car::{Car, QuarterCar};
 use crate::design::DesignBox;
 use crate::doe::Plan;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator, CRITERIA_NAMES};
 use crate::road::Road;
+use crate::road_profile::ShapedRoad;
 use serde::{Deserialize, Serialize};
 
 /// One HiFi sample: a design point and the HiFi criteria there.
@@ -147,8 +149,8 @@ impl Scheme {
 /// the design box that defines the normalised coordinates.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Setting {
-    /// The LoFi quarter car of the car on the road.
-    pub lofi: LoFi,
+    /// The LoFi quarter car of the car on the road (an ISO class or a measured road).
+    pub lofi: SurrogateLoFi,
     /// The box of the normalised coordinates `(u, v)`.
     pub design_box: DesignBox,
 }
@@ -161,12 +163,25 @@ impl Setting {
         design_box.validate()?;
         design_box.check_on(&car.design_domain())?;
         Ok(Setting {
-            lofi: LoFi {
+            lofi: SurrogateLoFi {
                 car: car.clone(),
                 road: *road,
+                measured: None,
             },
             design_box: *design_box,
         })
+    }
+
+    /// The setting on a measured road, shaped at its speed: the LoFi of every surrogate
+    /// then runs on it ([`SurrogateLoFi`]).
+    pub fn measured(car: &Car, road: ShapedRoad, design_box: &DesignBox) -> Result<Setting> {
+        let iso = Road {
+            speed: road.speed,
+            ..Road::default()
+        };
+        let mut setting = Setting::new(car, &iso, design_box)?;
+        setting.lofi.measured = Some(std::sync::Arc::new(road));
+        Ok(setting)
     }
 }
 
@@ -210,8 +225,6 @@ pub trait SurrogateParams {
     /// Checks, then fits to `samples`.
     fn fit(&self, setting: &Setting, samples: &[Sample]) -> Result<Self::Model>;
 }
-
-pub(crate) use crate::analysis::quarter_criteria;
 
 /// Rejects empty sample sets and non-finite or non-positive values (relative errors divide
 /// by the HiFi criteria).

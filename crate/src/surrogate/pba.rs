@@ -171,7 +171,7 @@ impl SurrogateParams for PbaParams {
         Tuned::fit(
             self.spec(),
             tuning,
-            &setting.lofi.road,
+            &setting.lofi,
             samples,
             self.scheme,
             &self.options,

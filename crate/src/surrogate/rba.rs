@@ -13,11 +13,11 @@
 
 use super::fit::FitDiagnostics;
 use super::response::{fit_affine, method, AffineSample, Response, ResponseKind};
+use super::SurrogateLoFi;
 use super::{
     check_samples, relative_cost, require_samples, Approach, Parameter, Sample, Scheme, Setting,
     Surrogate, SurrogateParams, SurrogateSpec,
 };
-use crate::analysis::LoFi;
 use crate::design::DesignBox;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
@@ -143,7 +143,7 @@ impl SurrogateParams for RbaParams {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Rba {
     spec: SurrogateSpec,
-    lofi: LoFi,
+    lofi: SurrogateLoFi,
     design_box: DesignBox,
     form: Form,
     scheme: Scheme,

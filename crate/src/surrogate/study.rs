@@ -17,6 +17,7 @@ use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator, CRITERIA_NAMES};
 use crate::optimize::Counted;
 use crate::road::Road;
+use crate::road_profile::RoadScenario;
 use serde::Serialize;
 use std::fmt::Write;
 
@@ -95,8 +96,8 @@ pub struct SurrogateReport {
     pub plan_method: String,
     /// Car name.
     pub car: String,
-    /// Road scenario.
-    pub road: Road,
+    /// Road scenario: an ISO class (JSON as [`Road`]) or a measured road.
+    pub road: RoadScenario,
     /// Design box of the plan, the normalisation and the validation grid.
     pub design_box: DesignBox,
     /// The HiFi samples the surrogate was fitted to (in the order added).
@@ -161,11 +162,31 @@ pub fn surrogate_report_in(
     predict_grid: Option<usize>,
 ) -> Result<SurrogateReport> {
     let setting = Setting::new(car, road, design_box)?;
-    let hifi = Counted::new(HiFi::new(car, road)?);
+    surrogate_report_on(
+        spec,
+        plan_spec,
+        &setting,
+        HiFi::new(car, road)?,
+        predict_grid,
+    )
+}
+
+/// [`surrogate_report_in`] in any setting (an ISO class or a measured road,
+/// [`Setting::measured`]) with its HiFi `hifi` (the full car on that road); the report's
+/// `road` is the setting's ISO road, which the caller replaces for a measured one.
+pub fn surrogate_report_on<E: Evaluator>(
+    spec: SurrogateSpec,
+    plan_spec: PlanSpec,
+    setting: &Setting,
+    hifi: E,
+    predict_grid: Option<usize>,
+) -> Result<SurrogateReport> {
+    let design_box = &setting.design_box;
+    let hifi = Counted::new(hifi);
     let plan = plan_spec.plan()?;
     let samples = sample_plan(&hifi, &plan, design_box)?;
     let options = LmOptions::default();
-    let model = spec.fit(&setting, &samples, &options)?;
+    let model = spec.fit(setting, &samples, &options)?;
     let fitted = Fitted {
         spec,
         plan: plan_spec.name(),
@@ -175,7 +196,7 @@ pub fn surrogate_report_in(
         options,
         adaptive: None,
     };
-    fitted.report(&setting, &hifi, predict_grid)
+    fitted.report(setting, &hifi, predict_grid)
 }
 
 /// A fitted surrogate with what a [`SurrogateReport`] says about its samples.
@@ -192,10 +213,10 @@ pub(crate) struct Fitted {
 impl Fitted {
     /// Validates the fit on a `predict_grid` (default 20 x 20) HiFi grid of `hifi`.
     /// Errors name `predict-grid` for a bad grid.
-    pub fn report(
+    pub fn report<E: Evaluator>(
         self,
         setting: &Setting,
-        hifi: &Counted<HiFi>,
+        hifi: &Counted<E>,
         predict_grid: Option<usize>,
     ) -> Result<SurrogateReport> {
         let (car, design_box) = (&setting.lofi.car, &setting.design_box);
@@ -211,7 +232,7 @@ impl Fitted {
             plan: self.plan,
             plan_method: self.plan_method,
             car: car.name.clone(),
-            road: setting.lofi.road,
+            road: RoadScenario::Iso(setting.lofi.road),
             design_box: *design_box,
             uncertainty: estimates(
                 &self.spec,

@@ -3,18 +3,18 @@
 //! all criteria or one per criterion.
 
 use super::fit::{fit_scheme, tuned_criteria, FitDiagnostics, LmOptions, Tuning};
+use super::SurrogateLoFi;
 use super::{Parameter, Sample, Scheme, Surrogate, SurrogateSpec};
 use crate::car::QuarterCar;
 use crate::error::Result;
 use crate::evaluate::{Criteria, Evaluator};
-use crate::road::Road;
 
 /// A fitted tuned LoFi: `S_k(x) = f~_k(x; tuning a_k)`, `a_k` shared or per criterion.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Tuned<T> {
     spec: SurrogateSpec,
     tuning: T,
-    road: Road,
+    lofi: SurrogateLoFi,
     scheme: Scheme,
     /// One parameter vector (shared) or three (per criterion).
     params: Vec<Vec<f64>>,
@@ -22,22 +22,22 @@ pub struct Tuned<T> {
 }
 
 impl<T: Tuning> Tuned<T> {
-    /// Fits `tuning` to `samples` on `road` (the caller has checked the samples).
+    /// Fits `tuning` to `samples` on `lofi`'s road (the caller has checked the samples).
     pub(crate) fn fit(
         spec: SurrogateSpec,
         tuning: T,
-        road: &Road,
+        lofi: &SurrogateLoFi,
         samples: &[Sample],
         scheme: Scheme,
         options: &LmOptions,
     ) -> Result<Self> {
-        let fits = fit_scheme(&tuning, road, samples, scheme, options)?;
+        let fits = fit_scheme(&tuning, lofi, samples, scheme, options)?;
         let (params, diagnostics): (Vec<_>, Vec<_>) =
             fits.into_iter().map(|f| (f.params, f.diagnostics)).unzip();
         Ok(Tuned {
             spec,
             tuning,
-            road: *road,
+            lofi: lofi.clone(),
             scheme,
             params,
             diagnostics,
@@ -55,12 +55,12 @@ impl<T: Tuning> Evaluator for Tuned<T> {
         // The design first, so errors name ks or cs rather than the transformed design.
         crate::car::check_design(ks, cs)?;
         if let [a] = self.params.as_slice() {
-            return tuned_criteria(&self.tuning, &self.road, a, ks, cs);
+            return tuned_criteria(&self.tuning, &self.lofi, a, ks, cs);
         }
         let mut out = [0.0; 3];
         for (k, o) in out.iter_mut().enumerate() {
             *o =
-                tuned_criteria(&self.tuning, &self.road, self.params_for(k), ks, cs)?.to_array()[k];
+                tuned_criteria(&self.tuning, &self.lofi, self.params_for(k), ks, cs)?.to_array()[k];
         }
         Ok(Criteria::from_array(out))
     }

@@ -217,7 +217,7 @@ impl SurrogateParams for VbaParams {
         Tuned::fit(
             self.spec(),
             tuning,
-            &setting.lofi.road,
+            &setting.lofi,
             samples,
             self.scheme,
             &self.options,

@@ -20,7 +20,15 @@ pub(crate) struct EvalArgs {
 pub(crate) fn eval(a: EvalArgs) -> Result<String> {
     if let Some(path) = a.car.road.as_deref() {
         let (car, _, _) = crate::args::car_loads_road_of(&a.car)?;
-        let r = crate::road::eval_measured(a.model, &car, &a.car, path)?;
+        // The car's own design too: the model is prepared on it, as map and optimize
+        // prepare theirs, so that eval gives their values bit for bit.
+        let own = CarRoad {
+            ks: None,
+            cs: None,
+            ..a.car.clone()
+        };
+        let (datum, _, _) = crate::args::car_loads_road_of(&own)?;
+        let r = crate::road::eval_measured(a.model, &datum, &car, &a.car, path)?;
         return if a.json {
             json(&r)
         } else {

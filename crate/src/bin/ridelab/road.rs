@@ -7,11 +7,11 @@ use ridelab::analysis::ModelKind;
 use ridelab::car::Car;
 use ridelab::comfort::Comfort;
 use ridelab::error::{Result, RideError};
-use ridelab::evaluate::Criteria;
+use ridelab::evaluate::{Criteria, Evaluator};
 use ridelab::road::Tracks;
 use ridelab::road_profile::{
-    criteria_shaped, criteria_shaped_spectral, describe, road_error, MeasuredModel, MeasuredRoad,
-    Profile, ProfileTracks, RoadDescription, ShapedRoad,
+    criteria_shaped_spectral, describe, road_error, MeasuredModel, MeasuredRoad, Profile,
+    ProfileTracks, RoadDescription, ShapedRoad,
 };
 use serde::Serialize;
 
@@ -154,24 +154,26 @@ pub(crate) struct MeasuredEval {
     notes: Vec<String>,
 }
 
+/// `car` (its front the design) on the measured road, the model prepared on `datum` (the
+/// same car with its own front design).
 pub(crate) fn eval_measured(
     kind: ModelKind,
+    datum: &Car,
     car: &Car,
     o: &CarRoad,
     path: &str,
 ) -> Result<MeasuredEval> {
     let (shaped, tracks) = shaped_road(o, path)?;
     let speed = shaped.speed;
-    let model = kind.build(car);
-    let exact = criteria_shaped(&model, &shaped)?;
-    let spectral = criteria_shaped_spectral(&model, &shaped, 1e-8)?.criteria;
+    let q = car.quarter();
+    let exact = MeasuredModel::new(kind, datum, shaped.clone()).evaluate(q.ks, q.cs)?;
+    let spectral = criteria_shaped_spectral(&kind.build(car), &shaped, 1e-8)?.criteria;
     let diff = exact
         .to_array()
         .iter()
         .zip(spectral.to_array())
         .map(|(a, b)| (a / b - 1.0).abs())
         .fold(0.0, f64::max);
-    let q = car.quarter();
     Ok(MeasuredEval {
         model: kind,
         car: car.name.clone(),

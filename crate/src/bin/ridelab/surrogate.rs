@@ -1,10 +1,17 @@
 //! `ridelab surrogate`: a surrogate fitted to HiFi samples and validated on a HiFi grid.
 
-use crate::args::{car_and_road, json, AdaptiveArgs, BoxArgs, CarRoad};
+use crate::args::{car_and_road, car_loads_road_of, json, AdaptiveArgs, BoxArgs, CarRoad};
+use crate::road::shaped_road;
 use clap::Args;
+use ridelab::analysis::ModelKind;
+use ridelab::design::DesignBox;
 use ridelab::error::{Result, RideError};
+use ridelab::road_profile::{MeasuredModel, MeasuredRoad, RoadScenario};
 use ridelab::surrogate::adaptive;
-use ridelab::surrogate::{surrogate_report_in, PlanSpec, SurrogateSpec};
+use ridelab::surrogate::study::VALIDATION_LEVELS;
+use ridelab::surrogate::{
+    surrogate_report_in, surrogate_report_on, PlanSpec, Setting, SurrogateReport, SurrogateSpec,
+};
 
 #[derive(Args)]
 pub(crate) struct SurrogateArgs {
@@ -37,19 +44,9 @@ pub(crate) fn predict_grid(s: &str) -> Result<usize> {
 }
 
 pub(crate) fn surrogate_cmd(a: SurrogateArgs) -> Result<String> {
-    let (car, road) = car_and_road(&a.car)?;
-    let design_box = a.design_box.design_box()?;
-    let r = match a.adaptive.options() {
-        None => surrogate_report_in(a.approach, a.plan, &car, &road, &design_box, a.predict),
-        Some(options) => adaptive::surrogate_report(
-            a.approach,
-            a.plan,
-            &car,
-            &road,
-            &design_box,
-            a.predict,
-            options,
-        ),
+    let r = match a.car.road.as_deref() {
+        Some(path) => measured_surrogate(&a, path),
+        None => iso_surrogate(&a),
     }
     .map_err(|e| match e {
         RideError::Field { field, reason } if field == "predict-grid" => {
@@ -63,4 +60,59 @@ pub(crate) fn surrogate_cmd(a: SurrogateArgs) -> Result<String> {
         ridelab::finite::check(&r)?;
         Ok(crate::text::surrogate_text(&r))
     }
+}
+
+/// The surrogate on an ISO class, plain or adaptive.
+fn iso_surrogate(a: &SurrogateArgs) -> Result<SurrogateReport> {
+    let (car, road) = car_and_road(&a.car)?;
+    let design_box = a.design_box.design_box()?;
+    match a.adaptive.options() {
+        None => surrogate_report_in(a.approach, a.plan, &car, &road, &design_box, a.predict),
+        Some(options) => adaptive::surrogate_report(
+            a.approach,
+            a.plan,
+            &car,
+            &road,
+            &design_box,
+            a.predict,
+            options,
+        ),
+    }
+}
+
+/// `surrogate --road FILE`: the surrogate's HiFi samples and validation grid are the full
+/// car on the measured road, its LoFi the quarter car on that road (both by the exact
+/// route with the road's shaping filters). One scenario: `--adaptive` and a car file's
+/// load cases are refused naming them; the HiFi runs (plan and validation grid) are
+/// bounded by [`ridelab::budget::MAX_MEASURED_RUNS`].
+fn measured_surrogate(a: &SurrogateArgs, path: &str) -> Result<SurrogateReport> {
+    if a.adaptive.adaptive.is_some() {
+        return Err(RideError::field(
+            "adaptive",
+            "the adaptive loop runs on ISO classes in this version; leave out --adaptive with --road",
+        ));
+    }
+    let (car, loads, _) = car_loads_road_of(&a.car)?;
+    if !loads.is_empty() {
+        return Err(RideError::field(
+            "road",
+            "a measured road is one scenario: a car file's load_cases take ISO classes (--class)",
+        ));
+    }
+    let design_box: DesignBox = a.design_box.design_box()?;
+    let plan = a.plan.plan()?;
+    let levels = a.predict.unwrap_or(VALIDATION_LEVELS) as u64;
+    ridelab::budget::check_measured(
+        plan.points(&design_box).len() as u64 + levels * levels,
+        "plan",
+        "the plan and its validation grid",
+        "the plan's size or --predict",
+    )?;
+    let (shaped, tracks) = shaped_road(&a.car, path)?;
+    let about = MeasuredRoad::of(path, &shaped, tracks);
+    let setting = Setting::measured(&car, shaped.clone(), &design_box)?;
+    let hifi = MeasuredModel::new(ModelKind::Full, &car, shaped);
+    let mut r = surrogate_report_on(a.approach, a.plan, &setting, hifi, a.predict)?;
+    r.road = RoadScenario::Measured(about);
+    Ok(r)
 }

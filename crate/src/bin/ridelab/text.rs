@@ -123,7 +123,7 @@ pub(crate) fn surrogate_text(r: &SurrogateReport) -> String {
         r.plan_method,
         r.samples.len(),
         r.car,
-        road_words(&r.road),
+        scenario_words(&r.road),
         b.ks_min / 1e3,
         b.ks_max / 1e3,
         b.cs_min / 1e3,
