@@ -386,11 +386,7 @@ impl ShapingFilter {
 
     /// `F(i omega)` at `f` Hz.
     pub fn response(&self, f: f64) -> num_complex::Complex64 {
-        self.at(num_complex::Complex64::new(0.0, 2.0 * PI * f))
-    }
-
-    /// `F(s)` at a complex `s`, rad/s.
-    pub fn at(&self, s: num_complex::Complex64) -> num_complex::Complex64 {
+        let s = num_complex::Complex64::new(0.0, 2.0 * PI * f);
         self.zeros.iter().zip(&self.poles).fold(
             num_complex::Complex64::new(self.gain, 0.0),
             |acc, (z, p)| acc * (s + z) / (s + p),
