@@ -1965,21 +1965,19 @@ fn map_optimize_and_surrogate_take_a_measured_road() {
     let road = "assets/roads/class-c-waviness-2.5.csv";
     let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
     let road_path = format!("{root}/{road}");
-    let eval = |model: &str, ks: f64, cs: f64| {
-        json(&[
-            "eval",
-            "--model",
-            model,
-            "--road",
-            &road_path,
-            "--speed",
-            "25",
-            "--ks",
-            &ks.to_string(),
-            "--cs",
-            &cs.to_string(),
-        ])
+    // `eval --road` at 25 m/s, with the profile's own tracks or `--tracks`.
+    let eval_on = |tracks: Option<&str>, model: &str, ks: f64, cs: f64| {
+        let (ks, cs) = (ks.to_string(), cs.to_string());
+        let mut args = vec![
+            "eval", "--model", model, "--road", &road_path, "--speed", "25", "--ks", &ks, "--cs",
+            &cs,
+        ];
+        if let Some(t) = tracks {
+            args.extend(["--tracks", t]);
+        }
+        json(&args)
     };
+    let eval = |model: &str, ks: f64, cs: f64| eval_on(None, model, ks, cs);
     let rel = |a: f64, b: f64| (a / b - 1.0).abs();
     let m = json(&[
         "map",
@@ -2119,21 +2117,12 @@ fn map_optimize_and_surrogate_take_a_measured_road() {
     assert_eq!(r["hifi_evaluations"], 10 + 9);
     let p = &r["predictions"];
     for i in [0, 4, 8] {
-        let e = json(&[
-            "eval",
-            "--model",
+        let e = eval_on(
+            Some("correlated"),
             "full",
-            "--road",
-            &road_path,
-            "--speed",
-            "25",
-            "--tracks",
-            "correlated",
-            "--ks",
-            &p["ks"][i].to_string(),
-            "--cs",
-            &p["cs"][i].to_string(),
-        ]);
+            p["ks"][i].as_f64().unwrap(),
+            p["cs"][i].as_f64().unwrap(),
+        );
         for key in ["bacc", "dtl", "sws"] {
             assert!(
                 rel(
@@ -2175,21 +2164,12 @@ fn map_optimize_and_surrogate_take_a_measured_road() {
     ]);
     assert_eq!(o["evaluator"], "vba-qts");
     let pick = &o["pick"];
-    let at_pick = json(&[
-        "eval",
-        "--model",
+    let at_pick = eval_on(
+        Some("correlated"),
         "full",
-        "--road",
-        &road_path,
-        "--speed",
-        "25",
-        "--tracks",
-        "correlated",
-        "--ks",
-        &pick["ks"].to_string(),
-        "--cs",
-        &pick["cs"].to_string(),
-    ]);
+        pick["ks"].as_f64().unwrap(),
+        pick["cs"].as_f64().unwrap(),
+    );
     for key in ["bacc", "dtl", "sws"] {
         let rechecked = o["hifi_recheck"]["rechecked"][key].as_f64().unwrap();
         assert!(
