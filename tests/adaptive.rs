@@ -10,7 +10,7 @@
 
 use ridelab::dos::DosContext;
 use ridelab::optimize::StmParams;
-use ridelab::surrogate::adaptive::{
+use ridelab::study::adaptive::{
     adaptive_study, front_check, run, AdaptiveLoop, AdaptiveOptions, Decision, FrontCheck,
     HifiFront, StudyOptions, MAX_HIFI_RUNS,
 };
@@ -495,7 +495,7 @@ fn the_bound_is_the_explorers() {
 /// on the HiFi (its largest error is 8e-5) and none drops out for a hair.
 #[test]
 fn the_front_end_on_the_sws_limit_counts_on_the_hifi() {
-    use ridelab::surrogate::adaptive::HIFI_FEASIBILITY_TOLERANCE;
+    use ridelab::study::adaptive::HIFI_FEASIBILITY_TOLERANCE;
     assert_eq!(HIFI_FEASIBILITY_TOLERANCE, 1e-4);
     let (car, road, b) = (Car::datum(), Road::default(), DesignBox::default());
     let setting = Setting::new(&car, &road, &b).unwrap();

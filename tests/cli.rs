@@ -4,12 +4,12 @@
 use ridelab::analysis::{report, ModelKind};
 use ridelab::car::PRESETS;
 use ridelab::dos::{DesignObjectives, DosContext};
-use ridelab::maps::{map_csv, map_report, Grid, MapSettings, Scale};
+use ridelab::maps::{Grid, Scale};
 use ridelab::optimize::{recheck, run_study, Method, Nsga2Params, StmParams, SuspensionProblem};
 use ridelab::road::Road;
-use ridelab::surrogate::{
-    sample_plan, study, surrogate_report, LmOptions, PlanSpec, Setting, SurrogateSpec,
-};
+use ridelab::study::{map_csv, map_report, MapSettings};
+use ridelab::study::{study, surrogate_report};
+use ridelab::surrogate::{sample_plan, LmOptions, PlanSpec, Setting, SurrogateSpec};
 use ridelab::time_domain::{simulate, TimeOptions};
 use ridelab::{Car, Evaluator, HiFi, LoFi};
 use serde_json::Value;
@@ -656,7 +656,7 @@ fn optimize_json_equals_the_library() {
 /// runs on the surrogate refitted here to exactly those samples.
 #[test]
 fn adaptive_json_equals_the_library_and_lists_the_samples_in_order() {
-    use ridelab::surrogate::adaptive::{self, AdaptiveOptions};
+    use ridelab::study::adaptive::{self, AdaptiveOptions};
     let (car, road, b) = (Car::datum(), Road::default(), ridelab::DesignBox::default());
     let hifi = HiFi::new(&car, &road).unwrap();
     let options = AdaptiveOptions {
@@ -1332,11 +1332,11 @@ fn map_and_optimize_write_svg_charts_and_print_the_same() {
     assert_eq!(code, 0, "{err}");
     // stdout is the same JSON, byte for byte; the trailing .svg is dropped from the prefix.
     assert_eq!(with_svg, plain);
-    let settings = ridelab::maps::MapSettings {
+    let settings = ridelab::study::MapSettings {
         grid: ridelab::maps::Grid::parse("10000:40000:21", "500:4000:15").unwrap(),
         ..Default::default()
     };
-    let report = ridelab::maps::map_report(
+    let report = ridelab::study::map_report(
         ModelKind::Quarter,
         &Car::datum(),
         &Road::default(),
@@ -1546,7 +1546,8 @@ fn optimize_meets_the_tyre_load_margin_and_the_travel_budget() {
 /// HiFi re-check.
 #[test]
 fn optimize_pick_rules_equal_the_library() {
-    use ridelab::optimize::{optimize_report, EvaluatorSpec, PickRule};
+    use ridelab::optimize::PickRule;
+    use ridelab::study::{optimize_report, EvaluatorSpec};
     for rule in ["knee", "asf:0.8"] {
         let v = json(&[
             "optimize",
@@ -1701,7 +1702,7 @@ fn comfort_bacc_is_the_output_without_the_option() {
 fn optimize_comfort_wk_picks_and_rechecks_with_the_weighted_measure() {
     use ridelab::comfort::Comfort;
     use ridelab::criteria::bacc_wk_spectral;
-    use ridelab::optimize::{optimize_report_with, EvaluatorSpec};
+    use ridelab::study::{optimize_report_with, EvaluatorSpec};
     let car = Car::datum();
     let road = Road::default();
     let wk_of = |ks: f64, cs: f64| {

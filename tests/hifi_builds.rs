@@ -5,12 +5,13 @@
 //! test runs beside this one.
 
 use ridelab::analysis::hifi_builds;
-use ridelab::optimize::{EvaluatorSpec, Method, OptimizeRequest, PickRule, StmParams};
+use ridelab::optimize::{Method, PickRule, StmParams};
+use ridelab::study::{EvaluatorSpec, OptimizeRequest};
 use ridelab::surrogate::{PlanSpec, SurrogateSpec};
 use ridelab::{Car, Comfort, DesignBox, ModelKind, Road};
 
 /// HiFi builds of one run, and its report.
-fn builds_of(req: &OptimizeRequest) -> (u64, ridelab::optimize::OptimizeReport) {
+fn builds_of(req: &OptimizeRequest) -> (u64, ridelab::study::OptimizeReport) {
     let before = hifi_builds();
     let r = req.run().unwrap();
     (hifi_builds() - before, r)

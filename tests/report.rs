@@ -333,8 +333,9 @@ fn the_compact_car_report_builds_with_fronts() {
 /// adaptive pick's re-check error is that run's own. Its tables are in the documents.
 #[test]
 fn the_adaptive_section_is_the_cli_loop_beside_the_plan() {
-    use ridelab::optimize::{EvaluatorSpec, Method, StmParams};
-    use ridelab::surrogate::adaptive::{optimize_report, AdaptiveOptions};
+    use ridelab::optimize::{Method, StmParams};
+    use ridelab::study::adaptive::{optimize_report, AdaptiveOptions};
+    use ridelab::study::EvaluatorSpec;
     use ridelab::surrogate::{PlanSpec, SurrogateSpec};
     let r = sedan();
     let a = &r.adaptive;

@@ -7,14 +7,12 @@ use ridelab::comfort::Comfort;
 use ridelab::design::DesignBox;
 use ridelab::dos::{DesignObjectives, DosContext};
 use ridelab::gpu::Compute;
-use ridelab::maps::{map_report_on, Grid, MapSettings};
-use ridelab::optimize::{
-    non_dominated, optimize_report_with, EvaluatorSpec, Method, PickRule, StmParams,
-};
-use ridelab::robust::{
-    case_map_report, robust_map_report, robust_optimize_report, CaseSet, Combine, LoadCase,
-    Operating,
-};
+use ridelab::maps::Grid;
+use ridelab::optimize::{non_dominated, Method, PickRule, StmParams};
+use ridelab::robust::{CaseSet, Combine, LoadCase, Operating};
+use ridelab::study::{case_map_report, robust_map_report, robust_optimize_report};
+use ridelab::study::{map_report_on, MapSettings};
+use ridelab::study::{optimize_report_with, EvaluatorSpec};
 use ridelab::surrogate::PlanSpec;
 use ridelab::{Car, Evaluator, HiFi, LoFi, Road, RoadClass};
 use serde_json::Value;
@@ -491,7 +489,7 @@ fn default_outputs_unchanged_and_robust_json_is_the_library() {
     assert_eq!((c1, c2), (0, 0));
     assert_eq!(plain, from_file);
     assert!(!plain.contains("robust"));
-    let lib = ridelab::maps::map_report(
+    let lib = ridelab::study::map_report(
         ModelKind::Quarter,
         &Car::datum(),
         &Road::default(),

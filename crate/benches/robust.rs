@@ -9,8 +9,10 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use ridelab::analysis::ModelKind;
 use ridelab::design::DesignBox;
 use ridelab::gpu::Compute;
-use ridelab::maps::{map_report_on, Grid, MapSettings};
-use ridelab::robust::{robust_map_report, CaseSet, Combine, LoadCase, Operating};
+use ridelab::maps::Grid;
+use ridelab::robust::{CaseSet, Combine, LoadCase, Operating};
+use ridelab::study::robust_map_report;
+use ridelab::study::{map_report_on, MapSettings};
 use ridelab::{Car, Road, RoadClass};
 use std::hint::black_box;
 

@@ -6,7 +6,8 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use ridelab::doe::audze_eglais;
-use ridelab::surrogate::{sample_plan, study, LmOptions, Setting, SurrogateSpec};
+use ridelab::study::study;
+use ridelab::surrogate::{sample_plan, LmOptions, Setting, SurrogateSpec};
 use ridelab::{Car, DesignBox, Evaluator, HiFi, LoFi, Road};
 use std::hint::black_box;
 

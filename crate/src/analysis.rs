@@ -617,7 +617,7 @@ pub fn report(kind: ModelKind, car: &Car, road: &Road) -> Result<Report> {
         modes: model.modes()?,
         body_bounce_hz: q.bounce_frequency(),
         critical_damping: q.critical_damping(),
-        damping_ratio: crate::dos::damping_ratio(q.ks, q.cs, q.ms),
+        damping_ratio: crate::car::damping_ratio(q.ks, q.cs, q.ms),
         wheel_rate: q.wheel_rate(),
         static_wheel_load: car.front_wheel_load(),
     })
@@ -701,7 +701,7 @@ pub fn readout(kind: ModelKind, car: &Car, road: &Road) -> Result<Readout> {
         modes: model.modes()?,
         body_bounce_hz: q.bounce_frequency(),
         critical_damping: q.critical_damping(),
-        damping_ratio: crate::dos::damping_ratio(q.ks, q.cs, q.ms),
+        damping_ratio: crate::car::damping_ratio(q.ks, q.cs, q.ms),
         wheel_rate: q.wheel_rate(),
         static_wheel_load: car.front_wheel_load(),
     })

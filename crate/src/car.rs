@@ -334,7 +334,7 @@ impl DesignDomain {
     /// `spring_field` or `damper_field` with the range of that field on this corner.
     fn check_named(&self, k: f64, c: f64, spring_field: &str, damper_field: &str) -> Result<()> {
         use crate::domain::{num, BOUNCE, DAMPING_RATIO};
-        let f = crate::dos::bounce_frequency(k, self.kt, self.ms);
+        let f = bounce_frequency(k, self.kt, self.ms);
         if !BOUNCE.contains(f) {
             return Err(RideError::field(
                 spring_field,
@@ -351,7 +351,7 @@ impl DesignDomain {
                 ),
             ));
         }
-        let zeta = crate::dos::damping_ratio(k, c, self.ms);
+        let zeta = damping_ratio(k, c, self.ms);
         if !DAMPING_RATIO.contains(zeta) {
             let c_of = |z: f64| 2.0 * z * (k * self.ms).sqrt();
             return Err(RideError::field(
@@ -406,7 +406,7 @@ impl QuarterCar {
 
     /// Body-bounce frequency `sqrt(Kw / ms) / (2 pi)`, Hz.
     pub fn bounce_frequency(&self) -> f64 {
-        crate::dos::bounce_frequency(self.ks, self.kt, self.ms)
+        bounce_frequency(self.ks, self.kt, self.ms)
     }
 
     /// Critical damping of the body on its spring, `2 sqrt(ks ms)`, N s/m.
@@ -509,6 +509,18 @@ fn check_positive(field: &str, v: f64) -> Result<()> {
     } else {
         Err(RideError::field(field, format!("must be > 0 (got {v})")))
     }
+}
+
+/// Body-bounce frequency of the quarter car on its ride rate, Hz:
+/// `f = sqrt(Kw / ms) / (2 pi)`, `Kw = ks kt / (ks + kt)`.
+pub fn bounce_frequency(ks: f64, kt: f64, ms: f64) -> f64 {
+    let kw = ks * kt / (ks + kt);
+    (kw / ms).sqrt() / (2.0 * std::f64::consts::PI)
+}
+
+/// Body damping ratio `zeta = cs / (2 sqrt(ks ms))` (Gillespie's ride definition), -.
+pub fn damping_ratio(ks: f64, cs: f64, ms: f64) -> f64 {
+    cs / (2.0 * (ks * ms).sqrt())
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! Design objective space (DOS): the design objectives that make a point of the
 //! design criteria space feasible, and which objective each infeasible point breaks.
 
-use crate::car::Car;
+use crate::car::{bounce_frequency, damping_ratio, Car};
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use serde::{Deserialize, Serialize};
@@ -126,18 +126,6 @@ impl Objective {
             Objective::Travel => "travel budget",
         }
     }
-}
-
-/// Body-bounce frequency of the quarter car on its ride rate, Hz:
-/// `f = sqrt(Kw / ms) / (2 pi)`, `Kw = ks kt / (ks + kt)`.
-pub fn bounce_frequency(ks: f64, kt: f64, ms: f64) -> f64 {
-    let kw = ks * kt / (ks + kt);
-    (kw / ms).sqrt() / (2.0 * std::f64::consts::PI)
-}
-
-/// Body damping ratio `zeta = cs / (2 sqrt(ks ms))` (Gillespie's ride definition), -.
-pub fn damping_ratio(ks: f64, cs: f64, ms: f64) -> f64 {
-    cs / (2.0 * (ks * ms).sqrt())
 }
 
 impl DesignObjectives {

@@ -27,6 +27,7 @@ pub mod report;
 pub mod road;
 pub mod road_profile;
 pub mod robust;
+pub mod study;
 pub mod surrogate;
 pub mod time_domain;
 #[cfg(target_arch = "wasm32")]

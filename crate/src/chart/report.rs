@@ -6,8 +6,9 @@ use super::map::{Contours, MapChart, MapMarker, Sampling};
 use super::marker::MarkerShape;
 use super::ColourMap;
 use crate::evaluate::Criteria;
-use crate::maps::{MapReport, Scale};
+use crate::maps::Scale;
 use crate::optimize::{Method, Recheck, Study};
+use crate::study::MapReport;
 
 /// The criteria of a map: key, title, what it is, SI unit, display unit, display factor.
 const CRITERIA: [(&str, &str, &str, &str, f64); 3] = [
@@ -153,7 +154,8 @@ mod tests {
     use super::super::svgcheck::{all, parse, texts};
     use super::super::{line_chart_svg, map_chart_svg};
     use super::*;
-    use crate::maps::{map_report, Grid, MapSettings};
+    use crate::maps::Grid;
+    use crate::study::{map_report, MapSettings};
     use crate::{Car, ModelKind, Road};
 
     #[test]

@@ -1,5 +1,5 @@
 //! The page's "next HiFi run" (issue #15): the adaptive loop of
-//! [`crate::surrogate::adaptive`] on the state's scenario, one HiFi run per step, with what
+//! [`crate::study::adaptive`] on the state's scenario, one HiFi run per step, with what
 //! the page draws after each: where the run went and why, the surrogate's new front and
 //! pick, the pick's HiFi re-check, and the uncertainty map with how well it predicts the
 //! true error on a HiFi validation grid.
@@ -15,7 +15,7 @@ use crate::dos::DosContext;
 use crate::error::{Result, RideError};
 use crate::maps::Grid;
 use crate::optimize::{recheck, FrontPoint, Recheck, StmParams};
-use crate::surrogate::adaptive::{
+use crate::study::adaptive::{
     AdaptiveLoop, AdaptiveOptions, AdaptiveReport, Added, Decision, Proposal, Step,
 };
 use crate::surrogate::metrics::ByCriterion;

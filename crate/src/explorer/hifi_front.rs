@@ -23,9 +23,9 @@ use crate::evaluate::{Criteria, Evaluator};
 use crate::gpu::{ComputePath, HiFiGrid};
 use crate::maps::Grid;
 use crate::optimize::{hypervolume, Counted};
-use crate::robust::optimize::{case_contexts, case_hifis, datums_on};
 use crate::robust::{robust_constraints, CaseSet, Combination};
-use crate::surrogate::adaptive::HIFI_FEASIBILITY_TOLERANCE;
+use crate::study::adaptive::HIFI_FEASIBILITY_TOLERANCE;
+use crate::study::robust::optimize::{case_contexts, case_hifis, datums_on};
 use serde::Serialize;
 
 /// The HiFi front of a scenario and the plane's front judged against it.

@@ -23,7 +23,7 @@ pub enum MapModel {
     SurrogateError,
     /// With robust cases, the LoFi's robust objective and DOS as the robust front's
     /// problem sees them (each case scaled to its HiFi datum, each judged against it:
-    /// [`crate::robust::optimize::hifi_combination`]): the objective plane's feasible set.
+    /// [`crate::study::robust::optimize::hifi_combination`]): the objective plane's feasible set.
     Robust,
 }
 

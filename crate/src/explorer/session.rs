@@ -28,10 +28,10 @@ use crate::evaluate::{Criteria, Evaluator};
 use crate::gpu::{ComputePath, HiFiGrid};
 use crate::maps::{DatumPoint, Dcs, DosMap, Grid, Scale};
 use crate::report::{build as build_report, MethodReport, ReportInputs};
-use crate::robust::map::{robust_fields, CaseField};
-use crate::robust::optimize::hifi_combination;
 use crate::robust::{CaseSet, Combination, MAX_CASES};
-use crate::surrogate::SurrogateReport;
+use crate::study::robust::map::{robust_fields, CaseField};
+use crate::study::robust::optimize::hifi_combination;
+use crate::study::SurrogateReport;
 use crate::time_domain::TimeOptions;
 use std::rc::Rc;
 

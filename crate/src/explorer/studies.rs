@@ -9,7 +9,6 @@ use crate::dos::DosContext;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::math;
-use crate::optimize::EvaluatorSpec;
 use crate::optimize::{
     minmax::{normalised_distances, pick, pseudo_weights, recheck, PickRule, Recheck},
     nsga2::Nsga2Params,
@@ -18,8 +17,10 @@ use crate::optimize::{
     suspension::SuspensionProblem,
     trust::{pick_warnings, Warning},
 };
-use crate::robust::optimize::CasePick;
-use crate::robust::{robust_optimize_report, CaseSet, Combine};
+use crate::robust::{CaseSet, Combine};
+use crate::study::robust::optimize::CasePick;
+use crate::study::robust_optimize_report;
+use crate::study::EvaluatorSpec;
 use crate::time_domain::{simulate, Damper, TimeOptions, TimeResponse};
 use serde::Serialize;
 

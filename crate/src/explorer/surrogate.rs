@@ -13,9 +13,9 @@ use crate::design::DesignBox;
 use crate::error::Result;
 use crate::road::Road;
 use crate::robust::CaseSet;
+use crate::study::{surrogate_report_in, SurrogateReport};
 use crate::surrogate::{
-    sample_plan, surrogate_report_in, LmOptions, PlanSpec, Sample, Setting, Surrogate,
-    SurrogateReport, SurrogateSpec,
+    sample_plan, LmOptions, PlanSpec, Sample, Setting, Surrogate, SurrogateSpec,
 };
 
 /// A fitted surrogate with the samples it was fitted to.

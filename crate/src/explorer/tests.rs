@@ -313,7 +313,7 @@ fn surrogate_spectra_carry_the_surrogate_rms() {
 /// at the cell centres in the maps' layout.
 #[test]
 fn the_pages_adaptive_loop_is_the_clis() {
-    use crate::surrogate::adaptive::{run, AdaptiveOptions, Decision};
+    use crate::study::adaptive::{run, AdaptiveOptions, Decision};
     use crate::surrogate::{PlanSpec, Setting, SurrogateSpec};
     let s = session(|s| {
         s.surrogate = Some("gp-mul".into());

@@ -6,8 +6,9 @@ use crate::analysis::ModelKind;
 use crate::evaluate::Evaluator;
 use crate::gpu::ComputePath;
 use crate::maps::Grid;
-use crate::optimize::{optimize_report, EvaluatorSpec, Method, StmParams};
-use crate::surrogate::adaptive::{front_check, Decision, HifiFront};
+use crate::optimize::{Method, StmParams};
+use crate::study::adaptive::{front_check, Decision, HifiFront};
+use crate::study::{optimize_report, EvaluatorSpec};
 use crate::surrogate::PlanSpec;
 
 const PAGE_STM: StmParams = StmParams {

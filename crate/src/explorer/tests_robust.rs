@@ -5,9 +5,12 @@
 use super::*;
 use crate::analysis::ModelKind;
 use crate::gpu::Compute;
-use crate::maps::{Grid, MapReport, MapSettings};
-use crate::optimize::{EvaluatorSpec, Method, StmParams};
-use crate::robust::{case_map_report, robust_map_report, robust_optimize_report, CaseSet};
+use crate::maps::Grid;
+use crate::optimize::{Method, StmParams};
+use crate::robust::CaseSet;
+use crate::study::EvaluatorSpec;
+use crate::study::{case_map_report, robust_map_report, robust_optimize_report};
+use crate::study::{MapReport, MapSettings};
 
 /// Two load cases at three operating points: six cases.
 const SIX: &str = r#"{"load_cases": [{"name": "driver only", "mass": 0},
@@ -455,7 +458,7 @@ fn robust_hifi_front_is_optimize_cases_on_the_full_car() {
     // The plane's front, judged independently.
     let plane = s.front("stm", FrontModel::Robust).unwrap();
     let (combination, datums) =
-        crate::robust::optimize::hifi_combination(&set, sc.comfort).unwrap();
+        crate::study::robust::optimize::hifi_combination(&set, sc.comfort).unwrap();
     let mut kept = Vec::new();
     for p in &plane.study.front {
         s.set_design(p.ks, p.cs).unwrap();

@@ -31,7 +31,6 @@ pub mod contour;
 pub mod dcs;
 pub mod dos_mask;
 pub mod grid;
-pub mod report;
 
 pub use contour::{auto_levels, contour, contours, nice_levels, Contour, Polyline};
 pub use dcs::{default_threads, evaluate_grid, map_grid, DatumPoint, Dcs, Scale};
@@ -40,7 +39,3 @@ pub use dos_mask::{
     ObjectiveCount, OBJECTIVE_BITS,
 };
 pub use grid::{Axis, Grid};
-pub use report::{
-    map_csv, map_report, map_report_from, map_report_on, map_report_with, CriteriaContours,
-    Feasibility, MapReport, MapSettings, MaskBit, Units, LAYOUT,
-};

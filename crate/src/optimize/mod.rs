@@ -11,7 +11,6 @@ pub mod hypervolume;
 pub mod minmax;
 pub mod nsga2;
 pub mod problem;
-pub mod report;
 pub mod stm;
 pub mod study;
 pub mod suspension;
@@ -27,10 +26,6 @@ pub use minmax::{
 };
 pub use nsga2::{nsga2, Nsga2Params};
 pub use problem::{dominates, non_dominated, Eval, Problem, Solution};
-pub use report::{
-    optimize_model, optimize_model_with, optimize_on_models, optimize_report, optimize_report_on,
-    optimize_report_with, EvaluatorSpec, OptimizeReport, OptimizeRequest, SameModel,
-};
 pub use stm::{stm, StmParams};
 pub use study::{run_study, Method, Study};
 pub use suspension::{Counted, FrontPoint, SuspensionProblem};

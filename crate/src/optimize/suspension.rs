@@ -3,8 +3,9 @@
 //! on any [`Evaluator`] (LoFi, HiFi or a surrogate), counting its evaluations.
 
 use super::problem::{Eval, Problem, Solution};
+use crate::car::{bounce_frequency, damping_ratio};
 use crate::design::DesignBox;
-use crate::dos::{bounce_frequency, damping_ratio, DesignObjectives, DosContext, Objective};
+use crate::dos::{DesignObjectives, DosContext, Objective};
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use serde::Serialize;

@@ -7,6 +7,7 @@ use super::*;
 use crate::design::DesignBox;
 use crate::dos::{DesignObjectives, DosContext};
 use crate::evaluate::{Criteria, Evaluator};
+use crate::study::{optimize_report, EvaluatorSpec};
 
 fn context() -> DosContext {
     DosContext {

@@ -6,7 +6,7 @@ use super::figures::Figure;
 use super::{MethodReport, RouteRow};
 use crate::dos::DesignObjectives;
 use crate::model::Mode;
-use crate::surrogate::study::Outcome;
+use crate::study::fidelity::Outcome;
 
 /// One block of the report.
 #[derive(Debug, Clone, PartialEq)]

@@ -36,20 +36,18 @@ use crate::doe::{audze_eglais, gap_histogram};
 use crate::dos::DesignObjectives;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
-use crate::maps::{map_report, Grid, MapReport, MapSettings};
+use crate::maps::Grid;
 use crate::math;
 use crate::model::Mode;
-use crate::optimize::{
-    front_distance, optimize_report, EvaluatorSpec, FrontDistance, Method, Nsga2Params,
-    OptimizeReport, PickRule, StmParams,
-};
+use crate::optimize::{front_distance, FrontDistance, Method, Nsga2Params, PickRule, StmParams};
 use crate::road::Road;
-use crate::surrogate::adaptive::{
+use crate::study::adaptive::{
     optimize_report as adaptive_optimize_report, AdaptiveOptimizeReport, AdaptiveOptions,
 };
-use crate::surrogate::{
-    study_in, surrogate_report_in, PlanSpec, StudyReport, SurrogateReport, SurrogateSpec,
-};
+use crate::study::{map_report, MapReport, MapSettings};
+use crate::study::{optimize_report, EvaluatorSpec, OptimizeReport};
+use crate::study::{study_in, surrogate_report_in, StudyReport, SurrogateReport};
+use crate::surrogate::{PlanSpec, SurrogateSpec};
 use crate::time_domain::{simulate, TimeOptions};
 use serde::Serialize;
 
@@ -520,10 +518,10 @@ impl MethodReport {
             String::from("surrogate,plan,samples,status,worst_rte_max_percent,min_r2\n");
         for row in &self.fidelity.study.rows {
             let (status, rte, r2) = match &row.outcome {
-                crate::surrogate::study::Outcome::Fitted(f) => {
+                crate::study::fidelity::Outcome::Fitted(f) => {
                     ("fitted", f.worst_rte_max.to_string(), f.min_r2.to_string())
                 }
-                crate::surrogate::study::Outcome::Skipped { .. } => {
+                crate::study::fidelity::Outcome::Skipped { .. } => {
                     ("skipped", String::new(), String::new())
                 }
             };

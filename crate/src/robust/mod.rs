@@ -2,17 +2,13 @@
 //! its position: new sprung mass, CG and inertias, [`load`]) at several operating points
 //! (road class and speed with weights, [`cases`]); the robust objective and DOS
 //! ([`objective`]: worst case or weighted mean of each case normalised by its own datum;
-//! feasible only where every case meets every objective), the robust map ([`map`]) and
-//! the robust optimisation ([`optimize`]).
+//! feasible only where every case meets every objective). The robust map and the robust
+//! optimisation are studies over them ([`crate::study::robust`]).
 
 pub mod cases;
 pub mod load;
-pub mod map;
 pub mod objective;
-pub mod optimize;
 
 pub use cases::{Case, CaseSet, CasesFile, Combine, Operating, MAX_CASES};
 pub use load::{CarFile, LoadCase, MAX_LOAD_CASES};
-pub use map::{case_map_report, robust_map_report, CaseInfo, CaseMapReport, RobustMapReport};
 pub use objective::{robust_constraints, Combination, RobustEvaluator};
-pub use optimize::{robust_optimize_report, RobustOptimizeReport, RobustProblem};

@@ -27,7 +27,6 @@
 //! Coordinates: `u = (ks - ks_min) / (ks_max - ks_min)`, `v = (cs - cs_min) / (cs_max - cs_min)`
 //! ([`DesignBox::normalize`]); criteria index `k`: 0 BAcc (m/s^2), 1 DTL (N), 2 SWS (m).
 
-pub mod adaptive;
 pub mod datafit;
 pub mod fit;
 pub mod gp;
@@ -40,9 +39,9 @@ pub mod pba;
 pub mod rba;
 pub mod response;
 pub mod spec;
-pub mod study;
 mod tuned;
 pub mod uncertainty;
+mod validation;
 pub mod vba;
 
 pub use datafit::{DataFit, DataFitParams};
@@ -54,11 +53,8 @@ pub use pba::{PbaParams, Scaling};
 pub use rba::{Form, Rba, RbaParams};
 pub use response::{Kernel, ResponseKind};
 pub use spec::{Approach, PlanSpec, SurrogateSpec};
-pub use study::{
-    study, study_in, surrogate_report, surrogate_report_in, surrogate_report_on, StudyReport,
-    SurrogateReport, ValidationSet,
-};
 pub use tuned::Tuned;
+pub use validation::{ValidationSet, VALIDATION_LEVELS};
 pub use vba::{Transform, VbaParams};
 
 use crate::car::{Car, QuarterCar};

@@ -2,11 +2,12 @@
 //! LoFi (each approach must recover the tuning), the sample-count errors, and the fidelity
 //! study on the real HiFi.
 
-use super::study::{study_specs, FittedRow, Outcome, StudyRow, VALIDATION_LEVELS};
 use super::*;
 use crate::analysis::quarter_criteria;
 use crate::doe::{audze_eglais, full_factorial};
 use crate::model::quarter_car;
+use crate::study::fidelity::{study_specs, FittedRow, Outcome, StudyRow};
+use crate::study::{study, surrogate_report, surrogate_report_in, surrogate_report_on};
 
 /// A "HiFi" that is a quarter car made by `f(ks, cs)`: a LoFi with known tuning.
 struct Manufactured<F> {

@@ -40,7 +40,7 @@
 use super::fit::LmOptions;
 use super::kriging::correlation_matrix;
 use super::metrics::{pearson, spearman, ByCriterion};
-use super::study::ValidationSet;
+use super::validation::ValidationSet;
 use super::{Sample, Setting, Surrogate, SurrogateSpec};
 use crate::design::DesignBox;
 use crate::error::{Result, RideError};

@@ -343,7 +343,7 @@ impl AdaptiveRun {
     #[wasm_bindgen(constructor)]
     pub fn new(state: JsValue, options: JsValue) -> Result<AdaptiveRun, JsValue> {
         let scenario = parse_state(state)?.scenario().map_err(js_error)?;
-        let options: crate::surrogate::adaptive::AdaptiveOptions =
+        let options: crate::study::adaptive::AdaptiveOptions =
             if options.is_undefined() || options.is_null() {
                 Default::default()
             } else {

@@ -9,7 +9,7 @@ use ridelab::error::{Result, RideError};
 use ridelab::optimize::Warning;
 use ridelab::road::{Road, RoadClass, Tracks};
 use ridelab::robust::{CarFile, CaseSet, Combine, LoadCase};
-use ridelab::surrogate::adaptive::{AdaptiveOptions, DEFAULT_CANDIDATES, DEFAULT_MIN_DISTANCE};
+use ridelab::study::adaptive::{AdaptiveOptions, DEFAULT_CANDIDATES, DEFAULT_MIN_DISTANCE};
 use ridelab::surrogate::infill::Infill;
 use ridelab::surrogate::uncertainty::UncertaintyMethod;
 use std::path::{Path, PathBuf};

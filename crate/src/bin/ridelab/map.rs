@@ -12,13 +12,13 @@ use ridelab::comfort::Comfort;
 use ridelab::error::{Result, RideError};
 use ridelab::gpu::Compute;
 use ridelab::gpu::ComputePath;
-use ridelab::maps::{
-    map_csv, map_report_on, map_report_with, Axis, Grid, MapReport, MapSettings, Scale,
-};
+use ridelab::maps::{Axis, Grid, Scale};
 use ridelab::road::Road;
 use ridelab::road_profile::RoadScenario;
 use ridelab::robust::LoadCase;
-use ridelab::robust::{case_map_report, robust_map_report, CaseSet, Combine};
+use ridelab::robust::{CaseSet, Combine};
+use ridelab::study::{case_map_report, robust_map_report};
+use ridelab::study::{map_csv, map_report_on, map_report_with, MapReport, MapSettings};
 use std::path::{Path, PathBuf};
 
 #[derive(Args)]

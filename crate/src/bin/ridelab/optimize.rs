@@ -15,14 +15,12 @@ use ridelab::dos::DesignObjectives;
 use ridelab::error::{Result, RideError};
 use ridelab::evaluate::Evaluator;
 use ridelab::gpu::{Compute, ComputePath};
-use ridelab::optimize::{
-    optimize_on_models, EvaluatorSpec, Method, Nsga2Params, OptimizeReport, OptimizeRequest,
-    PickRule, StmParams,
-};
+use ridelab::optimize::{Method, Nsga2Params, PickRule, StmParams};
 use ridelab::road_profile::{MeasuredModel, RoadScenario};
 use ridelab::robust::LoadCase;
-use ridelab::robust::{robust_optimize_report, RobustOptimizeReport};
-use ridelab::surrogate::adaptive;
+use ridelab::study::adaptive;
+use ridelab::study::{optimize_on_models, EvaluatorSpec, OptimizeReport, OptimizeRequest};
+use ridelab::study::{robust_optimize_report, RobustOptimizeReport};
 use ridelab::surrogate::{sample_plan, LmOptions, PlanSpec, Setting};
 use std::path::Path;
 

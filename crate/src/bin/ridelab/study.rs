@@ -4,8 +4,9 @@ use crate::args::{car_and_road, count, json, CarRoad};
 use clap::Args;
 use ridelab::error::{Result, RideError};
 use ridelab::optimize::StmParams;
-use ridelab::surrogate::adaptive::{adaptive_study, StudyOptions};
-use ridelab::surrogate::{study, SurrogateSpec};
+use ridelab::study::adaptive::{adaptive_study, StudyOptions};
+use ridelab::study::study;
+use ridelab::surrogate::SurrogateSpec;
 
 #[derive(Args)]
 pub(crate) struct StudyArgs {

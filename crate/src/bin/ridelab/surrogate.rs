@@ -7,11 +7,10 @@ use ridelab::analysis::ModelKind;
 use ridelab::design::DesignBox;
 use ridelab::error::{Result, RideError};
 use ridelab::road_profile::{MeasuredModel, MeasuredRoad, RoadScenario};
-use ridelab::surrogate::adaptive;
-use ridelab::surrogate::study::VALIDATION_LEVELS;
-use ridelab::surrogate::{
-    surrogate_report_in, surrogate_report_on, PlanSpec, Setting, SurrogateReport, SurrogateSpec,
-};
+use ridelab::study::adaptive;
+use ridelab::study::{surrogate_report_in, surrogate_report_on, SurrogateReport};
+use ridelab::surrogate::VALIDATION_LEVELS;
+use ridelab::surrogate::{PlanSpec, Setting, SurrogateSpec};
 
 #[derive(Args)]
 pub(crate) struct SurrogateArgs {

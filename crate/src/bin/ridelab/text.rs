@@ -2,10 +2,11 @@
 //! study), in the page's display units: Ks in kN/m, Cs in kNs/m, BAcc in m/s^2, DTL in
 //! N, SWS in mm. JSON (`--json`) and CSV (`--csv`) stay in SI with a `units` object.
 
-use ridelab::maps::{MapReport, Scale};
+use ridelab::maps::Scale;
 use ridelab::road::Road;
 use ridelab::road_profile::RoadScenario;
-use ridelab::surrogate::SurrogateReport;
+use ridelab::study::MapReport;
+use ridelab::study::SurrogateReport;
 
 /// "class B at 20 m/s, correlated tracks".
 pub(crate) fn road_words(r: &Road) -> String {

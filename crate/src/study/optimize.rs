@@ -6,10 +6,6 @@
 //! against the datum car's **HiFi** criteria, whatever the evaluator: the HiFi is the
 //! reference every evaluator is judged by.
 
-use super::minmax::{change_percent, pick, recheck, PickRule, Recheck};
-use super::study::{run_study, Method, Study};
-use super::suspension::SuspensionProblem;
-use super::trust::{pick_warnings, Warning};
 use crate::analysis::{HiFi, LoFi, ModelKind};
 use crate::car::Car;
 use crate::comfort::{Comfort, WkComfort};
@@ -19,6 +15,10 @@ use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::gpu::{Compute, ComputePath, HiFiGrid};
 use crate::maps::Grid;
+use crate::optimize::minmax::{change_percent, pick, recheck, PickRule, Recheck};
+use crate::optimize::study::{run_study, Method, Study};
+use crate::optimize::suspension::SuspensionProblem;
+use crate::optimize::trust::{pick_warnings, Warning};
 use crate::road::Road;
 use crate::surrogate::{sample_plan, LmOptions, PlanSpec, Setting, SurrogateSpec};
 use serde::Serialize;
@@ -113,7 +113,7 @@ pub struct OptimizeReport {
     /// The GPU adapter's name when the GPU ran.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub adapter: Option<String>,
-    /// How far the pick can be trusted ([`super::trust`]): a box bound it sits on, a
+    /// How far the pick can be trusted ([`crate::optimize::trust`]): a box bound it sits on, a
     /// criterion its HiFi re-check misses by more than the tolerance; empty when neither.
     pub warnings: Vec<Warning>,
     /// The pick against the datum on the optimisation's own model (the LoFi or a

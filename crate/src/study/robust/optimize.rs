@@ -1,15 +1,13 @@
 //! The robust optimisation (`ridelab optimize --cases FILE`): minimise the robust
-//! `[BAcc, DTL]` ([`super::objective`]) over the design box, feasible only where the
+//! `[BAcc, DTL]` ([`crate::robust::objective`]) over the design box, feasible only where the
 //! design objectives hold in every case; the pick on the robust front, its numbers in
 //! each case, and each case re-checked on that case's HiFi.
 //!
-//! As in [`crate::optimize::optimize_report_with`], every case's datum is the datum
+//! As in [`crate::study::optimize_report_with`], every case's datum is the datum
 //! design's **HiFi** criteria in that case (with the chosen comfort measure), whatever the
 //! evaluator the front is found on.
 
-use super::cases::CaseSet;
 use super::map::{CaseInfo, NORMALISATION};
-use super::objective::{robust_constraints, CaseRun, Combination, RobustEvaluator};
 use crate::analysis::{HiFiRoads, ModelKind};
 use crate::comfort::Comfort;
 use crate::design::DesignBox;
@@ -22,7 +20,10 @@ use crate::optimize::problem::{Eval, Problem};
 use crate::optimize::study::REFERENCE_MARGIN;
 use crate::optimize::suspension::LeastViolation;
 use crate::optimize::trust::{pick_warnings, Warning};
-use crate::optimize::{nsga2, stm, EvaluatorSpec, FrontPoint, Method, Study};
+use crate::optimize::{nsga2, stm, FrontPoint, Method, Study};
+use crate::robust::cases::CaseSet;
+use crate::robust::objective::{robust_constraints, CaseRun, Combination, RobustEvaluator};
+use crate::study::EvaluatorSpec;
 use crate::surrogate::PlanSpec;
 use serde::Serialize;
 use std::cell::{Cell, RefCell};
@@ -144,7 +145,7 @@ pub struct RobustOptimizeReport {
     #[serde(skip_serializing_if = "Comfort::is_bacc")]
     pub comfort: Comfort,
     /// Worst case or weighted mean, and the normalisation.
-    pub combine: super::cases::Combine,
+    pub combine: crate::robust::cases::Combine,
     /// The normalisation sentence.
     pub normalisation: &'static str,
     /// The pick in each case.

@@ -1,5 +1,5 @@
 //! Adaptive HiFi sampling (issue #15): start from a plan of `N0` HiFi runs, then add `K`
-//! runs one at a time where the infill criterion ([`super::infill`]) says the decision
+//! runs one at a time where the infill criterion ([`crate::surrogate::infill`]) says the decision
 //! gains most, refitting the surrogate and its uncertainty after each; and the study that
 //! compares the loop with Audze-Eglais plans of the same size on the HiFi.
 //!
@@ -30,11 +30,6 @@ pub use check::{front_check, FrontCheck, HifiFront, HIFI_FEASIBILITY_TOLERANCE};
 pub use reports::{optimize_report, surrogate_report, AdaptiveOptimizeReport};
 pub use study::{adaptive_study, AdaptiveStudy, StudyOptions, StudyRow};
 
-use super::fit::LmOptions;
-use super::infill::{choose, reason, Candidate, Infill, InfillSetting};
-use super::spec::PlanSpec;
-use super::uncertainty::{Uncertain, UncertaintyMethod};
-use super::{sample_plan, Sample, Setting, Surrogate, SurrogateSpec};
 use crate::car::Car;
 use crate::design::DesignBox;
 use crate::dos::{DesignObjectives, DosContext};
@@ -44,6 +39,11 @@ use crate::optimize::study::REFERENCE_MARGIN;
 use crate::optimize::{
     hypervolume, min_max_pick, reference_point, stm, FrontPoint, Pick, StmParams, SuspensionProblem,
 };
+use crate::surrogate::fit::LmOptions;
+use crate::surrogate::infill::{choose, reason, Candidate, Infill, InfillSetting};
+use crate::surrogate::spec::PlanSpec;
+use crate::surrogate::uncertainty::{Uncertain, UncertaintyMethod};
+use crate::surrogate::{sample_plan, Sample, Setting, Surrogate, SurrogateSpec};
 use serde::{Deserialize, Serialize};
 
 /// Most HiFi samples a loop may hold (initial plan plus adaptive runs), the explorer's

@@ -1,13 +1,6 @@
 //! The map report behind `ridelab map`: criteria fields, datum point, feasibility mask
 //! and contour lines at automatic levels, as JSON (serde) or CSV.
 
-use super::contour::{auto_levels, contour, contours, Contour};
-use super::dcs::default_threads;
-use super::dcs::{DatumPoint, Dcs, Scale};
-use super::dos_mask::{
-    objective_bit, objective_name, objectives_in, DosMap, DosSummary, FeasiblePoint,
-};
-use super::grid::Grid;
 use crate::analysis::{HiFi, LoFi, ModelKind};
 use crate::car::Car;
 use crate::comfort::Comfort;
@@ -15,6 +8,13 @@ use crate::dos::{DesignObjectives, DosContext, Objective};
 use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
 use crate::gpu::{Compute, ComputePath, HiFiGrid};
+use crate::maps::contour::{auto_levels, contour, contours, Contour};
+use crate::maps::dcs::default_threads;
+use crate::maps::dcs::{DatumPoint, Dcs, Scale};
+use crate::maps::dos_mask::{
+    objective_bit, objective_name, objectives_in, DosMap, DosSummary, FeasiblePoint,
+};
+use crate::maps::grid::Grid;
 use crate::road::Road;
 use crate::road_profile::RoadScenario;
 use serde::{Deserialize, Serialize};

@@ -1,10 +1,8 @@
 //! The robust map (`ridelab map --cases FILE`): every case's criteria over the grid, the
-//! robust criteria ([`super::objective`]) as the map's fields and the robust DOS (the OR
+//! robust criteria ([`crate::robust::objective`]) as the map's fields and the robust DOS (the OR
 //! of every case's feasibility mask, each case with its own datum) as its mask; or one
 //! case's own map (`--case K`).
 
-use super::cases::{Case, CaseSet, Combine};
-use super::objective::Combination;
 use crate::analysis::{HiFi, HiFiRoads, ModelKind};
 use crate::car::Car;
 use crate::comfort::Comfort;
@@ -12,11 +10,11 @@ use crate::dos::{DesignObjectives, Objective};
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
 use crate::gpu::{Compute, ComputePath, HiFiGrid};
-use crate::maps::{
-    default_threads, map_grid, map_report_from, map_report_on, map_report_with, DatumPoint, Dcs,
-    DosMap, FeasiblePoint, Grid, MapReport, MapSettings, Scale,
-};
+use crate::maps::{default_threads, map_grid, DatumPoint, Dcs, DosMap, FeasiblePoint, Grid, Scale};
 use crate::road::Road;
+use crate::robust::cases::{Case, CaseSet, Combine};
+use crate::robust::objective::Combination;
+use crate::study::{map_report_from, map_report_on, map_report_with, MapReport, MapSettings};
 use serde::Serialize;
 
 /// One case as a report lists it.

@@ -4,71 +4,22 @@
 //! prints.
 
 use super::adaptive::AdaptiveReport;
-use super::fit::{FitDiagnostics, LmOptions};
-use super::metrics::{metrics_by_criterion, ByCriterion, ErrorMap, Metrics};
-use super::spec::{Approach, PlanSpec, SurrogateSpec};
-use super::uncertainty::{estimates, UncertaintyOutcome};
-use super::{sample_plan, Parameter, Sample, Scheme, Setting, Surrogate};
 use crate::analysis::HiFi;
 use crate::car::{Car, QuarterCar};
 use crate::design::DesignBox;
-use crate::doe::full_factorial;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator, CRITERIA_NAMES};
 use crate::optimize::Counted;
 use crate::road::Road;
 use crate::road_profile::RoadScenario;
+use crate::surrogate::fit::{FitDiagnostics, LmOptions};
+use crate::surrogate::metrics::{ByCriterion, ErrorMap, Metrics};
+use crate::surrogate::spec::{Approach, PlanSpec, SurrogateSpec};
+use crate::surrogate::uncertainty::{estimates, UncertaintyOutcome};
+use crate::surrogate::{sample_plan, Parameter, Sample, Scheme, Setting, Surrogate};
+use crate::surrogate::{ValidationSet, VALIDATION_LEVELS};
 use serde::Serialize;
 use std::fmt::Write;
-
-/// Levels per axis of the default validation grid (`20 x 20` points).
-pub const VALIDATION_LEVELS: usize = 20;
-
-/// HiFi values on an `n x n` grid over the design box, the common yardstick of surrogates.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ValidationSet {
-    /// Levels per axis.
-    pub levels: usize,
-    /// Grid points `(ks N/m, cs N s/m)`, Ks level outer.
-    pub points: Vec<(f64, f64)>,
-    /// HiFi criteria at the points.
-    pub hifi: Vec<Criteria>,
-}
-
-impl ValidationSet {
-    /// Evaluates `hifi` on the `levels x levels` grid over `design_box`.
-    pub fn new<E: Evaluator>(hifi: &E, design_box: &DesignBox, levels: usize) -> Result<Self> {
-        let grid = full_factorial(levels)
-            .map_err(|e| RideError::field("validation-grid", e.to_string()))?;
-        let points: Vec<(f64, f64)> = grid
-            .unit
-            .iter()
-            .map(|p| design_box.scale(p[0], p[1]))
-            .collect();
-        let hifi = points
-            .iter()
-            .map(|&(ks, cs)| hifi.evaluate(ks, cs))
-            .collect::<Result<_>>()?;
-        Ok(ValidationSet {
-            levels,
-            points,
-            hifi,
-        })
-    }
-
-    /// The predictions of `model` at the points.
-    pub fn predict<E: Evaluator + ?Sized>(&self, model: &E) -> Result<Vec<Criteria>> {
-        self.points
-            .iter()
-            .map(|&(ks, cs)| model.evaluate(ks, cs))
-            .collect()
-    }
-
-    /// R^2, RMSE, MAE and RTE of `predicted` (at the points) per criterion.
-    pub fn metrics(&self, predicted: &[Criteria]) -> Result<ByCriterion<Metrics>> {
-        metrics_by_criterion(&self.hifi, predicted)
-    }
-}
 
 /// Surrogate and HiFi values on the validation grid, with its points (the error map's).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -351,7 +302,7 @@ pub fn study_specs() -> Vec<SurrogateSpec> {
         .into_iter()
         .filter(|s| match s.approach {
             Approach::Pba(p) => !p.tyre || (p.sprung && p.unsprung),
-            Approach::Data(r) => r != super::ResponseKind::Poly(1),
+            Approach::Data(r) => r != crate::surrogate::ResponseKind::Poly(1),
             _ => true,
         })
         .collect()

@@ -8,9 +8,10 @@ use crate::design::DesignBox;
 use crate::dos::{DesignObjectives, DosContext};
 use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
-use crate::optimize::{optimize_model, Counted, EvaluatorSpec, Method, OptimizeReport, StmParams};
+use crate::optimize::{Counted, Method, StmParams};
 use crate::road::Road;
-use crate::surrogate::study::{Fitted, SurrogateReport};
+use crate::study::fidelity::{Fitted, SurrogateReport};
+use crate::study::{optimize_model, EvaluatorSpec, OptimizeReport};
 use crate::surrogate::{PlanSpec, Setting, SurrogateSpec};
 use serde::Serialize;
 

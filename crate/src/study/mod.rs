@@ -1,0 +1,46 @@
+//! The study layer: what `ridelab map`, `optimize`, `surrogate` and `report` and the page
+//! run over the algorithms below them. A study takes a car, a road (an ISO class or a
+//! measured profile), a design box, the design objectives, a comfort measure, the load
+//! cases and a compute path, and returns a map, a front with its pick, a fitted surrogate
+//! with its validation, or an adaptive run.
+//!
+//! The data flow, one way:
+//!
+//! ```text
+//! car + road ─▶ model (analysis, model, road_profile) ─▶ criteria (criteria, comfort)
+//!            ─▶ study (maps, fronts, picks, surrogates, adaptive runs)  ─▶ page or CLI
+//! ```
+//!
+//! The algorithms ([`crate::maps`], [`crate::optimize`], [`crate::surrogate`],
+//! [`crate::doe`], [`crate::robust`]'s cases and objective) know nothing of this layer;
+//! `tests/structure.rs` keeps the modules' imports free of cycles.
+//!
+//! - [`map`]: a design map of one model (`ridelab map`).
+//! - [`optimize`]: a front and its min-max pick on any evaluator (`ridelab optimize`).
+//! - [`fidelity`]: one surrogate fitted and validated (`ridelab surrogate`), and the
+//!   fidelity study over every approach, scheme and plan.
+//! - [`adaptive`]: adaptive HiFi sampling and its study.
+//! - [`robust`]: the map and the front over several load cases and operating points.
+
+pub mod adaptive;
+pub mod fidelity;
+pub mod map;
+pub mod optimize;
+pub mod robust;
+
+pub use fidelity::{
+    study, study_in, surrogate_report, surrogate_report_in, surrogate_report_on, StudyReport,
+    SurrogateReport,
+};
+pub use map::{
+    map_csv, map_report, map_report_from, map_report_on, map_report_with, CriteriaContours,
+    Feasibility, MapReport, MapSettings, MaskBit, Units, LAYOUT,
+};
+pub use optimize::{
+    optimize_model, optimize_model_with, optimize_on_models, optimize_report, optimize_report_on,
+    optimize_report_with, EvaluatorSpec, OptimizeReport, OptimizeRequest, SameModel,
+};
+pub use robust::{
+    case_map_report, robust_map_report, robust_optimize_report, CaseInfo, CaseMapReport,
+    RobustMapReport, RobustOptimizeReport, RobustProblem,
+};

@@ -1,0 +1,8 @@
+//! Robust design over several cases as a study ([`crate::robust`] holds the cases and the
+//! robust objective): the robust map ([`map`]) and the robust optimisation ([`optimize`]).
+
+pub mod map;
+pub mod optimize;
+
+pub use map::{case_map_report, robust_map_report, CaseInfo, CaseMapReport, RobustMapReport};
+pub use optimize::{robust_optimize_report, RobustOptimizeReport, RobustProblem};
