@@ -6,21 +6,37 @@ use crate::criteria::{
     bacc_wk, bacc_wk_spectral, comfort_label, criteria_exact, criteria_fast_exact, criteria_modal,
     criteria_spectral, quarter_car_rms, Certified, ResidueFamily, ResidueRoads, ResidueRoute,
 };
-use crate::error::{Result, RideError};
+use crate::error::{parse_choice, Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::model::Mode;
 use crate::model::{antisymmetric_half, full_car, quarter_car, symmetric_half, LinearModel};
 use crate::road::{Road, Tracks};
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicU64, Ordering};
+use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
 
-/// Which vehicle model.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+/// Which vehicle model: parses "quarter" (or "lofi") and "full" (or "hifi") in any case;
+/// errors name `model`.
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    EnumProperty,
+    IntoStaticStr,
+    VariantNames,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum ModelKind {
     /// LoFi: 2-DOF quarter car of the front corner.
+    #[strum(serialize = "quarter", props(alias = "lofi"))]
     Quarter,
     /// HiFi: 7-DOF full car.
+    #[strum(serialize = "full", props(alias = "hifi"))]
     Full,
 }
 
@@ -32,16 +48,9 @@ impl std::str::FromStr for ModelKind {
 }
 
 impl ModelKind {
-    /// Parses "quarter" or "full".
+    /// Parses "quarter" or "full" (surrounding blanks ignored).
     pub fn parse(s: &str) -> Result<ModelKind> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "quarter" | "lofi" => Ok(ModelKind::Quarter),
-            "full" | "hifi" => Ok(ModelKind::Full),
-            _ => Err(RideError::field(
-                "model",
-                format!("'{s}' is not 'quarter' or 'full'"),
-            )),
-        }
+        parse_choice("model", s)
     }
 
     /// The linear model of `car` for this kind.

@@ -229,7 +229,7 @@ impl Axle {
     /// the wheel-hop and body-bounce frequencies and the damping ratio
     /// ([`crate::domain`]'s derived limits); messages name `prefix.field` and give the
     /// range of that field for this corner.
-    pub fn validate_corner(&self, prefix: &str, ms: f64) -> Result<()> {
+    fn validate_corner(&self, prefix: &str, ms: f64) -> Result<()> {
         use crate::domain::{num, MASS_RATIO, WHEEL_HOP};
         let field = |f: &str| format!("{prefix}.{f}");
         let ratio = self.unsprung_mass / ms;

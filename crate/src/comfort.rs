@@ -11,15 +11,31 @@
 use crate::analysis::{HiFi, LoFi, ModelKind};
 use crate::car::Car;
 use crate::criteria::bacc_wk;
-use crate::error::{Result, RideError};
+use crate::error::{parse_choice, Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::model::{quarter_car, LinearModel};
 use crate::road::Road;
 use serde::{Deserialize, Serialize};
+use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
 
 /// Which measure fills the comfort slot of the criteria.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    EnumProperty,
+    IntoStaticStr,
+    VariantNames,
+)]
 #[serde(rename_all = "lowercase")]
+#[strum(serialize_all = "lowercase")]
+#[strum()]
 pub enum Comfort {
     /// Unweighted RMS body acceleration, m/s^2 (the thesis's BAcc).
     #[default]
@@ -36,16 +52,9 @@ impl std::str::FromStr for Comfort {
 }
 
 impl Comfort {
-    /// Parses "bacc" or "wk"; errors name `comfort`.
+    /// Parses "bacc" or "wk" (any case); errors name `comfort`.
     pub fn parse(s: &str) -> Result<Comfort> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "bacc" => Ok(Comfort::Bacc),
-            "wk" => Ok(Comfort::Wk),
-            _ => Err(RideError::field(
-                "comfort",
-                format!("'{s}' is not 'bacc' or 'wk'"),
-            )),
-        }
+        parse_choice("comfort", s)
     }
 
     /// Whether this is the default, unweighted BAcc (reports leave the field out then, so

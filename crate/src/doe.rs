@@ -25,9 +25,9 @@ use serde::Serialize;
 /// Largest Audze-Eglais plan accepted, points.
 pub const MAX_POINTS: usize = 1000;
 /// Largest full factorial grid accepted, levels per axis (`n^2` points).
-pub const MAX_GRID_LEVELS: usize = 100;
+const MAX_GRID_LEVELS: usize = 100;
 /// Largest `N` that [`exhaustive`] accepts (its cost grows roughly factorially).
-pub const EXHAUSTIVE_MAX_POINTS: usize = 14;
+const EXHAUSTIVE_MAX_POINTS: usize = 14;
 
 /// Optimal Audze-Eglais plans found by [`exhaustive`]: for `N = k + 2`, entry `k` holds the
 /// row level of each column `0..N-1` and the energy `E` in lattice units^-2.
@@ -303,7 +303,7 @@ impl Annealing {
     /// pair look-ups in all (4 per move and other column), so `n = 1000` gets 4 x 12 500 moves.
     /// Over `N = 10..20` and six seeds this stays within 0.4 % of the best of 64 restarts of
     /// `20 000 N` moves, and finds the exact optimum for `N = 10..15`.
-    pub fn for_points(n: usize, seed: u64) -> Self {
+    fn for_points(n: usize, seed: u64) -> Self {
         const LOOKUPS: usize = 200_000_000;
         let restarts = 4;
         let moves = (4000 * n).min(LOOKUPS / (4 * restarts * n.max(1)));

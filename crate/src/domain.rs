@@ -37,7 +37,7 @@ pub enum Unit {
 
 impl Unit {
     /// The SI symbol as messages and the CLI write it ("" for a ratio).
-    pub fn symbol(self) -> &'static str {
+    fn symbol(self) -> &'static str {
         match self {
             Unit::Kilogram => "kg",
             Unit::Metre => "m",
@@ -368,7 +368,7 @@ pub const CASE_WEIGHT: Limit = Limit {
 };
 
 /// Every limit with the fields it checks, for the README's table.
-pub const TABLE: [(&str, &Limit); 28] = [
+const TABLE: [(&str, &Limit); 28] = [
     ("sprung_mass", &SPRUNG_MASS),
     ("pitch_inertia", &DYNAMIC_INDEX),
     ("roll_inertia", &ROLL_INDEX),

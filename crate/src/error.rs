@@ -57,3 +57,54 @@ impl RideError {
 
 /// Result alias used across the crate.
 pub type Result<T> = std::result::Result<T, RideError>;
+
+/// `s` (blanks around it ignored, in any case) as the variant of `T` of that name or
+/// alias (`#[strum(props(alias = "..."))]`), else an error naming `field` that lists the
+/// names: `'x' is not 'a', 'b' or 'c'`. The names are strum's derives on `T`
+/// (`IntoStaticStr`, `VariantNames`), so what parses and what the message lists cannot
+/// drift apart from each other or from the enum.
+pub fn parse_choice<T>(field: &str, s: &str) -> Result<T>
+where
+    T: strum::IntoEnumIterator + strum::VariantNames + strum::EnumProperty,
+    for<'a> &'a T: Into<&'static str>,
+{
+    let t = s.trim();
+    T::iter()
+        .find(|v| {
+            let name: &'static str = v.into();
+            name.eq_ignore_ascii_case(t)
+                || v.get_str("alias")
+                    .is_some_and(|a| a.eq_ignore_ascii_case(t))
+        })
+        .ok_or_else(|| {
+            let names: Vec<String> = T::VARIANTS.iter().map(|n| format!("'{n}'")).collect();
+            let list = match names.split_last() {
+                Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+                _ => names.concat(),
+            };
+            RideError::field(field, format!("'{s}' is not {list}"))
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::analysis::ModelKind;
+    use crate::gpu::Compute;
+    use crate::surrogate::infill::Infill;
+
+    #[test]
+    fn a_choice_parses_any_case_and_its_aliases_and_a_refusal_lists_every_name() {
+        assert_eq!(ModelKind::parse(" HiFi ").unwrap(), ModelKind::Full);
+        assert_eq!(ModelKind::parse("lofi").unwrap(), ModelKind::Quarter);
+        assert_eq!("ehvi-front".parse::<Infill>().unwrap(), Infill::EhviFront);
+        assert_eq!(Infill::EhviFront.name(), "ehvi-front");
+        assert_eq!(
+            Compute::parse("tpu").unwrap_err().to_string(),
+            "compute: 'tpu' is not 'auto', 'gpu' or 'cpu'"
+        );
+        assert_eq!(
+            ModelKind::parse("bicycle").unwrap_err().to_string(),
+            "model: 'bicycle' is not 'quarter' or 'full'"
+        );
+    }
+}

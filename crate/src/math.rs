@@ -76,12 +76,6 @@ pub fn atan(x: f64) -> f64 {
     libm::atan(x)
 }
 
-/// `atan2(y, x)`: the angle of `(x, y)`, radians in `(-pi, pi]`.
-#[inline]
-pub fn atan2(y: f64, x: f64) -> f64 {
-    libm::atan2(y, x)
-}
-
 /// `sqrt(x^2 + y^2)` without overflow or underflow.
 #[inline]
 pub fn hypot(x: f64, y: f64) -> f64 {
@@ -142,7 +136,6 @@ mod tests {
                 close(cos(x), x.cos()) || (cos(x) - x.cos()).abs() < 1e-15,
                 "cos {x}"
             );
-            assert!(close(atan2(x, 1.3), x.atan2(1.3)), "atan2 {x}");
             assert!(close(hypot(x, 0.7), x.hypot(0.7)), "hypot {x}");
             let p = x.abs() + 1e-3;
             assert!(

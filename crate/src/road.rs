@@ -4,9 +4,10 @@
 //! one-sided temporal PSD is `G(f) = Gd(f / v) / v`, so the road *velocity* is white with
 //! one-sided PSD `Gv = (2 pi n0)^2 Gd(n0) v` (m^2/s^2 per Hz).
 
-use crate::error::{Result, RideError};
+use crate::error::{parse_choice, Result, RideError};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
+use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
 
 /// Reference spatial frequency of ISO 8608, cycle/m.
 pub const N0: f64 = 0.1;
@@ -58,20 +59,27 @@ impl RoadClass {
 }
 
 /// Whether the left and right wheel tracks see the same profile.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    EnumProperty,
+    IntoStaticStr,
+    VariantNames,
+)]
 #[serde(rename_all = "lowercase")]
+#[strum(serialize_all = "lowercase")]
+#[strum()]
 pub enum Tracks {
     /// Left and right profiles identical (no road roll).
     Correlated,
     /// Left and right profiles independent, each with the class PSD.
     Independent,
-}
-
-impl std::str::FromStr for RoadClass {
-    type Err = RideError;
-    fn from_str(s: &str) -> Result<RoadClass> {
-        RoadClass::parse(s)
-    }
 }
 
 impl std::str::FromStr for Tracks {
@@ -81,17 +89,17 @@ impl std::str::FromStr for Tracks {
     }
 }
 
+impl std::str::FromStr for RoadClass {
+    type Err = RideError;
+    fn from_str(s: &str) -> Result<RoadClass> {
+        RoadClass::parse(s)
+    }
+}
+
 impl Tracks {
-    /// Parses "correlated" or "independent".
+    /// Parses "correlated" or "independent" (any case; errors name `tracks`).
     pub fn parse(s: &str) -> Result<Tracks> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "correlated" => Ok(Tracks::Correlated),
-            "independent" => Ok(Tracks::Independent),
-            _ => Err(RideError::field(
-                "tracks",
-                format!("'{s}' is not 'correlated' or 'independent'"),
-            )),
-        }
+        parse_choice("tracks", s)
     }
 }
 

@@ -47,7 +47,7 @@ impl Rgb {
 }
 
 /// Colour of a value that has none (not finite): the page's light grey.
-pub const NO_VALUE: Rgb = Rgb(200, 200, 200);
+const NO_VALUE: Rgb = Rgb(200, 200, 200);
 
 /// The colour map of a [`super::MapChart`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]

@@ -103,4 +103,4 @@ pub(crate) fn check_size(width: u32, height: u32, min: (u32, u32)) -> Result<()>
 }
 
 /// Largest chart width or height, px.
-pub const MAX_SIZE: u32 = 4000;
+const MAX_SIZE: u32 = 4000;

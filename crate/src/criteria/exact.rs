@@ -99,7 +99,7 @@ impl WhiteForm {
     }
 
     /// The box-box terms `W sum_gl G_g G_l min(tau_g, tau_l)` of every output.
-    pub fn box_terms(&self) -> [f64; N_OUT] {
+    fn box_terms(&self) -> [f64; N_OUT] {
         let mut var = [0.0; N_OUT];
         for groups in &self.sources {
             for g in groups {

@@ -3,14 +3,27 @@
 //! ([`Grid::cells`]). They go through the one map pipeline of [`crate::maps`], as the CLI's
 //! maps do: [`Dcs`] computes the criteria, [`DosMap`] judges the design objectives.
 
-use crate::error::{Result, RideError};
+use crate::error::{parse_choice, Result};
 use crate::maps::{Dcs, DosMap, Grid};
 use serde::Serialize;
 use std::rc::Rc;
+use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
 
 /// Which model a map shows.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Serialize,
+    EnumIter,
+    EnumProperty,
+    IntoStaticStr,
+    VariantNames,
+)]
 #[serde(rename_all = "lowercase")]
+#[strum(serialize_all = "lowercase")]
 pub enum MapModel {
     /// The quarter car.
     LoFi,
@@ -20,6 +33,7 @@ pub enum MapModel {
     Surrogate,
     /// The surrogate's signed relative error against the HiFi, %.
     #[serde(rename = "error")]
+    #[strum(serialize = "error")]
     SurrogateError,
     /// With robust cases, the LoFi's robust objective and DOS as the robust front's
     /// problem sees them (each case scaled to its HiFi datum, each judged against it:
@@ -30,17 +44,7 @@ pub enum MapModel {
 impl MapModel {
     /// Parses "lofi", "hifi", "surrogate", "error" or "robust" (errors name `model`).
     pub fn parse(s: &str) -> Result<MapModel> {
-        match s {
-            "robust" => Ok(MapModel::Robust),
-            "lofi" => Ok(MapModel::LoFi),
-            "hifi" => Ok(MapModel::HiFi),
-            "surrogate" => Ok(MapModel::Surrogate),
-            "error" => Ok(MapModel::SurrogateError),
-            _ => Err(RideError::field(
-                "model",
-                format!("'{s}' is not one of lofi, hifi, surrogate, error, robust"),
-            )),
-        }
+        parse_choice("model", s)
     }
 }
 

@@ -23,7 +23,7 @@ use super::surrogate::{fit, fit_report, FitKey, FittedSurrogate};
 use crate::analysis::{readout, report, ModelKind, Readout, Report};
 use crate::comfort::Comfort;
 use crate::dos::DosContext;
-use crate::error::{Result, RideError};
+use crate::error::{parse_choice, Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::gpu::{ComputePath, HiFiGrid};
 use crate::maps::{DatumPoint, Dcs, DosMap, Grid, Scale};
@@ -34,6 +34,7 @@ use crate::study::robust::optimize::hifi_combination;
 use crate::study::SurrogateReport;
 use crate::time_domain::TimeOptions;
 use std::rc::Rc;
+use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
 
 /// Map values kept at once: one per model and grid in use (the page shows one model's
 /// maps, its objective plane uses the surrogate's feasible set, the worker the HiFi's),
@@ -608,11 +609,17 @@ pub struct DesignStep {
 }
 
 /// The evaluators behind [`Session::criteria`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, EnumIter, EnumProperty, IntoStaticStr, VariantNames,
+)]
+#[strum(serialize_all = "lowercase")]
+#[strum()]
 pub enum EvaluatorKind {
     /// The quarter car (closed forms).
+    #[strum(serialize = "lofi", props(alias = "quarter"))]
     LoFi,
     /// The full car (the maps' fast exact route).
+    #[strum(serialize = "hifi", props(alias = "full"))]
     HiFi,
     /// The fitted surrogate.
     Surrogate,
@@ -621,17 +628,9 @@ pub enum EvaluatorKind {
 }
 
 impl EvaluatorKind {
-    /// Parses "lofi" / "quarter", "hifi" / "full", "surrogate" or "robust" (errors name
-    /// `model`).
+    /// Parses "lofi" / "quarter", "hifi" / "full", "surrogate" or "robust" (errors name `model`).
     pub fn parse(s: &str) -> Result<EvaluatorKind> {
-        match s {
-            "robust" => Ok(EvaluatorKind::Robust),
-            "surrogate" => Ok(EvaluatorKind::Surrogate),
-            other => Ok(match ModelKind::parse(other)? {
-                ModelKind::Quarter => EvaluatorKind::LoFi,
-                ModelKind::Full => EvaluatorKind::HiFi,
-            }),
-        }
+        parse_choice("model", s)
     }
 }
 

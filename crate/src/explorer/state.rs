@@ -71,14 +71,14 @@ pub const STATE_FIELDS: [&str; 23] = [
 
 /// The explorer's surrogate unless the state names one: the best of the fidelity study
 /// at 10 samples (max RTE under 0.7 % on the datum car).
-pub const DEFAULT_SURROGATE: &str = "rba-mul-rbf-mq";
+const DEFAULT_SURROGATE: &str = "rba-mul-rbf-mq";
 /// The explorer's sampling plan unless the state names one.
-pub const DEFAULT_PLAN: &str = "ae:10";
+const DEFAULT_PLAN: &str = "ae:10";
 /// Most HiFi samples a plan may ask for in the explorer (a fit stays a few ms).
 pub const MAX_PLAN_POINTS: usize = 100;
 /// Longest cases text (`cases`), characters: 16 load cases and 16 operating points with
 /// long names fit in a few kB.
-pub const MAX_CASES_CHARS: usize = 16_384;
+const MAX_CASES_CHARS: usize = 16_384;
 
 /// Everything the page needs to define one view: car, design point, road, design box
 /// and the SWS objective. Field names are camelCase on the JS side.
@@ -223,14 +223,14 @@ pub struct Scenario {
 
 impl State {
     /// The datum car (a preset or the custom car file), validated.
-    pub fn datum_car(&self) -> Result<Car> {
+    fn datum_car(&self) -> Result<Car> {
         self.datum_car_file().map(|f| f.car)
     }
 
     /// The datum car and the load cases its file lists (none for a preset), as
     /// `ridelab --car FILE` reads a car file; validated (load case errors name
     /// `load_cases[i].field`).
-    pub fn datum_car_file(&self) -> Result<CarFile> {
+    fn datum_car_file(&self) -> Result<CarFile> {
         if self.car == "custom" {
             let text = self
                 .car_json
@@ -310,7 +310,7 @@ impl State {
     }
 
     /// The comfort measure and the pick rule, validated (errors name `comfort` or `pick`).
-    pub fn criteria_choice(&self) -> Result<(Comfort, PickRule)> {
+    fn criteria_choice(&self) -> Result<(Comfort, PickRule)> {
         let comfort = Comfort::parse(self.comfort.as_deref().unwrap_or("bacc"))?;
         let pick = self
             .pick
@@ -324,7 +324,7 @@ impl State {
     /// the field under `cases` (`cases.load_cases[1].mass`, `cases.operating[0].speed`,
     /// `cases` for text that is not JSON or too long), as `ridelab map --cases` does
     /// without the prefix.
-    pub fn case_set(&self, datum: &Car, road: &Road) -> Result<Option<CaseSet>> {
+    fn case_set(&self, datum: &Car, road: &Road) -> Result<Option<CaseSet>> {
         let Some(text) = self.cases.as_deref() else {
             return Ok(None);
         };
@@ -352,7 +352,7 @@ impl State {
     }
 
     /// The case the maps show among `n` cases (`None`: robust); errors name `case`.
-    pub fn case_index(&self, n: Option<usize>) -> Result<Option<usize>> {
+    fn case_index(&self, n: Option<usize>) -> Result<Option<usize>> {
         let choice = self.case.as_deref().unwrap_or("robust");
         if choice == "robust" {
             return Ok(None);

@@ -6,7 +6,7 @@ use super::surrogate::FittedSurrogate;
 use crate::analysis::ModelKind;
 use crate::comfort::Comfort;
 use crate::dos::DosContext;
-use crate::error::{Result, RideError};
+use crate::error::{parse_choice, Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::math;
 use crate::optimize::{
@@ -23,6 +23,7 @@ use crate::study::robust_optimize_report;
 use crate::study::EvaluatorSpec;
 use crate::time_domain::{simulate, Damper, TimeOptions, TimeResponse};
 use serde::Serialize;
+use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
 
 /// STM grid of the page's LoFi front (a few ms).
 pub const STM_GRID: usize = 61;
@@ -50,7 +51,10 @@ pub fn method(name: &str) -> Result<Method> {
 }
 
 /// The model a front is found on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, EnumIter, EnumProperty, IntoStaticStr, VariantNames,
+)]
+#[strum(serialize_all = "lowercase")]
 pub enum FrontModel {
     /// The quarter car.
     LoFi,
@@ -64,15 +68,7 @@ pub enum FrontModel {
 impl FrontModel {
     /// Parses "lofi", "surrogate" or "robust" (errors name `frontModel`).
     pub fn parse(s: &str) -> Result<FrontModel> {
-        match s {
-            "robust" => Ok(FrontModel::Robust),
-            "lofi" => Ok(FrontModel::LoFi),
-            "surrogate" => Ok(FrontModel::Surrogate),
-            _ => Err(RideError::field(
-                "frontModel",
-                format!("'{s}' is not 'lofi', 'surrogate' or 'robust'"),
-            )),
-        }
+        parse_choice("frontModel", s)
     }
 }
 
@@ -254,7 +250,7 @@ fn model_spectra(kind: ModelKind, s: &Scenario, f: &[f64]) -> Result<ModelSpectr
 /// LoFi's RMS values, `S_k = f_k (x) tau_k(x)` (or `+ d_k`), with no model behind it: its
 /// spectra are the LoFi's scaled by `r_k = S_k / f_k` (FRF by `r_k`, PSD by `r_k^2`), so
 /// that the PSD's area is `S_k^2` as the LoFi's is `f_k^2`.
-pub fn surrogate_spectra(
+fn surrogate_spectra(
     s: &Scenario,
     fit: &FittedSurrogate,
     f: &[f64],
@@ -288,7 +284,7 @@ pub fn surrogate_spectra(
 }
 
 /// Largest frequency count of [`spectra`].
-pub const MAX_NFREQ: usize = 4000;
+const MAX_NFREQ: usize = 4000;
 
 /// FRFs and PSDs of the design by the LoFi, the HiFi and the fitted surrogate `fit`
 /// (0.1..100 Hz, `nfreq` log-spaced points).

@@ -2,14 +2,30 @@
 //! as an [`Evaluator`], so maps and STM take them like any evaluator.
 
 use crate::analysis::HiFi;
-use crate::error::{Result, RideError};
+use crate::error::{parse_choice, Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::maps::Grid;
 use serde::{Deserialize, Serialize};
+use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
 
 /// The path a caller asks for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    EnumProperty,
+    IntoStaticStr,
+    VariantNames,
+)]
 #[serde(rename_all = "lowercase")]
+#[strum(serialize_all = "lowercase")]
+#[strum()]
 pub enum Compute {
     /// The GPU when a hardware adapter is there, else the CPU. A software adapter
     /// (lavapipe, SwiftShader) is slower than the CPU path and is only used on request.
@@ -21,25 +37,17 @@ pub enum Compute {
     Cpu,
 }
 
-impl Compute {
-    /// Parses "auto", "gpu" or "cpu" (errors name `compute`).
-    pub fn parse(s: &str) -> Result<Compute> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "auto" => Ok(Compute::Auto),
-            "gpu" => Ok(Compute::Gpu),
-            "cpu" => Ok(Compute::Cpu),
-            _ => Err(RideError::field(
-                "compute",
-                format!("'{s}' is not gpu, cpu or auto"),
-            )),
-        }
-    }
-}
-
 impl std::str::FromStr for Compute {
     type Err = RideError;
     fn from_str(s: &str) -> Result<Compute> {
         Compute::parse(s)
+    }
+}
+
+impl Compute {
+    /// Parses "auto", "gpu" or "cpu" (any case; errors name `compute`).
+    pub fn parse(s: &str) -> Result<Compute> {
+        parse_choice("compute", s)
     }
 }
 

@@ -44,7 +44,7 @@ pub use quadrature::{FrequencyRule, PoleBand};
 use std::f64::consts::PI;
 
 /// Designs per axis at which the poles are sampled to grade the rule.
-pub const POLE_SAMPLES: usize = 7;
+const POLE_SAMPLES: usize = 7;
 
 /// Everything the kernel needs for one map: the grid, the car's halves, the rule and the
 /// road's velocity PSD.
@@ -142,7 +142,7 @@ fn cast<F: Float>(v: f64) -> F {
 /// matrix at `POLE_SAMPLES^2` designs (corners included), as points `f = lambda / (2 pi i)`
 /// of the complex frequency plane, each joined to the nearest pole of the neighbouring
 /// designs (in Ks and in Cs) by a band, so a pole's path between samples is covered.
-pub fn pole_bands(car: &Car, grid: &Grid) -> Result<Vec<PoleBand>> {
+fn pole_bands(car: &Car, grid: &Grid) -> Result<Vec<PoleBand>> {
     let b = grid.design_box();
     let n = POLE_SAMPLES;
     let mut poles: Vec<Vec<(f64, f64)>> = Vec::with_capacity(n * n);

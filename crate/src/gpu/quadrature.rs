@@ -38,15 +38,15 @@ use std::f64::consts::PI;
 /// Gauss-Legendre nodes per panel.
 pub const NODES_PER_PANEL: usize = 8;
 /// Largest panel width over the distance to the nearest pole, -.
-pub const BETA: f64 = 0.5;
+const BETA: f64 = 0.5;
 /// Largest phase swing `pi tau (b - a)` of a combined panel, rad; wider panels are split.
-pub const KAPPA_SPLIT: f64 = 2.0;
+const KAPPA_SPLIT: f64 = 2.0;
 /// The tail starts at this many times the highest pole frequency ...
-pub const TAIL_FACTOR: f64 = 50.0;
+const TAIL_FACTOR: f64 = 50.0;
 /// ... and not below this, Hz.
-pub const TAIL_MIN_HZ: f64 = 1000.0;
+const TAIL_MIN_HZ: f64 = 1000.0;
 /// Most panels a rule may have (weakly damped modes need many): 4096 nodes.
-pub const MAX_PANELS: usize = 512;
+const MAX_PANELS: usize = 512;
 
 /// One node of the rule (see the module doc for how `weight` and `cross` enter).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -206,7 +206,7 @@ impl FrequencyRule {
 
 /// `n`-point Gauss-Legendre nodes (ascending) and weights on `[-1, 1]`, by Newton's
 /// method on `P_n` from Tricomi's initial guesses.
-pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
+fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
     let mut x = vec![0.0; n];
     let mut w = vec![0.0; n];
     let nf = n as f64;
@@ -266,7 +266,7 @@ fn legendre_all(n: usize, z: f64) -> Vec<f64> {
 /// Spherical Bessel functions `j_0(x) .. j_{n-1}(x)`, `x >= 0`: the power series below
 /// `x = 10` (at most 4 digits lost to cancellation), upward recurrence above (stable
 /// for `x > l`).
-pub fn spherical_bessel(n: usize, x: f64) -> Vec<f64> {
+fn spherical_bessel(n: usize, x: f64) -> Vec<f64> {
     let mut j = vec![0.0; n];
     if x < 10.0 {
         // j_l(x) = x^l / (2l+1)!! sum_m (-x^2/2)^m / (m! (2l+3)(2l+5)..(2l+2m+1))
@@ -302,7 +302,7 @@ pub fn spherical_bessel(n: usize, x: f64) -> Vec<f64> {
 /// Filon weights on `[-1, 1]`: `c_k = int_{-1}^{1} l_k(x) e^{i kappa x} dx` for the Lagrange
 /// basis `l_k` of the Gauss-Legendre nodes `x` (weights `w`), from
 /// `l_k = sum_j (2j+1)/2 w_k P_j(x_k) P_j` and `int P_j e^{i kappa x} = 2 i^j j_j(kappa)`.
-pub fn filon_weights(x: &[f64], w: &[f64], kappa: f64) -> Vec<C64> {
+fn filon_weights(x: &[f64], w: &[f64], kappa: f64) -> Vec<C64> {
     let n = x.len();
     let jb = spherical_bessel(n, kappa);
     let ipow = [

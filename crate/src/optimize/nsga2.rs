@@ -48,9 +48,9 @@ impl Default for Nsga2Params {
 }
 
 /// Largest population accepted (a population is held twice over, parents and children).
-pub const MAX_POPULATION: usize = 10_000;
+const MAX_POPULATION: usize = 10_000;
 /// Most generations accepted.
-pub const MAX_GENERATIONS: usize = 10_000;
+const MAX_GENERATIONS: usize = 10_000;
 
 impl Nsga2Params {
     /// Checks every setting; errors name the field.

@@ -42,7 +42,7 @@ pub fn pick_warnings(pick: &Pick, recheck: &Recheck, dbox: &DesignBox) -> Vec<Wa
 }
 
 /// One warning per bound of `dbox` that `(ks, cs)` sits on.
-pub fn box_edges(ks: f64, cs: f64, dbox: &DesignBox) -> Vec<Warning> {
+fn box_edges(ks: f64, cs: f64, dbox: &DesignBox) -> Vec<Warning> {
     let (wk, wc) = (dbox.ks_max - dbox.ks_min, dbox.cs_max - dbox.cs_min);
     let bounds = [
         ("ks_min", "lower Ks", ks, dbox.ks_min, wk, "N/m", "ks-range"),
@@ -82,7 +82,7 @@ pub fn box_edges(ks: f64, cs: f64, dbox: &DesignBox) -> Vec<Warning> {
 
 /// One warning per criterion whose prediction the re-check misses by more than
 /// [`RECHECK_TOLERANCE_PERCENT`].
-pub fn recheck_misses(r: &Recheck) -> Vec<Warning> {
+fn recheck_misses(r: &Recheck) -> Vec<Warning> {
     const NAMES: [(&str, &str); 3] = [("bacc", "BAcc"), ("dtl", "DTL"), ("sws", "SWS")];
     r.error_percent
         .iter()

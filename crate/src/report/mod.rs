@@ -84,12 +84,12 @@ impl ReportInputs {
 }
 
 /// Sampling plans of section 3 (the seed's study: 2, 3, 4, 5 and 10 points).
-pub const PLAN_SIZES: [usize; 5] = [2, 3, 4, 5, 10];
+const PLAN_SIZES: [usize; 5] = [2, 3, 4, 5, 10];
 /// Grid points per axis of the design-criteria maps.
-pub const MAP_POINTS: usize = 41;
+const MAP_POINTS: usize = 41;
 /// Length of the time-domain record of the verification, s (the RMS of a record this
 /// long agrees with the exact one to about 3 %).
-pub const RECORD_S: f64 = 100.0;
+const RECORD_S: f64 = 100.0;
 
 /// The whole report's data (also written as `report.json`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -255,7 +255,7 @@ pub struct Optimisation {
 
 /// The pick rules of section 5's table of picks: the thesis's min-max, the knee, and the
 /// weighted pick with equal weights.
-pub const PICK_RULES: [PickRule; 3] = [PickRule::MinMax, PickRule::Knee, PickRule::Asf(0.5)];
+const PICK_RULES: [PickRule; 3] = [PickRule::MinMax, PickRule::Knee, PickRule::Asf(0.5)];
 
 /// One rule's pick on the surrogate's STM front and its HiFi re-check.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -239,7 +239,7 @@ pub(super) fn iso_fit(n: &[f64], gd: &[f64], band: [f64; 2]) -> Result<IsoFit> {
 }
 
 /// The ISO 8608 class whose centre `16e-6 4^k` is nearest to `gd_n0` in log.
-pub fn class_of(gd_n0: f64) -> RoadClass {
+fn class_of(gd_n0: f64) -> RoadClass {
     let k = (math::ln(gd_n0 / 16e-6) / math::ln(4f64))
         .round()
         .clamp(0.0, 7.0) as usize;

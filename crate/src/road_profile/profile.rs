@@ -376,7 +376,7 @@ impl Profile {
     /// Length this profile must have at `speed` (m/s), m: [`MIN_SEGMENTS`] Welch segments
     /// of [`Profile::segment_at`] with 50 % overlap, `(MIN_SEGMENTS + 1) / 2` segments:
     /// about `4.5 LOWEST_BIN v / f_lo = 45 v` (900 m at 20 m/s).
-    pub fn required_length(&self, speed: f64) -> f64 {
+    fn required_length(&self, speed: f64) -> f64 {
         let seg = self.segment_at(speed) as f64;
         (seg * (MIN_SEGMENTS + 1) as f64 / 2.0).ceil() * self.spacing
     }

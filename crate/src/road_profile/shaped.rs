@@ -19,13 +19,28 @@ use super::profile::Profile;
 use super::shaping::{ShapingFilter, VelocityPsd};
 use super::welch::welch;
 use super::{BAND_HZ, LOWEST_BIN, NYQUIST_FRACTION};
-use crate::error::{Result, RideError};
+use crate::error::{parse_choice, Result, RideError};
 use crate::road::{Road, Tracks};
 use serde::{Deserialize, Serialize};
+use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
 
 /// How a profile's tracks drive the wheels (see the module doc).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    EnumProperty,
+    IntoStaticStr,
+    VariantNames,
+)]
 #[serde(rename_all = "lowercase")]
+#[strum(serialize_all = "lowercase")]
+#[strum()]
 pub enum ProfileTracks {
     /// Both tracks see the same profile.
     Correlated,
@@ -38,15 +53,7 @@ pub enum ProfileTracks {
 impl std::str::FromStr for ProfileTracks {
     type Err = RideError;
     fn from_str(s: &str) -> Result<ProfileTracks> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "correlated" => Ok(ProfileTracks::Correlated),
-            "independent" => Ok(ProfileTracks::Independent),
-            "measured" => Ok(ProfileTracks::Measured),
-            _ => Err(RideError::field(
-                "tracks",
-                format!("'{s}' is not 'correlated', 'independent' or 'measured'"),
-            )),
-        }
+        parse_choice("tracks", s)
     }
 }
 

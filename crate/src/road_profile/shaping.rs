@@ -243,7 +243,7 @@ impl VelocityPsd {
     }
 
     /// Whether the PSD is white (no breakpoints, no slopes, equal ends).
-    pub fn is_white(&self) -> bool {
+    fn is_white(&self) -> bool {
         self.f.is_empty()
             && self.below.slope == 0.0
             && self.above.slope == 0.0

@@ -186,11 +186,6 @@ impl<'a> ShapedSpectrum<'a> {
         self.psd_with(f, |s, f| self.road.sources[s].psd.at(f))
     }
 
-    /// The same on the shaping filters' PSDs `2 |F|^2` (what the exact route integrates).
-    pub fn psd_filtered(&self, f: f64) -> [f64; N_OUT] {
-        self.psd_with(f, |s, f| self.road.sources[s].filter.psd(f))
-    }
-
     fn psd_with(&self, f: f64, gv: impl Fn(usize, f64) -> f64) -> [f64; N_OUT] {
         let omega = 2.0 * PI * f;
         let mut p = [0.0; N_OUT];

@@ -26,7 +26,7 @@ use serde::{Deserialize, Serialize};
 /// Most load cases in a list.
 pub const MAX_LOAD_CASES: usize = 16;
 /// Longest case name, characters.
-pub const MAX_NAME_CHARS: usize = 64;
+const MAX_NAME_CHARS: usize = 64;
 
 /// One load case: extra mass in the body and where it sits (see the module docs for the
 /// axes and the equations).

@@ -311,7 +311,7 @@ pub fn study_specs() -> Vec<SurrogateSpec> {
 /// Runs the study on `hifi` (wrap it in [`Counted`] to count its runs): the plans are sampled
 /// once each, every spec is fitted to every plan and validated on `validation`. A
 /// combination that cannot be fitted is a skipped row, not an error.
-pub fn fidelity_study<E: Evaluator>(
+fn fidelity_study<E: Evaluator>(
     hifi: &E,
     setting: &Setting,
     specs: &[SurrogateSpec],

@@ -24,7 +24,7 @@ pub const LAYOUT: &str =
     "row-major: Cs rows, Ks columns; the value at Ks index i, Cs index j is at j * ks.n + i";
 
 /// Most automatic contour levels per criterion.
-pub const MAX_CONTOUR_LEVELS: usize = 50;
+const MAX_CONTOUR_LEVELS: usize = 50;
 
 /// What to map besides the model, car and road.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -70,7 +70,7 @@ impl EvaluatorSpec {
 
     /// [`Self::build`] on a HiFi prepared already (its car and road): the full car is a
     /// copy of it, a surrogate's samples are its evaluations.
-    pub fn build_on(
+    fn build_on(
         &self,
         hifi: &HiFi,
         design_box: &DesignBox,

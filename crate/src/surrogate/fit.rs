@@ -210,7 +210,7 @@ pub struct Fitted {
 /// Levenberg-Marquardt from the neutral tuning and `options.starts - 1` seeded random starts,
 /// keeping the admissible result of least cost. Errors (naming `plan`) when no start ends
 /// admissible with a finite cost.
-pub fn least_squares<T: Tuning>(
+fn least_squares<T: Tuning>(
     tuning: &T,
     lofi: &SurrogateLoFi,
     samples: &[Sample],

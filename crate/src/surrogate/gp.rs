@@ -26,7 +26,7 @@ use crate::math;
 
 /// Fewest samples of a GP correction: a mean and a variance are estimated per criterion,
 /// and leave-one-out needs one more.
-pub const GP_MIN_SAMPLES: usize = 3;
+const GP_MIN_SAMPLES: usize = 3;
 
 /// Parameters of the GP correction (none beyond the samples: the correlation lengths
 /// come from maximum likelihood).

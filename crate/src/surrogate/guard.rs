@@ -19,7 +19,7 @@ use crate::evaluate::{Criteria, Evaluator};
 /// How far beyond its fitted box a surrogate may be asked, as a share of the box's width
 /// along each axis (0.1: 10 %). The page lets a design leave the box; the surrogate's
 /// column then shows this refusal rather than an extrapolation.
-pub const EXTRAPOLATION_LIMIT: f64 = 0.1;
+const EXTRAPOLATION_LIMIT: f64 = 0.1;
 
 /// A fitted surrogate whose predictions are checked (module docs).
 pub(crate) struct Guarded {

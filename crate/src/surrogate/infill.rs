@@ -47,15 +47,30 @@ use super::uncertainty::Uncertain;
 use super::Sample;
 use crate::design::DesignBox;
 use crate::dos::{DesignObjectives, DosContext, Objective};
-use crate::error::{Result, RideError};
+use crate::error::{parse_choice, Result, RideError};
 use crate::evaluate::Criteria;
 use crate::math;
 use crate::optimize::{non_dominated, FrontPoint};
 use serde::{Deserialize, Serialize};
+use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
 
 /// Which front the expected improvement is measured against.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    EnumProperty,
+    IntoStaticStr,
+    VariantNames,
+)]
 #[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
+#[strum()]
 pub enum Infill {
     /// EHVI x PoF over the feasible non-dominated HiFi samples.
     Ehvi,
@@ -63,47 +78,36 @@ pub enum Infill {
     EhviFront,
 }
 
-impl Infill {
-    /// Parses `ehvi` or `ehvi-front` (errors name `criterion`).
-    pub fn parse(s: &str) -> Result<Infill> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "ehvi" => Ok(Infill::Ehvi),
-            "ehvi-front" => Ok(Infill::EhviFront),
-            _ => Err(RideError::field(
-                "criterion",
-                format!("'{s}' is not ehvi or ehvi-front"),
-            )),
-        }
-    }
-
-    /// `"ehvi"` or `"ehvi-front"`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Infill::Ehvi => "ehvi",
-            Infill::EhviFront => "ehvi-front",
-        }
-    }
-}
-
 impl std::str::FromStr for Infill {
     type Err = RideError;
-    /// As [`Infill::parse`].
     fn from_str(s: &str) -> Result<Infill> {
         Infill::parse(s)
     }
 }
 
+impl Infill {
+    /// Parses `ehvi` or `ehvi-front` (any case; errors name `criterion`).
+    pub fn parse(s: &str) -> Result<Infill> {
+        parse_choice("criterion", s)
+    }
+
+    /// `"ehvi"` or `"ehvi-front"`.
+    pub fn name(self) -> &'static str {
+        self.into()
+    }
+}
+
 /// Deviations below the mean beyond which `psi` counts as zero in [`Staircase::ehvi`]
 /// (`phi(8) = 5e-15`).
-pub const TAIL_Z: f64 = 8.0;
+const TAIL_Z: f64 = 8.0;
 
 /// The standard normal distribution function `Phi(z) = erfc(-z / sqrt 2) / 2`.
-pub fn normal_cdf(z: f64) -> f64 {
+fn normal_cdf(z: f64) -> f64 {
     0.5 * libm::erfc(-z / std::f64::consts::SQRT_2)
 }
 
 /// The standard normal density `phi(z) = exp(-z^2 / 2) / sqrt(2 pi)`.
-pub fn normal_pdf(z: f64) -> f64 {
+fn normal_pdf(z: f64) -> f64 {
     math::exp(-0.5 * z * z) / (2.0 * std::f64::consts::PI).sqrt()
 }
 

@@ -40,7 +40,7 @@ use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
 pub const NUGGET: f64 = 1e-10;
 
 /// Range of `log10 theta` searched by maximum likelihood, per axis.
-pub const LOG10_THETA: (f64, f64) = (-2.0, 3.0);
+const LOG10_THETA: (f64, f64) = (-2.0, 3.0);
 
 /// Points per axis of the maximum-likelihood log grid (half a decade apart).
 const GRID_POINTS: usize = 11;
@@ -138,7 +138,7 @@ impl Kriging {
 
     /// The model with a fixed `theta`; `None` when `R` is not positive definite or the fit
     /// is not finite. The caller has checked the data.
-    pub fn fit_with(x: &[[f64; 2]], y: &[f64], theta: [f64; 2]) -> Option<Kriging> {
+    fn fit_with(x: &[[f64; 2]], y: &[f64], theta: [f64; 2]) -> Option<Kriging> {
         let n = x.len();
         let chol = correlation_matrix(theta, x).cholesky()?;
         let one = DVector::from_element(n, 1.0);

@@ -29,14 +29,14 @@ pub enum Kernel {
 }
 
 /// Shape parameters `e` tried for the Gaussian and multiquadric kernels, per unit length.
-pub const SHAPES: [f64; 7] = [0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0];
+const SHAPES: [f64; 7] = [0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0];
 
 /// Singular values below this fraction of the largest count as zero (rank test).
 const RANK_TOL: f64 = 1e-10;
 
 /// Largest 1-norm condition number `|M|_1 |M^-1|_1` of an RBF system whose solution and
 /// leave-one-out errors are trusted; flatter (worse conditioned) shapes are skipped.
-pub const MAX_CONDITION: f64 = 1e10;
+const MAX_CONDITION: f64 = 1e10;
 
 impl Kernel {
     /// All kernels with their name suffixes.
@@ -236,7 +236,7 @@ pub struct Row {
 /// `c = A^+ t` with `A_ij = g_i m_j(u_i, v_i)` and `A^+` the pseudo-inverse (SVD). Errors
 /// (naming `plan`) when `A` is rank deficient: the points do not determine the polynomial.
 /// Returns the model and a note on the rank and condition of `A`.
-pub fn fit_poly(d: usize, rows: &[Row]) -> Result<(Response, String)> {
+fn fit_poly(d: usize, rows: &[Row]) -> Result<(Response, String)> {
     ResponseKind::Poly(d).check()?;
     let m = terms(d);
     let a = DMatrix::from_fn(rows.len(), m, |i, j| {
@@ -272,7 +272,7 @@ pub fn fit_poly(d: usize, rows: &[Row]) -> Result<(Response, String)> {
 /// leave-one-out errors are rounding noise). Errors (naming `plan`) with too few points or
 /// when no candidate gives a well-conditioned system.
 /// Returns the model and a note on the chosen shape and its leave-one-out error.
-pub fn fit_rbf(kernel: Kernel, x: &[[f64; 2]], y: &[f64]) -> Result<(Response, String)> {
+fn fit_rbf(kernel: Kernel, x: &[[f64; 2]], y: &[f64]) -> Result<(Response, String)> {
     let n = x.len();
     let q = terms(kernel.tail_degree());
     if n < q + 1 {

@@ -43,11 +43,12 @@ use super::metrics::{pearson, spearman, ByCriterion};
 use super::validation::ValidationSet;
 use super::{Sample, Setting, Surrogate, SurrogateSpec};
 use crate::design::DesignBox;
-use crate::error::{Result, RideError};
+use crate::error::{parse_choice, Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::math;
 use nalgebra::{Cholesky, DVector, Dyn};
 use serde::{Deserialize, Serialize};
+use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
 
 /// Candidate `log10 theta` of the leave-one-out shape: `0, 0.25, .., 3`.
 const LOG10_THETA_STEPS: usize = 13;
@@ -57,13 +58,34 @@ const AT_SAMPLE: f64 = 1e-24;
 const Z2_FLOOR: f64 = 1e-300;
 
 /// How the uncertainty of a surrogate is estimated.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    EnumProperty,
+    IntoStaticStr,
+    VariantNames,
+)]
 #[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
+#[strum()]
 pub enum UncertaintyMethod {
     /// The surrogate's own predictive standard deviation (`gp-mul`).
     Model,
     /// Leave-one-out errors spread over the box (every surrogate).
     Loo,
+}
+
+impl std::str::FromStr for UncertaintyMethod {
+    type Err = RideError;
+    fn from_str(s: &str) -> Result<UncertaintyMethod> {
+        UncertaintyMethod::parse(s)
+    }
 }
 
 impl UncertaintyMethod {
@@ -75,24 +97,14 @@ impl UncertaintyMethod {
         }
     }
 
-    /// Parses `model` or `loo` (errors name `uncertainty`).
+    /// Parses `model` or `loo` (any case; errors name `uncertainty`).
     pub fn parse(s: &str) -> Result<UncertaintyMethod> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "model" => Ok(UncertaintyMethod::Model),
-            "loo" => Ok(UncertaintyMethod::Loo),
-            _ => Err(RideError::field(
-                "uncertainty",
-                format!("'{s}' is not model or loo"),
-            )),
-        }
+        parse_choice("uncertainty", s)
     }
 
     /// `"model"` or `"loo"`.
     pub fn name(self) -> &'static str {
-        match self {
-            UncertaintyMethod::Model => "model",
-            UncertaintyMethod::Loo => "loo",
-        }
+        self.into()
     }
 
     /// One line on how the estimate is computed (for reports and the page).
@@ -105,14 +117,6 @@ impl UncertaintyMethod {
                 "leave-one-out relative errors, calibrated by the samples' simple-Kriging leave-one-out deviation and spread over the box by inverse-distance weighting, times the Kriging deviation of the sample layout"
             }
         }
-    }
-}
-
-impl std::str::FromStr for UncertaintyMethod {
-    type Err = RideError;
-    /// As [`UncertaintyMethod::parse`].
-    fn from_str(s: &str) -> Result<UncertaintyMethod> {
-        UncertaintyMethod::parse(s)
     }
 }
 
@@ -407,7 +411,7 @@ pub struct ErrorCorrelation {
 ///
 /// and Spearman's rank correlation (Pearson's of the ranks). Both `None` for slices of
 /// unequal length.
-pub fn error_correlation(sigma: &[f64], error: &[f64]) -> ErrorCorrelation {
+fn error_correlation(sigma: &[f64], error: &[f64]) -> ErrorCorrelation {
     let size: Vec<f64> = error.iter().map(|e| e.abs()).collect();
     ErrorCorrelation {
         pearson: pearson(sigma, &size),

@@ -24,7 +24,7 @@ use crate::error::{Result, RideError};
 use serde::{Deserialize, Serialize};
 
 /// Largest damper rate accepted, N s/m (a front damper of a passenger car is 0.5 to 10 kN s/m).
-pub const MAX_RATE: f64 = 1.0e6;
+const MAX_RATE: f64 = 1.0e6;
 /// Largest knee velocity accepted, m/s (damper velocities on a road stay under about 2 m/s).
 pub const MAX_KNEE_VELOCITY: f64 = 10.0;
 

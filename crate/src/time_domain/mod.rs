@@ -36,7 +36,7 @@ use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 /// Highest road frequency realised unless the step is too coarse for it, Hz.
-pub const DEFAULT_F_MAX: f64 = 200.0;
+const DEFAULT_F_MAX: f64 = 200.0;
 /// Most time steps in one run (duration / dt).
 pub const MAX_STEPS: f64 = 4.0e6;
 /// Most samples a run records (duration / dt / decimate).

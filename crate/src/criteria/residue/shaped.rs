@@ -36,7 +36,7 @@ use num_complex::Complex64 as C64;
 /// The largest cancellation accepted in a filter's partial fractions (the ratio of their
 /// magnitudes' sum to the filter's value), so that the variances keep about 1e-10 of
 /// their 16 digits: the routes that use the fractions decline above it.
-pub const MAX_CANCELLATION: f64 = 1e4;
+const MAX_CANCELLATION: f64 = 1e4;
 
 /// A stable real rational filter `F(s) = K prod_i (s + z_i) / (s + p_i)` with distinct
 /// real poles `-p_i`, and its partial fractions `F(s) = K + sum_i c_i / (s - mu_i)`.

@@ -58,7 +58,7 @@ pub const DEFAULT_MIN_DISTANCE: f64 = 0.02;
 
 /// Default stop threshold: `EHVI x PoF` below this fraction of the front's hypervolume
 /// (module doc).
-pub const DEFAULT_STOP_BELOW: f64 = 1e-7;
+const DEFAULT_STOP_BELOW: f64 = 1e-7;
 
 /// Settings of the adaptive loop.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -137,7 +137,7 @@ impl AdaptiveOptions {
     }
 
     /// The uncertainty method used for `spec`.
-    pub fn uncertainty_for(&self, spec: &SurrogateSpec) -> UncertaintyMethod {
+    fn uncertainty_for(&self, spec: &SurrogateSpec) -> UncertaintyMethod {
         self.uncertainty
             .unwrap_or_else(|| UncertaintyMethod::default_for(spec))
     }
