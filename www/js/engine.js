@@ -101,6 +101,8 @@ export class Host {
     // The robust maps' cases are evaluated on the CPU (as `ridelab map --cases`).
     if (this.gpu && method === 'maps' && ['hifi', 'error'].includes(args[1]) && !args[0].cases) return this.gpuMaps(...args);
     if (this.gpu && method === 'gpuStatus') return this.gpu.open().then(() => this.gpu.status());
+    // The session's surrogate fits so far (tests read it; 0 before the first state).
+    if (method === 'fitCount') return this.explorer ? this.explorer.fitCount() : 0;
     if (SESSION_METHODS.includes(method)) {
       const [state, ...rest] = args;
       return this.at(state)[method](...rest);

@@ -119,6 +119,7 @@ export function installTestHooks({ store, controller, compute, ui, boot, lessons
     session: (state) => compute.main.host.at(state),
     engine: compute.main,
     heavyEngine: compute.heavy,
+    hifiEngine: compute.hifi,
     /** The data the chart exports are made of (js/svgexport.js `exportCharts`). */
     exportData,
     /** SVG of a chart spec (`kind`: 'line' or 'map'), as the export buttons make it. */

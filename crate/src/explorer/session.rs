@@ -46,6 +46,8 @@ pub struct Session {
     state: State,
     scenario: Scenario,
     fit: Option<Rc<FittedSurrogate>>,
+    /// Surrogate fits this session has made ([`Session::fit_count`]).
+    fits: u64,
     kept: Vec<Kept>,
     /// With robust cases, the robust front's combination and the cases' HiFi datums
     /// ([`hifi_combination`]), once per [`FitKey`]: a slider move then costs one LoFi
@@ -73,6 +75,7 @@ impl Session {
             state,
             scenario,
             fit: None,
+            fits: 0,
             kept: Vec::new(),
             robust: None,
         })
@@ -122,6 +125,7 @@ impl Session {
             return Ok(Rc::clone(f));
         }
         let f = Rc::new(fit(&self.scenario)?);
+        self.fits += 1;
         self.fit = Some(Rc::clone(&f));
         Ok(f)
     }
@@ -568,9 +572,17 @@ impl Session {
     }
 
     /// The surrogate's fit report validated on a `levels x levels` HiFi grid (as
-    /// `ridelab surrogate`; it refits, so the page runs it in a worker).
-    pub fn fit_report(&self, levels: usize) -> Result<SurrogateReport> {
-        fit_report(&self.scenario, levels)
+    /// `ridelab surrogate`), on the session's fit (fitted here if not yet; the HiFi
+    /// validation grid takes a while, so the page runs it in a worker).
+    pub fn fit_report(&mut self, levels: usize) -> Result<SurrogateReport> {
+        let fitted = self.surrogate()?;
+        fit_report(&self.scenario, &fitted, levels)
+    }
+
+    /// The surrogate fits this session has made: one per scenario change that asks for
+    /// the surrogate (its maps, front, readout or fit report), whatever asks.
+    pub fn fit_count(&self) -> u64 {
+        self.fits
     }
 
     /// The study report of this scenario (as `ridelab report` with the view's car, road,

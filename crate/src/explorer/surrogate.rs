@@ -11,9 +11,11 @@ use crate::car::Car;
 use crate::comfort::Comfort;
 use crate::design::DesignBox;
 use crate::error::Result;
+use crate::optimize::Counted;
 use crate::road::Road;
 use crate::robust::CaseSet;
-use crate::study::{surrogate_report_in, SurrogateReport};
+use crate::study::fidelity::Fitted;
+use crate::study::SurrogateReport;
 use crate::surrogate::{
     sample_plan, LmOptions, PlanSpec, Sample, Setting, Surrogate, SurrogateSpec,
 };
@@ -71,16 +73,25 @@ pub fn fit(s: &Scenario) -> Result<FittedSurrogate> {
     })
 }
 
-/// The surrogate's fit report over the scenario's design box: samples, tuning,
-/// diagnostics and metrics on a `levels x levels` HiFi validation grid (the same report
-/// as `ridelab surrogate`; refits, so it runs where the HiFi validation runs).
-pub fn fit_report(s: &Scenario, levels: usize) -> Result<SurrogateReport> {
-    surrogate_report_in(
-        s.surrogate,
-        s.plan,
-        &s.datum,
-        &s.road,
-        &s.dbox,
-        Some(levels),
-    )
+/// The fit report of `fitted` (the scenario's surrogate, fitted by [`fit`]) over the
+/// scenario's design box: samples, tuning, diagnostics and metrics on a `levels x levels`
+/// HiFi validation grid, the same report as `ridelab surrogate` (whose fit is the same:
+/// the same HiFi samples, the same options), without fitting again.
+pub fn fit_report(
+    s: &Scenario,
+    fitted: &FittedSurrogate,
+    levels: usize,
+) -> Result<SurrogateReport> {
+    let setting = Setting::new(&s.datum, &s.road, &s.dbox)?;
+    let hifi = Counted::with_count(s.hifi()?, fitted.samples.len());
+    Fitted {
+        spec: s.surrogate,
+        plan: s.plan.name(),
+        plan_method: s.plan.plan()?.method,
+        samples: fitted.samples.clone(),
+        model: &*fitted.model,
+        options: LmOptions::default(),
+        adaptive: None,
+    }
+    .report(&setting, &hifi, Some(levels))
 }

@@ -163,6 +163,44 @@ fn the_fit_is_reused_until_what_it_depends_on_changes() {
     assert_eq!(x.state(), &before);
 }
 
+/// The fit report on the session's kept fit is `ridelab surrogate`'s report, which fits
+/// afresh, field for field (exact: the same samples, the same fit), for an RBF, a tuned
+/// and a GP surrogate; and it fits nothing more.
+#[test]
+fn the_fit_report_on_the_kept_fit_is_the_clis_without_a_second_fit() {
+    for (sur, plan) in [
+        ("rba-mul-rbf-mq", "ae:10"),
+        ("vba-qts", "grid:3"),
+        ("gp-mul", "ae:8"),
+    ] {
+        let mut x = session(|s| {
+            s.surrogate = Some(sur.into());
+            s.plan = Some(plan.into());
+        });
+        let _ = x.surrogate().unwrap();
+        assert_eq!(x.fit_count(), 1);
+        let kept = x.fit_report(6).unwrap();
+        assert_eq!(x.fit_count(), 1, "{sur}: the report reuses the fit");
+        let s = x.scenario();
+        let fresh = crate::study::surrogate_report_in(
+            s.surrogate,
+            s.plan,
+            &s.datum,
+            &s.road,
+            &s.dbox,
+            Some(6),
+        )
+        .unwrap();
+        assert_eq!(kept, fresh, "{sur} on {plan}");
+        assert_eq!(kept.hifi_evaluations, kept.samples.len() + 36);
+    }
+    // A session that has not fitted yet fits once for the report.
+    let mut y = session(|_| {});
+    y.fit_report(4).unwrap();
+    y.surrogate().unwrap();
+    assert_eq!(y.fit_count(), 1);
+}
+
 #[test]
 fn the_surrogate_front_pick_holds_on_the_hifi() {
     let mut x = session(|_| {});

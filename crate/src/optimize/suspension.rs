@@ -26,6 +26,15 @@ impl<E: Evaluator> Counted<E> {
         }
     }
 
+    /// Wraps `inner` with the count at `made`: runs made before it (a kept fit's samples,
+    /// which a report counts with its validation grid's).
+    pub fn with_count(inner: E, made: usize) -> Self {
+        Counted {
+            inner,
+            count: Cell::new(made),
+        }
+    }
+
     /// Calls made so far, failed ones included.
     pub fn count(&self) -> usize {
         self.count.get()

@@ -143,7 +143,7 @@ pub fn surrogate_report_on<E: Evaluator>(
         plan: plan_spec.name(),
         plan_method: plan.method,
         samples,
-        model,
+        model: &*model,
         options,
         adaptive: None,
     };
@@ -151,17 +151,17 @@ pub fn surrogate_report_on<E: Evaluator>(
 }
 
 /// A fitted surrogate with what a [`SurrogateReport`] says about its samples.
-pub(crate) struct Fitted {
+pub(crate) struct Fitted<'a> {
     pub spec: SurrogateSpec,
     pub plan: String,
     pub plan_method: String,
     pub samples: Vec<Sample>,
-    pub model: Box<dyn Surrogate>,
+    pub model: &'a dyn Surrogate,
     pub options: LmOptions,
     pub adaptive: Option<AdaptiveReport>,
 }
 
-impl Fitted {
+impl Fitted<'_> {
     /// Validates the fit on a `predict_grid` (default 20 x 20) HiFi grid of `hifi`.
     /// Errors name `predict-grid` for a bad grid.
     pub fn report<E: Evaluator>(
@@ -176,7 +176,7 @@ impl Fitted {
             RideError::Field { reason, .. } => RideError::field("predict-grid", reason),
             e => e,
         })?;
-        let predicted = validation.predict(&*self.model)?;
+        let predicted = validation.predict(self.model)?;
         Ok(SurrogateReport {
             surrogate: self.spec.name(),
             spec: self.spec,

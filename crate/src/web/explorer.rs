@@ -254,10 +254,18 @@ impl Explorer {
 
     /// The surrogate fitted to HiFi samples over the design box and validated on a
     /// `levels x levels` HiFi grid: the `ridelab surrogate` report (samples, tuning,
-    /// diagnostics, metrics, error map, predictions). It refits: the page asks its worker.
+    /// diagnostics, metrics, error map, predictions), on the session's kept fit. The
+    /// validation grid runs the HiFi `levels^2` times: the page asks its worker.
     #[wasm_bindgen(js_name = surrogateFit)]
-    pub fn surrogate_fit(&self, levels: usize) -> Result<JsValue, JsValue> {
+    pub fn surrogate_fit(&mut self, levels: usize) -> Result<JsValue, JsValue> {
         to_js(&self.0.fit_report(levels).map_err(js_error)?)
+    }
+
+    /// The surrogate fits this session has made (one per scenario change that needs the
+    /// surrogate; tests read it).
+    #[wasm_bindgen(js_name = fitCount)]
+    pub fn fit_count(&self) -> f64 {
+        self.0.fit_count() as f64
     }
 
     /// The study report of the scenario (as `ridelab report`, seed 1, the view's surrogate

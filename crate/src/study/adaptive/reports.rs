@@ -34,6 +34,8 @@ pub fn surrogate_report(
     let decision = Decision::of_car(car, &hifi)?;
     let state = run(spec, &setting, &hifi, plan, &decision, options)?;
     let report = state.report();
+    let samples = state.samples().to_vec();
+    let model = state.into_model();
     let fitted = Fitted {
         spec,
         plan: format!(
@@ -49,8 +51,8 @@ pub fn surrogate_report(
             options.criterion.name(),
             report.uncertainty.name()
         ),
-        samples: state.samples().to_vec(),
-        model: state.into_model(),
+        samples,
+        model: &*model,
         options: options.lm(),
         adaptive: Some(report),
     };
