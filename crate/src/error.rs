@@ -70,20 +70,24 @@ where
 {
     let t = s.trim();
     T::iter()
-        .find(|v| {
-            let name: &'static str = v.into();
-            name.eq_ignore_ascii_case(t)
-                || v.get_str("alias")
-                    .is_some_and(|a| a.eq_ignore_ascii_case(t))
-        })
-        .ok_or_else(|| {
-            let names: Vec<String> = T::VARIANTS.iter().map(|n| format!("'{n}'")).collect();
-            let list = match names.split_last() {
-                Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
-                _ => names.concat(),
-            };
-            RideError::field(field, format!("'{s}' is not {list}"))
-        })
+        .find(|v| names_it(v.into(), v.get_str("alias"), t))
+        .ok_or_else(|| none_of(field, s, T::VARIANTS))
+}
+
+/// Whether `t` is `name` or `alias`, in any case (apart from [`parse_choice`], which is
+/// made once per enum, so that this and [`none_of`] are made once).
+fn names_it(name: &str, alias: Option<&str>, t: &str) -> bool {
+    name.eq_ignore_ascii_case(t) || alias.is_some_and(|a| a.eq_ignore_ascii_case(t))
+}
+
+/// The refusal of `s` naming `field`: `'s' is not 'a', 'b' or 'c'`.
+fn none_of(field: &str, s: &str, names: &[&str]) -> RideError {
+    let names: Vec<String> = names.iter().map(|n| format!("'{n}'")).collect();
+    let list = match names.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => names.concat(),
+    };
+    RideError::field(field, format!("'{s}' is not {list}"))
 }
 
 #[cfg(test)]
