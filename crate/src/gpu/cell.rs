@@ -19,11 +19,20 @@
 //! `weight (|T_f|^2 + |T_r|^2) + Re(cross T_f conj(T_r))` (split), times the half's
 //! weight. Sums run per panel, then over panels (pairwise at two levels: the f32 error of
 //! a sum of `n` positive terms drops from `n eps` to about `(8 + n / 8) eps`).
+//!
+//! The product uses the packing ([`pack_half`], [`pack_node`]); the arithmetic is test
+//! code (`#[cfg(test)]`), the yardstick of `kernel.wgsl`.
 
-use super::halves::{Half, N_COORD};
-use super::quadrature::{Node, NODES_PER_PANEL};
+use super::halves::Half;
+#[cfg(test)]
+use super::halves::N_COORD;
+use super::quadrature::Node;
+#[cfg(test)]
+use super::quadrature::NODES_PER_PANEL;
 use crate::model::N_OUT;
+#[cfg(test)]
 use num_complex::Complex;
+#[cfg(test)]
 use num_traits::Float;
 
 /// Floats per half in the packed buffer (see [`pack_half`]).
@@ -77,16 +86,20 @@ pub fn pack_node(n: &Node) -> [f64; 4] {
     [n.omega, n.weight, n.cross.re, n.cross.im]
 }
 
+#[cfg(test)]
 type C<F> = Complex<F>;
 
+#[cfg(test)]
 fn c<F: Float>(re: F, im: F) -> C<F> {
     Complex::new(re, im)
 }
 
+#[cfg(test)]
 fn cmul<F: Float>(a: C<F>, b: C<F>) -> C<F> {
     c(a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re)
 }
 
+#[cfg(test)]
 fn cdiv<F: Float>(a: C<F>, b: C<F>) -> C<F> {
     let d = b.re * b.re + b.im * b.im;
     c(
@@ -95,11 +108,13 @@ fn cdiv<F: Float>(a: C<F>, b: C<F>) -> C<F> {
     )
 }
 
+#[cfg(test)]
 fn norm2<F: Float>(a: C<F>) -> F {
     a.re * a.re + a.im * a.im
 }
 
 /// One half's matrices at a design: `K` and `C` on the nine slots.
+#[cfg(test)]
 struct Design<F> {
     k: [F; 9],
     c: [F; 9],
@@ -108,7 +123,9 @@ struct Design<F> {
 /// The variances `[BAcc, DTL, SWS]` divided by the road velocity PSD `Gv` (times `Gv`,
 /// m^2/s^2 per Hz, they are m^2/s^4, N^2, m^2) of the cell with front spring `ks` (N/m)
 /// and damper `cs` (N s/m), from packed halves, packed combined nodes and packed split
-/// nodes. Every float operation is done in `F`.
+/// nodes. Every float operation is done in `F`. The kernel's arithmetic on the CPU, for
+/// the tests that check the kernel's f32 against the route (`GpuMapper::map_cpu`).
+#[cfg(test)]
 pub fn cell_variances<F: Float>(
     halves: &[[F; HALF_STRIDE]],
     combined: &[[F; 4]],
@@ -153,6 +170,7 @@ pub fn cell_variances<F: Float>(
 
 /// Displacement transfers of the front and rear wheel groups to `[BAcc, DTL, SWS]` at
 /// angular frequency `w` (see the module doc).
+#[cfg(test)]
 fn transfers<F: Float>(h: &[F; HALF_STRIDE], d: &Design<F>, w: F) -> [[C<F>; N_OUT]; 2] {
     let w2 = w * w;
     let z: [C<F>; 9] = std::array::from_fn(|s| c(d.k[s] - w2 * h[offset::M + s], w * d.c[s]));
@@ -189,6 +207,7 @@ fn transfers<F: Float>(h: &[F; HALF_STRIDE], d: &Design<F>, w: F) -> [[C<F>; N_O
 
 /// Solves the symmetric `[[s00, s01], [s01, s11]] [x0, x1] = [r0, r1]` by elimination
 /// with partial pivoting (no determinant: its square would overflow f32 at the tail).
+#[cfg(test)]
 fn solve2<F: Float>(s00: C<F>, s01: C<F>, s11: C<F>, r0: C<F>, r1: C<F>) -> (C<F>, C<F>) {
     if norm2(s00) >= norm2(s01) {
         let l = cdiv(s01, s00);

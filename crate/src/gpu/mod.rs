@@ -37,7 +37,9 @@ use crate::maps::Grid;
 use crate::math;
 use crate::model::{full_car, N_OUT};
 use crate::road::{Road, Tracks};
-use cell::{cell_variances, pack_half, pack_node, HALF_STRIDE};
+#[cfg(test)]
+use cell::cell_variances;
+use cell::{pack_half, pack_node, HALF_STRIDE};
 use halves::Half;
 use num_traits::Float;
 pub use quadrature::{FrequencyRule, PoleBand};
@@ -106,6 +108,7 @@ impl MapInput {
 
     /// The criteria of every cell (row-major, Cs rows) computed on the CPU in `F`
     /// (f64: the route; f32: what the GPU computes).
+    #[cfg(test)]
     pub fn map_cpu<F: Float>(&self) -> Result<Vec<Criteria>> {
         let halves = self.packed_halves::<F>();
         let (combined, split) = self.packed_nodes::<F>();

@@ -198,11 +198,13 @@ impl DosMap {
     }
 
     /// The objectives broken at Ks column `i`, Cs row `j` (empty when feasible).
+    #[cfg(test)]
     pub fn broken_at(&self, i: usize, j: usize) -> Vec<Objective> {
         objectives_in(self.mask[self.grid.index(i, j)])
     }
 
     /// True when the point at Ks column `i`, Cs row `j` meets every active objective.
+    #[cfg(test)]
     pub fn is_feasible(&self, i: usize, j: usize) -> bool {
         self.mask[self.grid.index(i, j)] == 0
     }
