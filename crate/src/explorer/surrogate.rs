@@ -26,6 +26,8 @@ pub struct FittedSurrogate {
     pub model: Box<dyn Surrogate>,
     /// The plan.
     pub plan: PlanSpec,
+    /// How the plan was made (the fit report says so; kept, not searched for again).
+    pub plan_method: String,
     /// The HiFi samples at the plan's points.
     pub samples: Vec<Sample>,
 }
@@ -64,11 +66,13 @@ impl FitKey {
 pub fn fit(s: &Scenario) -> Result<FittedSurrogate> {
     let setting = Setting::new(&s.datum, &s.road, &s.dbox)?;
     let hifi = s.hifi()?;
-    let samples = sample_plan(&hifi, &s.plan.plan()?, &s.dbox)?;
+    let plan = s.plan.plan()?;
+    let samples = sample_plan(&hifi, &plan, &s.dbox)?;
     let model = s.surrogate.fit(&setting, &samples, &LmOptions::default())?;
     Ok(FittedSurrogate {
         model,
         plan: s.plan,
+        plan_method: plan.method,
         samples,
     })
 }
@@ -87,7 +91,7 @@ pub fn fit_report(
     Fitted {
         spec: s.surrogate,
         plan: s.plan.name(),
-        plan_method: s.plan.plan()?.method,
+        plan_method: fitted.plan_method.clone(),
         samples: fitted.samples.clone(),
         model: &*fitted.model,
         options: LmOptions::default(),
