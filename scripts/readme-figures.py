@@ -78,10 +78,16 @@ def rows():
     for road in ["concrete-slab-5m.csv", "class-c-waviness-2.5.csv"]:
         t, o = run(["road", f"assets/roads/{road}", "--json"])
         out.append((f"`ridelab road assets/roads/{road}`, whole process", f"{t:.2f} s", f"{runs(o['samples'])} samples, {o['tracks']} track{'s' if o['tracks'] == 2 else ''}, {o['length_m'] / 1000:g} km"))
+    # Each measured map against the same map on class C with the same track setting:
+    # one track seen by both wheels against correlated tracks, two measured tracks (both
+    # halves of the car excited) against independent ones (both halves too) and against
+    # correlated ones (one half).
     grid = ["--ks-range", "10000:40000:160", "--cs-range", "500:4000:120", "--json"]
-    iso, _ = run(["map", "--model", "full", "--class", "C", "--compute", "cpu", *grid])
-    t, _ = run(["map", "--model", "full", "--road", "assets/roads/class-c-waviness-2.5.csv", *grid])
-    out.append(("`ridelab map --model full --road assets/roads/class-c-waviness-2.5.csv` 160 x 120", f"{t:.2f} s", f"{t / iso:.1f}x the same map on class C ({iso:.2f} s)"))
+    iso = {tr: run(["map", "--model", "full", "--class", "C", "--compute", "cpu", "--tracks", tr, *grid], runs=5)[0] for tr in ["correlated", "independent"]}
+    t, _ = run(["map", "--model", "full", "--road", "assets/roads/concrete-slab-5m.csv", *grid], runs=5)
+    out.append(("`ridelab map --model full --road assets/roads/concrete-slab-5m.csv` 160 x 120 (one track, both wheels)", f"{t * 1000:.0f} ms", f"{t / iso['correlated']:.1f}x the same map on class C, correlated tracks ({iso['correlated'] * 1000:.0f} ms)"))
+    t, _ = run(["map", "--model", "full", "--road", "assets/roads/class-c-waviness-2.5.csv", *grid], runs=5)
+    out.append(("`ridelab map --model full --road assets/roads/class-c-waviness-2.5.csv` 160 x 120 (two measured tracks)", f"{t * 1000:.0f} ms", f"{t / iso['independent']:.1f}x the same map on class C with independent tracks ({iso['independent'] * 1000:.0f} ms), {t / iso['correlated']:.1f}x with correlated tracks"))
     wasm = sorted((ROOT / "dist").glob("*.wasm"))
     if wasm:
         raw = wasm[0].read_bytes()

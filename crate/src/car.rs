@@ -203,6 +203,21 @@ impl Axle {
     /// Checks every field against its physical range; messages name `prefix.field`.
     pub fn validate(&self, prefix: &str) -> Result<()> {
         use crate::domain::{DAMPER, SPRING, TIRE_DAMPING, TIRE_STIFFNESS, UNSPRUNG_MASS};
+        // An axle inside every range passes without writing a field name (a map checks
+        // one at every point); the checks below name the first fault.
+        let inside = [
+            (self.unsprung_mass, &UNSPRUNG_MASS),
+            (self.spring, &SPRING),
+            (self.tire_stiffness, &TIRE_STIFFNESS),
+            (self.damper, &DAMPER),
+        ]
+        .iter()
+        .all(|(v, limit)| *v > 0.0 && limit.contains(*v))
+            && self.tire_damping >= 0.0
+            && TIRE_DAMPING.contains(self.tire_damping);
+        if inside {
+            return Ok(());
+        }
         for (f, v, limit) in [
             ("unsprung_mass", self.unsprung_mass, &UNSPRUNG_MASS),
             ("spring", self.spring, &SPRING),

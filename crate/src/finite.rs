@@ -5,7 +5,8 @@
 //! keep results finite; [`check`] makes sure of it where a result leaves the core (the
 //! CLI's JSON and CSV, the page's results): it walks any serialisable value and names the
 //! path of the first number that is not finite. Hand-written rather than a crate
-//! (serde-value and the like build a copy of the whole tree): it allocates only the path.
+//! (serde-value and the like build a copy of the whole tree): it allocates only the keys
+//! of maps on its path, and writes the path out only when it names one.
 
 use crate::error::{Result, RideError};
 use serde::ser::{self, Serialize};
@@ -41,18 +42,33 @@ impl ser::Error for Found {
     }
 }
 
+/// One step of the path: a struct field or enum variant, a sequence index, or a map key.
+enum Step {
+    Name(&'static str),
+    Index(usize),
+    Key(String),
+}
+
 struct Checker {
-    path: Vec<String>,
+    path: Vec<Step>,
 }
 
 impl Checker {
     fn found(&self) -> Found {
         let mut s = String::new();
         for p in &self.path {
-            if !p.starts_with('[') && !s.is_empty() {
+            let name = match p {
+                Step::Index(i) => {
+                    s += &format!("[{i}]");
+                    continue;
+                }
+                Step::Name(n) => n,
+                Step::Key(k) => k.as_str(),
+            };
+            if !s.is_empty() {
                 s.push('.');
             }
-            s += p;
+            s += name;
         }
         Found(if s.is_empty() { ".".into() } else { s })
     }
@@ -65,7 +81,7 @@ impl Checker {
         }
     }
 
-    fn at<T: Serialize + ?Sized>(&mut self, key: String, v: &T) -> std::result::Result<(), Found> {
+    fn at<T: Serialize + ?Sized>(&mut self, key: Step, v: &T) -> std::result::Result<(), Found> {
         self.path.push(key);
         let r = v.serialize(&mut *self);
         self.path.pop();
@@ -153,7 +169,7 @@ impl<'a> ser::Serializer for &'a mut Checker {
         variant: &'static str,
         v: &T,
     ) -> R {
-        self.at(variant.to_string(), v)
+        self.at(Step::Name(variant), v)
     }
     fn serialize_seq(self, _: Option<usize>) -> std::result::Result<Seq<'a>, Found> {
         Ok(Seq::new(self))
@@ -223,7 +239,7 @@ impl<'a> Map<'a> {
 
 impl Seq<'_> {
     fn element<T: Serialize + ?Sized>(&mut self, v: &T) -> R {
-        let key = format!("[{}]", self.index);
+        let key = Step::Index(self.index);
         self.index += 1;
         self.c.at(key, v)
     }
@@ -417,7 +433,7 @@ impl ser::SerializeMap for Map<'_> {
     }
     fn serialize_value<T: Serialize + ?Sized>(&mut self, v: &T) -> R {
         let key = std::mem::take(&mut self.key);
-        self.c.at(key, v)
+        self.c.at(Step::Key(key), v)
     }
     fn end(self) -> R {
         Ok(())
@@ -428,7 +444,7 @@ impl ser::SerializeStruct for Map<'_> {
     type Ok = ();
     type Error = Found;
     fn serialize_field<T: Serialize + ?Sized>(&mut self, key: &'static str, v: &T) -> R {
-        self.c.at(key.to_string(), v)
+        self.c.at(Step::Name(key), v)
     }
     fn end(self) -> R {
         Ok(())
@@ -439,7 +455,7 @@ impl ser::SerializeStructVariant for Map<'_> {
     type Ok = ();
     type Error = Found;
     fn serialize_field<T: Serialize + ?Sized>(&mut self, key: &'static str, v: &T) -> R {
-        self.c.at(key.to_string(), v)
+        self.c.at(Step::Name(key), v)
     }
     fn end(self) -> R {
         Ok(())

@@ -69,9 +69,16 @@ pub fn criteria_modal(model: &LinearModel, road: &Road) -> Result<Criteria> {
 /// output and wheel-group pair of the closed form.
 pub(crate) fn inverse_sums(lam: &[C64]) -> Vec<C64> {
     let ns = lam.len();
-    (0..ns * ns)
-        .map(|km| -(lam[km / ns] + lam[km % ns]).inv())
-        .collect()
+    let mut out = vec![ZERO; ns * ns];
+    // Symmetric (the sum commutes, bit for bit): one inversion per pair.
+    for k in 0..ns {
+        for m in k..ns {
+            let v = -(lam[k] + lam[m]).inv();
+            out[k * ns + m] = v;
+            out[m * ns + k] = v;
+        }
+    }
+    out
 }
 
 /// Adds one source's variances to `var` by the closed form of the module doc: its wheel
@@ -87,13 +94,23 @@ pub(crate) fn add_source_variances(
     intensity: f64,
 ) {
     let ns = lam.len();
+    // Buffers filled per group pair and output (a map calls this at every point).
+    let (mut e, mut rle) = (vec![ZERO; ns], vec![ZERO; ns]);
     for (gi, &(g_tau, g_gain)) in groups.iter().enumerate() {
         for (li, &(l_tau, _)) in groups.iter().enumerate().take(gi + 1) {
             let dt = g_tau - l_tau;
-            let e: Vec<C64> = lam.iter().map(|&lm| math::cexp(lm * dt)).collect();
+            if dt == 0.0 {
+                e.fill(C64::new(1.0, 0.0));
+            } else {
+                e.iter_mut()
+                    .zip(lam)
+                    .for_each(|(ek, &lm)| *ek = math::cexp(lm * dt));
+            }
             for (o, vo) in var.iter_mut().enumerate() {
                 let (rg, rl) = (&rho[gi][o], &rho[li][o]);
-                let rle: Vec<C64> = (0..ns).map(|m| rl[m] * e[m]).collect();
+                rle.iter_mut()
+                    .enumerate()
+                    .for_each(|(m, x)| *x = rl[m] * e[m]);
                 let mut t = ZERO;
                 for k in 0..ns {
                     let row = &inv_sum[k * ns..(k + 1) * ns];

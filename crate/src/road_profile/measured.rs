@@ -5,7 +5,7 @@ use super::modal::criteria_shaped_fast;
 use super::profile::Profile;
 use super::shaped::{ProfileTracks, ShapedRoad, ShapedSource};
 use crate::analysis::{half_family, Half, ModelKind};
-use crate::car::Car;
+use crate::car::{Car, DesignDomain};
 use crate::criteria::ShapedResidueRoute;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
@@ -22,6 +22,8 @@ use serde::Serialize;
 pub struct MeasuredModel {
     kind: ModelKind,
     car: Car,
+    /// The car's design domain: a design inside it needs no more checks.
+    domain: DesignDomain,
     road: ShapedRoad,
     residue: Option<ShapedResidueRoute>,
 }
@@ -36,6 +38,7 @@ impl MeasuredModel {
         MeasuredModel {
             kind,
             car: car.clone(),
+            domain: car.design_domain(),
             road,
             residue,
         }
@@ -82,13 +85,17 @@ pub(super) fn residue_route(car: &Car, road: &ShapedRoad) -> Option<ShapedResidu
 
 impl Evaluator for MeasuredModel {
     fn evaluate(&self, ks: f64, cs: f64) -> Result<Criteria> {
-        let car = self.car.with_front(ks, cs)?;
+        // A design in the domain is valid (a few comparisons); outside it, building the
+        // car names the fault.
+        if !self.domain.contains(ks, cs) {
+            self.car.with_front(ks, cs)?;
+        }
         if let Some(route) = &self.residue {
             if let Some(c) = route.criteria(ks, cs)? {
                 return Ok(c);
             }
         }
-        criteria_shaped_fast(&self.kind.build(&car), &self.road)
+        criteria_shaped_fast(&self.kind.build(&self.car.with_front(ks, cs)?), &self.road)
     }
 
     /// `"quarter"` or `"full"`, as on an ISO road.
