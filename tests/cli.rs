@@ -1952,6 +1952,83 @@ fn simulate_json_names_its_series() {
     assert_eq!(v["units"]["sws"], "m");
 }
 
+/// `--comfort wk` on a measured road (issue #31): every cell of the Wk map is `eval --road
+/// FILE`'s `bacc_wk` at that design (the same exact route: 1e-12) and within 3 % of eval's
+/// frequency route on the raw PSD weighted by Wk (`spectral_bacc_wk`, independent); DTL
+/// and SWS are the unweighted map's, bit for bit; the JSON says `comfort: wk`. The front
+/// on the Wk axis takes the LoFi or the HiFi (its datum is eval's `bacc_wk`); a surrogate
+/// evaluator is refused naming `comfort` (it is fitted to the unweighted BAcc).
+#[test]
+fn wk_comfort_takes_a_measured_road() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    let road = format!("{root}/assets/roads/concrete-slab-5m.csv");
+    let rel = |a: f64, b: f64| (a / b - 1.0).abs();
+    for model in ["quarter", "full"] {
+        let map = |comfort: &str| {
+            json(&[
+                "map",
+                "--model",
+                model,
+                "--road",
+                &road,
+                "--comfort",
+                comfort,
+                "--ks-range",
+                "10000:40000:3",
+                "--cs-range",
+                "500:4000:2",
+            ])
+        };
+        let (wk, plain) = (map("wk"), map("bacc"));
+        assert_eq!(wk["comfort"], "wk");
+        assert_eq!(wk["dtl"], plain["dtl"]);
+        assert_eq!(wk["sws"], plain["sws"]);
+        let (ks, cs) = (
+            wk["ks_values"].as_array().unwrap(),
+            wk["cs_values"].as_array().unwrap(),
+        );
+        let (mut exact, mut spectral) = (0.0f64, 0.0f64);
+        for (j, c) in cs.iter().enumerate() {
+            for (i, k) in ks.iter().enumerate() {
+                let (k, c) = (k.to_string(), c.to_string());
+                let e = json(&[
+                    "eval", "--model", model, "--road", &road, "--ks", &k, "--cs", &c,
+                ]);
+                let cell = wk["bacc"][j * ks.len() + i].as_f64().unwrap();
+                exact = exact.max(rel(cell, e["bacc_wk"].as_f64().unwrap()));
+                spectral = spectral.max(rel(cell, e["spectral_bacc_wk"].as_f64().unwrap()));
+                assert!(cell < plain["bacc"][j * ks.len() + i].as_f64().unwrap());
+            }
+        }
+        assert!(exact < 1e-12, "{model}: Wk map vs eval: {exact:e}");
+        assert!(
+            spectral < 3e-2,
+            "{model}: Wk map vs the frequency route: {spectral:e}"
+        );
+    }
+    let o = json(&[
+        "optimize",
+        "--evaluator",
+        "full",
+        "--road",
+        &road,
+        "--comfort",
+        "wk",
+        "--grid",
+        "21",
+        "--levels",
+        "1",
+    ]);
+    assert_eq!(o["comfort"], "wk");
+    let datum = json(&["eval", "--model", "full", "--road", &road]);
+    assert!(
+        rel(
+            o["datum"]["bacc"].as_f64().unwrap(),
+            datum["bacc_wk"].as_f64().unwrap()
+        ) < 1e-12
+    );
+}
+
 /// `map --road FILE`, `optimize --road FILE` and `surrogate --road FILE` (issue #31): every map cell is
 /// `eval --road FILE` at that design (the same exact route: 1e-12) and within 3 % of the
 /// frequency route on the raw measured PSD (an independent route: the shipped class C
@@ -1959,8 +2036,8 @@ fn simulate_json_names_its_series() {
 /// is 13 %); the optimisation's datum and re-check are eval's HiFi on the same road, its
 /// front points eval's LoFi; the surrogate's HiFi samples are eval's HiFi; the JSON
 /// names the road file; a surrogate evaluator's pick is re-checked on eval's HiFi; one
-/// scenario, so cases, an adaptive loop and an oversized grid are refused naming the
-/// option, and the report still takes --class only.
+/// scenario, so cases, an adaptive loop, an oversized grid and Wk comfort with a
+/// surrogate are refused naming the option, and the report still takes --class only.
 #[test]
 fn map_optimize_and_surrogate_take_a_measured_road() {
     let road = "assets/roads/class-c-waviness-2.5.csv";
@@ -2251,7 +2328,15 @@ fn map_optimize_and_surrogate_take_a_measured_road() {
             "ks-range",
         ),
         (
-            vec!["map", "--model", "full", "--road", road, "--comfort", "wk"],
+            vec![
+                "optimize",
+                "--evaluator",
+                "vba-qts",
+                "--road",
+                road,
+                "--comfort",
+                "wk",
+            ],
             "comfort",
         ),
         (vec!["report", "--road", road], "road"),

@@ -3,13 +3,15 @@
 //! ISO 8608 fit; the target is under 100 ms), shaping it at 20 m/s (Welch PSDs and the
 //! filter fits), and the criteria on the shaped road by the exact routes (the modal route
 //! and the augmented Lyapunov equations behind it; quarter car and full car) and by the
-//! frequency route on the raw PSD (full car, 1e-6); the baseline is the full car's modal
+//! frequency route on the raw PSD (full car, 1e-6), and a design point with the
+//! Wk-weighted comfort; the baseline is the full car's modal
 //! route on the ISO class C road (the ISO map's route where the residue route declines).
 //!
 //! Run: `cargo bench -p ridelab --bench road_profile`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use ridelab::analysis::{HiFi, ModelKind};
+use ridelab::comfort::Comfort;
 use ridelab::criteria::criteria_modal;
 use ridelab::evaluate::Evaluator;
 use ridelab::model::{full_car, quarter_car};
@@ -67,6 +69,10 @@ fn road_profile(c: &mut Criterion) {
     let hifi = HiFi::new(&car, &class_c).unwrap();
     g.bench_function("residue route with the filters, full car point", |b| {
         b.iter(|| measured.evaluate(black_box(25e3), 1500.0).unwrap())
+    });
+    let measured_wk = measured.clone().with_comfort(Comfort::Wk);
+    g.bench_function("Wk comfort with the filters, full car point", |b| {
+        b.iter(|| measured_wk.evaluate(black_box(25e3), 1500.0).unwrap())
     });
     g.bench_function(
         "ISO class C, residue route, full car point (baseline)",

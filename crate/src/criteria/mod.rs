@@ -19,6 +19,7 @@ mod spectral;
 
 pub use closed_form::quarter_car_rms;
 pub use exact::criteria_exact;
+pub(crate) use iso2631::{add_wk_variance, append_wk, static_gain};
 pub use iso2631::{
     bacc_wk, bacc_wk_exact, bacc_wk_modal, bacc_wk_spectral, comfort_label, wk_gain,
 };

@@ -28,6 +28,7 @@
 
 use super::lyap::Lyapunov;
 use super::shaped::ShapedRoad;
+use crate::criteria::{append_wk, static_gain};
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
 use crate::model::{LinearModel, N_OUT};
@@ -67,6 +68,42 @@ pub fn criteria_shaped(model: &LinearModel, road: &ShapedRoad) -> Result<Criteri
         ));
     }
     Ok(Criteria::from_array(var.map(f64::sqrt)))
+}
+
+/// The ISO 2631-1 Wk-weighted RMS body acceleration above the front wheel of `model` on
+/// the shaped road, m/s^2: each source's augmented form (module doc) with the Wk filter
+/// appended, driven by BAcc (as [`crate::criteria::bacc_wk_exact`] on an ISO road; BAcc
+/// has no static gain from the road, and Wk none at 0 Hz, so the weighted output has no
+/// box terms), by the same Lyapunov equations.
+pub fn bacc_wk_shaped(model: &LinearModel, road: &ShapedRoad) -> Result<f64> {
+    let mut var = 0.0;
+    for form in forms(model, road)? {
+        let scale = form.cy.row(0).amax().max(1.0);
+        if form.groups.iter().any(|g| g.g[0].abs() > 1e-9 * scale) {
+            return Err(static_gain());
+        }
+        let (a, weighted) = append_wk(&form.a, &form.cy.row(0).clone_owned());
+        let n = a.nrows();
+        // Only the weighted acceleration is asked for: the other rows stay zero.
+        let mut cy = DMatrix::zeros(N_OUT, n);
+        cy.row_mut(0).copy_from(&weighted);
+        let groups = form
+            .groups
+            .into_iter()
+            .map(|g| Group {
+                tau: g.tau,
+                b: g.b.resize_vertically(n, 0.0),
+                g: [0.0; N_OUT],
+            })
+            .collect();
+        var += variances(&Form { a, cy, groups })?[0];
+    }
+    if !var.is_finite() || var < 0.0 {
+        return Err(RideError::Numerical(
+            "weighted variance is not finite: is the model stable?".into(),
+        ));
+    }
+    Ok(var.sqrt())
 }
 
 /// The augmented forms of every source that drives a wheel of `model`.

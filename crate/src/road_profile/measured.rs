@@ -1,14 +1,16 @@
 //! A LoFi or HiFi model of a car on a measured road, as an [`Evaluator`]: what lets every
 //! design map and optimiser run on a profile file (`--road FILE`) as on an ISO class.
 
-use super::modal::criteria_shaped_fast;
+use super::modal::{bacc_wk_shaped_fast, criteria_shaped_fast};
 use super::profile::Profile;
 use super::shaped::{ProfileTracks, ShapedRoad, ShapedSource};
 use crate::analysis::{half_family, Half, ModelKind};
 use crate::car::{Car, DesignDomain};
+use crate::comfort::Comfort;
 use crate::criteria::ShapedResidueRoute;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
+use crate::model::LinearModel;
 use crate::road::Road;
 use serde::Serialize;
 
@@ -17,16 +19,27 @@ use serde::Serialize;
 /// residue route with the road's filters ([`ShapedResidueRoute`]: the car's two halves,
 /// the sum of the tracks driving one and their difference the other) where it
 /// certifies the point, else the modal route with the filters, else the Lyapunov
-/// equations of the model augmented with them ([`criteria_shaped_fast`]).
+/// equations of the model augmented with them ([`criteria_shaped_fast`]). With
+/// [`Comfort::Wk`] ([`MeasuredModel::with_comfort`]) the comfort slot holds the ISO 2631-1
+/// Wk-weighted RMS body acceleration, m/s^2, by the modal route with the road's filters
+/// and Wk's, the Lyapunov equations behind it ([`bacc_wk_shaped_fast`]), as
+/// [`crate::comfort::WkComfort`] does on an ISO road.
 #[derive(Debug, Clone)]
 pub struct MeasuredModel {
     kind: ModelKind,
+    /// The Wk route when the comfort slot holds Wk: set only by
+    /// [`MeasuredModel::with_comfort`], so that a build that never asks for Wk on a
+    /// measured road (the page's) does not carry it.
+    wk: Option<WkRoute>,
     car: Car,
     /// The car's design domain: a design inside it needs no more checks.
     domain: DesignDomain,
     road: ShapedRoad,
     residue: Option<ShapedResidueRoute>,
 }
+
+/// A Wk-weighted BAcc route on a shaped road, m/s^2.
+type WkRoute = fn(&LinearModel, &ShapedRoad) -> Result<f64>;
 
 impl MeasuredModel {
     /// The model of `car` (its front design is the datum) on the shaped `road`.
@@ -37,11 +50,21 @@ impl MeasuredModel {
         };
         MeasuredModel {
             kind,
+            wk: None,
             car: car.clone(),
             domain: car.design_domain(),
             road,
             residue,
         }
+    }
+
+    /// The model with `comfort` in the comfort slot.
+    pub fn with_comfort(self, comfort: Comfort) -> MeasuredModel {
+        let wk: Option<WkRoute> = match comfort {
+            Comfort::Bacc => None,
+            Comfort::Wk => Some(bacc_wk_shaped_fast),
+        };
+        MeasuredModel { wk, ..self }
     }
 
     /// The shaped road (speed, band, sources and their filters).
@@ -90,12 +113,18 @@ impl Evaluator for MeasuredModel {
         if !self.domain.contains(ks, cs) {
             self.car.with_front(ks, cs)?;
         }
-        if let Some(route) = &self.residue {
-            if let Some(c) = route.criteria(ks, cs)? {
-                return Ok(c);
-            }
-        }
-        criteria_shaped_fast(&self.kind.build(&self.car.with_front(ks, cs)?), &self.road)
+        let plain = match self.residue.as_ref().map(|r| r.criteria(ks, cs)) {
+            Some(Ok(Some(c))) => c,
+            Some(Err(e)) => return Err(e),
+            _ => criteria_shaped_fast(&self.kind.build(&self.car.with_front(ks, cs)?), &self.road)?,
+        };
+        Ok(match self.wk {
+            None => plain,
+            Some(wk) => Criteria {
+                bacc: wk(&self.kind.build(&self.car.with_front(ks, cs)?), &self.road)?,
+                ..plain
+            },
+        })
     }
 
     /// `"quarter"` or `"full"`, as on an ISO road.

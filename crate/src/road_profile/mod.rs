@@ -42,9 +42,11 @@ mod synth;
 mod welch;
 
 pub use describe::{describe, CoherenceSeries, IsoFit, PsdSeries, RoadDescription, WelchInfo};
-pub use exact::criteria_shaped;
+pub use exact::{bacc_wk_shaped, criteria_shaped};
 pub use measured::{road_error, DesignOnRoad, MeasuredModel, MeasuredRoad, RoadScenario};
-pub use modal::{criteria_shaped_fast, criteria_shaped_modal};
+pub use modal::{
+    bacc_wk_shaped_fast, bacc_wk_shaped_modal, criteria_shaped_fast, criteria_shaped_modal,
+};
 pub use playback::{playback, WheelRoad};
 pub use profile::{
     Profile, MAX_BYTES, MAX_GAP_RATIO, MAX_ROUGHNESS_RMS, MAX_SAMPLES, MAX_SPACING, MIN_SAMPLES,

@@ -16,7 +16,7 @@
 //! panel's integrand is smooth.
 
 use super::shaped::ShapedRoad;
-use crate::criteria::SpectralCriteria;
+use crate::criteria::{wk_gain, SpectralCriteria};
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
 use crate::math;
@@ -215,6 +215,43 @@ impl<'a> ShapedSpectrum<'a> {
 
     /// RMS criteria over `[f_lo, infinity)` to relative tolerance `rtol` on the variance.
     pub fn rms(&self, f_lo: f64, rtol: f64) -> SpectralCriteria {
+        let q = adaptive(|th| self.mapped_psd(th), &self.cuts(f_lo), rtol);
+        SpectralCriteria {
+            criteria: Criteria::from_array(q.value.map(|v| v.max(0.0).sqrt())),
+            low_cutoff_hz: (f_lo > 0.0).then_some(f_lo),
+            evaluations: q.evaluations,
+            relative_error: q.relative_error,
+        }
+    }
+
+    /// The ISO 2631-1 Wk-weighted RMS body acceleration, m/s^2:
+    /// `int_0^inf |Wk(f)|^2 P_bacc(f) df` on the raw PSD to relative tolerance `rtol` (the
+    /// check of [`super::bacc_wk_shaped_fast`]; Wk vanishes at 0 Hz, so a road warp needs
+    /// no low cutoff here).
+    pub fn bacc_wk(&self, rtol: f64) -> Result<f64> {
+        let q = adaptive(
+            |th| {
+                let t = math::tan(th);
+                let f = FC * t;
+                let w = wk_gain(f);
+                [self.psd(f)[0] * w * w * FC * (1.0 + t * t), 0.0, 0.0]
+            },
+            &self.cuts(0.0),
+            rtol,
+        );
+        let var = q.value[0];
+        if !var.is_finite() {
+            return Err(RideError::Numerical(
+                "frequency integral did not converge".into(),
+            ));
+        }
+        Ok(var.max(0.0).sqrt())
+    }
+
+    /// The panels' edges in `theta = atan(f / FC)` over `[f_lo, infinity)`: the PSD's
+    /// breakpoints, at least 8 panels on each side of the measured band and over the whole
+    /// range.
+    fn cuts(&self, f_lo: f64) -> Vec<f64> {
         let th_lo = math::atan(f_lo / FC);
         let mut edges: Vec<f64> = self
             .source_of
@@ -227,7 +264,6 @@ impl<'a> ShapedSpectrum<'a> {
         edges.push(PI / 2.0);
         edges.sort_by(f64::total_cmp);
         edges.dedup_by(|a, b| (*a - *b).abs() < 1e-15);
-        // At least 8 panels on each side of the measured band and over the whole range.
         let mut cuts = Vec::with_capacity(edges.len() + 16);
         for w in edges.windows(2) {
             let parts = if edges.len() < 16 || w[1] - w[0] > 0.05 {
@@ -240,13 +276,7 @@ impl<'a> ShapedSpectrum<'a> {
             }
         }
         cuts.push(PI / 2.0);
-        let q = adaptive(|th| self.mapped_psd(th), &cuts, rtol);
-        SpectralCriteria {
-            criteria: Criteria::from_array(q.value.map(|v| v.max(0.0).sqrt())),
-            low_cutoff_hz: (f_lo > 0.0).then_some(f_lo),
-            evaluations: q.evaluations,
-            relative_error: q.relative_error,
-        }
+        cuts
     }
 
     fn mapped_psd(&self, th: f64) -> [f64; N_OUT] {

@@ -11,13 +11,19 @@ fn models() -> [LinearModel; 2] {
 }
 
 /// The filter route against the frequency route on the raw Welch PSD; returns the
-/// largest relative difference of the three criteria.
+/// largest relative difference of the three criteria and the Wk-weighted BAcc.
 fn routes(model: &LinearModel, road: &ShapedRoad) -> f64 {
     let a = criteria_shaped(model, road).unwrap().to_array();
     let b = criteria_shaped_spectral(model, road, 1e-6).unwrap();
     assert!(b.converged(1e-6), "{}", b.relative_error);
+    let wk = bacc_wk_shaped_fast(model, road).unwrap();
+    let wk_spectral = ShapedSpectrum::new(model, road)
+        .unwrap()
+        .bacc_wk(1e-6)
+        .unwrap();
     a.iter()
-        .zip(b.criteria.to_array())
+        .chain([&wk])
+        .zip(b.criteria.to_array().iter().chain([&wk_spectral]))
         .map(|(x, y)| (x / y - 1.0).abs())
         .fold(0.0, f64::max)
 }
@@ -25,7 +31,8 @@ fn routes(model: &LinearModel, road: &ShapedRoad) -> f64 {
 /// On profiles (an ISO road of waviness 2.5 with one track, correlated and independent;
 /// two measured tracks with falling coherence; a slab concrete road) the filter route is
 /// within the filter's stated error of the frequency route on the raw PSD, for the
-/// quarter and the full car (at 10, 20 and 30 m/s for two of them).
+/// quarter and the full car (at 10, 20 and 30 m/s for two of them), the three criteria
+/// and the Wk-weighted BAcc.
 #[test]
 fn the_filter_route_is_within_its_stated_error_on_profiles() {
     let base = Synthesis {

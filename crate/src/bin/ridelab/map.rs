@@ -115,10 +115,10 @@ pub(crate) fn map_cmd(a: MapArgs) -> Result<String> {
 }
 
 /// The map on the measured road of `--road FILE`: one scenario, so `--cases`, `--case`,
-/// a car file's load cases and `--compute gpu` are refused naming them, and `--comfort
-/// wk` (its weighting filter is not yet on the measured route) names `comfort`. A
-/// point costs more here than on an ISO class (the exact route with the road's filters),
-/// so the grid is bounded by [`ridelab::budget::MAX_MEASURED_RUNS`] points.
+/// a car file's load cases and `--compute gpu` are refused naming them; `--comfort wk`
+/// weights BAcc by the modal route with the road's filters and Wk's. A point costs more
+/// here than on an ISO class (the exact route with the road's filters), so the grid is
+/// bounded by [`ridelab::budget::MAX_MEASURED_RUNS`] points.
 fn measured_map(
     a: &MapArgs,
     car: &Car,
@@ -130,7 +130,6 @@ fn measured_map(
     one_scenario(
         a.cases.cases.is_some() || a.case.is_some() || !loads.is_empty(),
         a.compute == Compute::Gpu,
-        a.comfort,
     )?;
     let g = &settings.grid;
     ridelab::budget::check_measured(
@@ -139,7 +138,7 @@ fn measured_map(
         &format!("a {} x {} map", g.ks.n, g.cs.n),
         "the points of --ks-range or --cs-range",
     )?;
-    let (model, about) = measured_model(a.model, car, &a.car, path)?;
+    let (model, about) = measured_model(a.model, car, &a.car, path, a.comfort)?;
     let mut r = map_report_with(&model, car, road, settings)?;
     r.road = RoadScenario::Measured(about);
     r.compute = ComputePath::Cpu;

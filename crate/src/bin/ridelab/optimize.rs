@@ -221,8 +221,9 @@ fn write_front_svg(path: &Path, out: &OptimizeReport) -> Result<()> {
 /// `optimize --road FILE`: the front of the LoFi, the HiFi or a surrogate on the measured
 /// road (the models by the exact route at every design; a surrogate fitted to the HiFi's
 /// samples there, its LoFi the quarter car there), the datum and the pick's re-check on
-/// its HiFi. One scenario: `--cases` (and a car file's load_cases), `--adaptive`,
-/// `--compute gpu` and `--comfort wk` are refused naming them. A run costs
+/// its HiFi. One scenario: `--cases` (and a car file's load_cases), `--adaptive` and
+/// `--compute gpu` are refused naming them, and `--comfort wk` with a surrogate (as on an
+/// ISO class). A run costs
 /// more here (the residue route with the road's filters: the default STM on the HiFi,
 /// 48 517 runs, took 0.96 s on the shipped slab road), so the work is bounded by
 /// [`ridelab::budget::MAX_MEASURED_RUNS`] runs (`grid^2 + 12 (grid - 1) 2^levels` for
@@ -240,8 +241,13 @@ fn measured_optimize(
     one_scenario(
         a.cases.cases.is_some() || !loads.is_empty(),
         a.compute == Some(Compute::Gpu),
-        a.comfort,
     )?;
+    if let (Comfort::Wk, EvaluatorSpec::Surrogate(_)) = (a.comfort, a.evaluator) {
+        return refuse(
+            "comfort",
+            "wk needs --evaluator quarter or full: the surrogates are fitted to the unweighted BAcc",
+        );
+    }
     if a.adaptive.adaptive.is_some() {
         return refuse("adaptive", "the adaptive loop's surrogates are fitted on ISO classes in this version; leave out --adaptive with --road");
     }
@@ -254,14 +260,13 @@ fn measured_optimize(
         Method::Nsga2(_) => ("generations", "--generations or --population"),
     };
     ridelab::budget::check_measured(runs, field, "this optimisation", options)?;
-    let (hifi, about) = measured_model(ModelKind::Full, car, &a.car, path)?;
+    let (hifi, about) = measured_model(ModelKind::Full, car, &a.car, path, a.comfort)?;
     let model: Box<dyn Evaluator + Sync> = match a.evaluator {
         EvaluatorSpec::Model(ModelKind::Full) => Box::new(hifi.clone()),
-        EvaluatorSpec::Model(ModelKind::Quarter) => Box::new(MeasuredModel::new(
-            ModelKind::Quarter,
-            car,
-            hifi.road().clone(),
-        )),
+        EvaluatorSpec::Model(ModelKind::Quarter) => Box::new(
+            MeasuredModel::new(ModelKind::Quarter, car, hifi.road().clone())
+                .with_comfort(a.comfort),
+        ),
         // Fitted to the HiFi on this road, its LoFi the quarter car on it.
         EvaluatorSpec::Surrogate(spec) => {
             let samples = sample_plan(&hifi, &a.plan.plan()?, design_box)?;

@@ -6,12 +6,13 @@ use clap::Args;
 use ridelab::analysis::ModelKind;
 use ridelab::car::Car;
 use ridelab::comfort::Comfort;
+use ridelab::criteria::comfort_label;
 use ridelab::error::{Result, RideError};
 use ridelab::evaluate::{Criteria, Evaluator};
 use ridelab::road::Tracks;
 use ridelab::road_profile::{
     criteria_shaped_spectral, describe, road_error, MeasuredModel, MeasuredRoad, Profile,
-    ProfileTracks, RoadDescription, ShapedRoad,
+    ProfileTracks, RoadDescription, ShapedRoad, ShapedSpectrum,
 };
 use serde::Serialize;
 
@@ -91,10 +92,10 @@ pub(crate) fn shaped_road(o: &CarRoad, path: &str) -> Result<(ShapedRoad, Profil
     Ok((shaped, tracks))
 }
 
-/// What a measured road (one scenario, computed on the CPU with the unweighted BAcc)
-/// cannot be combined with, as map and optimize refuse it: cases (`--cases`, `--case`,
-/// a car file's load cases), `--compute gpu`, `--comfort wk`.
-pub(crate) fn one_scenario(cases: bool, gpu: bool, comfort: Comfort) -> Result<()> {
+/// What a measured road (one scenario, computed on the CPU) cannot be combined with, as
+/// map and optimize refuse it: cases (`--cases`, `--case`, a car file's load cases) and
+/// `--compute gpu`.
+pub(crate) fn one_scenario(cases: bool, gpu: bool) -> Result<()> {
     if cases {
         return Err(RideError::field(
             "road",
@@ -107,26 +108,24 @@ pub(crate) fn one_scenario(cases: bool, gpu: bool, comfort: Comfort) -> Result<(
             "gpu: on a measured road the models run on the CPU; use --compute cpu or auto",
         ));
     }
-    if comfort == Comfort::Wk {
-        return Err(RideError::field(
-            "comfort",
-            "wk is computed on ISO classes only in this version; use --comfort bacc with --road",
-        ));
-    }
     Ok(())
 }
 
-/// `kind`'s model of `car` on the measured road of `--road FILE` (map and optimize), and
-/// what their reports say of that road.
+/// `kind`'s model of `car` on the measured road of `--road FILE` (map and optimize) with
+/// `comfort` in its comfort slot, and what their reports say of that road.
 pub(crate) fn measured_model(
     kind: ModelKind,
     car: &Car,
     o: &CarRoad,
     path: &str,
+    comfort: Comfort,
 ) -> Result<(MeasuredModel, MeasuredRoad)> {
     let (shaped, tracks) = shaped_road(o, path)?;
     let about = MeasuredRoad::of(path, &shaped, tracks);
-    Ok((MeasuredModel::new(kind, car, shaped), about))
+    Ok((
+        MeasuredModel::new(kind, car, shaped).with_comfort(comfort),
+        about,
+    ))
 }
 
 /// `eval --road FILE`: the criteria on a measured road by the exact route (the model
@@ -143,10 +142,17 @@ pub(crate) struct MeasuredEval {
     bacc: f64,
     dtl: f64,
     sws: f64,
+    /// ISO 2631-1 Wk-weighted RMS body acceleration, m/s^2, exact (the model with the
+    /// road's filters and Wk's).
+    bacc_wk: f64,
+    /// ISO 2631-1 Annex C's label of `bacc_wk`.
+    comfort: &'static str,
     route: &'static str,
     /// The frequency route on the raw Welch PSD.
     spectral: Criteria,
-    /// Largest relative difference of the routes.
+    /// The same for `bacc_wk`.
+    spectral_bacc_wk: f64,
+    /// Largest relative difference of the routes (the criteria and `bacc_wk`).
     route_difference: f64,
     /// The shaping filters' largest relative PSD error over the band.
     fit_error: f64,
@@ -166,12 +172,16 @@ pub(crate) fn eval_measured(
     let (shaped, tracks) = shaped_road(o, path)?;
     let speed = shaped.speed;
     let q = car.quarter();
-    let exact = MeasuredModel::new(kind, datum, shaped.clone()).evaluate(q.ks, q.cs)?;
+    let model = MeasuredModel::new(kind, datum, shaped.clone());
+    let exact = model.evaluate(q.ks, q.cs)?;
+    let bacc_wk = model.with_comfort(Comfort::Wk).evaluate(q.ks, q.cs)?.bacc;
     let spectral = criteria_shaped_spectral(&kind.build(car), &shaped, 1e-8)?.criteria;
+    let spectral_bacc_wk = ShapedSpectrum::new(&kind.build(car), &shaped)?.bacc_wk(1e-8)?;
     let diff = exact
         .to_array()
         .iter()
-        .zip(spectral.to_array())
+        .chain([&bacc_wk])
+        .zip(spectral.to_array().iter().chain([&spectral_bacc_wk]))
         .map(|(a, b)| (a / b - 1.0).abs())
         .fold(0.0, f64::max);
     Ok(MeasuredEval {
@@ -185,8 +195,11 @@ pub(crate) fn eval_measured(
         bacc: exact.bacc,
         dtl: exact.dtl,
         sws: exact.sws,
+        bacc_wk,
+        comfort: comfort_label(bacc_wk),
         route: "exact (shaping filter)",
         spectral,
+        spectral_bacc_wk,
         route_difference: diff,
         fit_error: shaped.fit_error(),
         band_hz: shaped.band_hz,
@@ -197,7 +210,7 @@ pub(crate) fn eval_measured(
 pub(crate) fn measured_text(r: &MeasuredEval) -> String {
     let mut s = format!(
         "{} model, {} on the measured road {} at {} m/s, {} tracks\n{}\n\
-         BAcc {:.5} m/s^2\nDTL  {:.3} N\nSWS  {:.4} mm\n\
+         BAcc {:.5} m/s^2 (ISO 2631-1 Wk-weighted {:.5} m/s^2: {})\nDTL  {:.3} N\nSWS  {:.4} mm\n\
          route {}: the frequency route on the raw PSD differs by {:.1e}; the shaping filter's PSD error {:.1e} over {:.2}..{:.1} Hz\n",
         match r.model {
             ModelKind::Quarter => "Quarter-car (LoFi)",
@@ -209,6 +222,8 @@ pub(crate) fn measured_text(r: &MeasuredEval) -> String {
         format!("{:?}", r.tracks).to_lowercase(),
         crate::text::design_words(r.ks, r.cs),
         r.bacc,
+        r.bacc_wk,
+        r.comfort,
         r.dtl,
         1e3 * r.sws,
         r.route,

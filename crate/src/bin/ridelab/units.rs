@@ -28,7 +28,7 @@ pub(crate) fn unit_of(key: &str) -> Option<&'static str> {
         "gd_n0" | "gd" | "gd_right" => "m^3",
         "n" | "n_min" | "n_max" | "resolution" => "cycle/m",
         // Criteria and their limits.
-        "bacc" | "bacc_wk" | "wk" => "m/s^2",
+        "bacc" | "bacc_wk" | "spectral_bacc_wk" | "wk" => "m/s^2",
         "dtl" | "static_load" | "static_wheel_load" => "N",
         "sws" | "sws_limit" | "road" => "m",
         "t" | "dt" | "duration" | "sample_interval" | "seconds" | "render_seconds"
