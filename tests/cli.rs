@@ -1955,7 +1955,8 @@ fn simulate_json_names_its_series() {
 /// `--comfort wk` on a measured road (issue #31): every cell of the Wk map is `eval --road
 /// FILE`'s `bacc_wk` at that design (the same exact route: 1e-12) and within 3 % of eval's
 /// frequency route on the raw PSD weighted by Wk (`spectral_bacc_wk`, independent); DTL
-/// and SWS are the unweighted map's, bit for bit; the JSON says `comfort: wk`. The front
+/// and SWS are the unweighted map's, bit for bit; the JSON says `comfort: wk` and the text
+/// "BAcc (Wk)". The front
 /// on the Wk axis takes the LoFi or the HiFi (its datum is eval's `bacc_wk`); a surrogate
 /// evaluator is refused naming `comfort` (it is fitted to the unweighted BAcc).
 #[test]
@@ -2000,6 +2001,25 @@ fn wk_comfort_takes_a_measured_road() {
                 assert!(cell < plain["bacc"][j * ks.len() + i].as_f64().unwrap());
             }
         }
+        let (code, text, _) = ridelab(&[
+            "map",
+            "--model",
+            model,
+            "--road",
+            &road,
+            "--comfort",
+            "wk",
+            "--ks-range",
+            "10000:40000:3",
+            "--cs-range",
+            "500:4000:2",
+        ]);
+        assert_eq!(code, 0);
+        assert!(
+            text.contains("datum Ks 19.960 kN/m, Cs 1.2900 kNs/m: BAcc (Wk) ")
+                && text.contains("BAcc (Wk) in m/s^2: least"),
+            "the text names the weighted comfort: {text}"
+        );
         assert!(exact < 1e-12, "{model}: Wk map vs eval: {exact:e}");
         assert!(
             spectral < 3e-2,

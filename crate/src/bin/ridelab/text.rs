@@ -57,8 +57,10 @@ pub(crate) fn map_text(r: &MapReport) -> String {
         g.cs.max / 1e3,
     );
     let d = &r.datum;
+    // "BAcc (Wk)" when the comfort slot holds the Wk-weighted value.
+    let bacc = r.comfort.label();
     s += &format!(
-        "datum {}: BAcc {:.5} m/s^2, DTL {:.3} N, SWS {:.4} mm\n",
+        "datum {}: {bacc} {:.5} m/s^2, DTL {:.3} N, SWS {:.4} mm\n",
         design_words(d.ks, d.cs),
         d.criteria.bacc,
         d.criteria.dtl,
@@ -66,7 +68,7 @@ pub(crate) fn map_text(r: &MapReport) -> String {
     );
     let relative = r.scale == Scale::Relative;
     for (name, field, unit, factor, digits) in [
-        ("BAcc", &r.bacc, "m/s^2", 1.0, 5),
+        (bacc, &r.bacc, "m/s^2", 1.0, 5),
         ("DTL", &r.dtl, "N", 1.0, 2),
         ("SWS", &r.sws, "mm", 1e3, 4),
     ] {
