@@ -2049,6 +2049,52 @@ fn wk_comfort_takes_a_measured_road() {
     );
 }
 
+/// `surrogate --road FILE --adaptive K` (issue #31): the loop runs on the measured road as
+/// on an ISO class: the plan's and the added samples' HiFi values are `eval --road`'s at
+/// their designs (the same exact route: 1e-12), the added runs are numbered after the
+/// plan's, and the HiFi evaluations are the samples, the validation grid and the datum.
+#[test]
+fn the_adaptive_loop_takes_a_measured_road() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    let road = format!("{root}/assets/roads/concrete-slab-5m.csv");
+    let v = json(&[
+        "surrogate",
+        "--approach",
+        "gp-mul",
+        "--plan",
+        "ae:5",
+        "--adaptive",
+        "2",
+        "--candidates",
+        "11",
+        "--predict",
+        "grid:4",
+        "--road",
+        &road,
+    ]);
+    assert_eq!(v["road"]["file"], road.as_str());
+    let samples = v["samples"].as_array().unwrap();
+    assert_eq!(samples.len(), 7);
+    let added = v["adaptive"]["added"].as_array().unwrap();
+    assert_eq!(added.len(), 2);
+    for (i, a) in added.iter().enumerate() {
+        assert_eq!(a["run"], 6 + i);
+        assert_eq!(a["sample"], samples[5 + i]);
+    }
+    for s in samples {
+        let (ks, cs) = (s["ks"].to_string(), s["cs"].to_string());
+        let e = json(&[
+            "eval", "--model", "full", "--road", &road, "--ks", &ks, "--cs", &cs,
+        ]);
+        for key in ["bacc", "dtl", "sws"] {
+            let (a, b) = (s["hifi"][key].as_f64().unwrap(), e[key].as_f64().unwrap());
+            assert!((a / b - 1.0).abs() < 1e-12, "{key}: {a} vs eval {b}");
+        }
+    }
+    // 7 samples, the 4 x 4 validation grid and the datum (the SWS limit's context).
+    assert_eq!(v["hifi_evaluations"], 7 + 16 + 1);
+}
+
 /// `map --road FILE`, `optimize --road FILE` and `surrogate --road FILE` (issue #31): every map cell is
 /// `eval --road FILE` at that design (the same exact route: 1e-12) and within 3 % of the
 /// frequency route on the raw measured PSD (an independent route: the shipped class C
@@ -2056,8 +2102,9 @@ fn wk_comfort_takes_a_measured_road() {
 /// is 13 %); the optimisation's datum and re-check are eval's HiFi on the same road, its
 /// front points eval's LoFi; the surrogate's HiFi samples are eval's HiFi; the JSON
 /// names the road file; a surrogate evaluator's pick is re-checked on eval's HiFi; one
-/// scenario, so cases, an adaptive loop, an oversized grid and Wk comfort with a
-/// surrogate are refused naming the option, and the report still takes --class only.
+/// scenario, so cases, an adaptive optimisation, an oversized grid or validation grid and
+/// Wk comfort with a surrogate are refused naming the option, and the report still takes
+/// --class only.
 #[test]
 fn map_optimize_and_surrogate_take_a_measured_road() {
     let road = "assets/roads/class-c-waviness-2.5.csv";
@@ -2360,18 +2407,6 @@ fn map_optimize_and_surrogate_take_a_measured_road() {
             "comfort",
         ),
         (vec!["report", "--road", road], "road"),
-        (
-            vec![
-                "surrogate",
-                "--approach",
-                "vba-qts",
-                "--road",
-                road,
-                "--adaptive",
-                "2",
-            ],
-            "adaptive",
-        ),
         (
             vec![
                 "surrogate",

@@ -81,16 +81,11 @@ fn iso_surrogate(a: &SurrogateArgs) -> Result<SurrogateReport> {
 
 /// `surrogate --road FILE`: the surrogate's HiFi samples and validation grid are the full
 /// car on the measured road, its LoFi the quarter car on that road (both by the exact
-/// route with the road's shaping filters). One scenario: `--adaptive` and a car file's
-/// load cases are refused naming them; the HiFi runs (plan and validation grid) are
-/// bounded by [`ridelab::budget::MAX_MEASURED_RUNS`].
+/// route with the road's shaping filters); `--adaptive K` adds K HiFi runs there one at a
+/// time as on an ISO class. One scenario: a car file's load cases are refused naming
+/// them; the HiFi runs (plan, adaptive runs and validation grid) are bounded by
+/// [`ridelab::budget::MAX_MEASURED_RUNS`].
 fn measured_surrogate(a: &SurrogateArgs, path: &str) -> Result<SurrogateReport> {
-    if a.adaptive.adaptive.is_some() {
-        return Err(RideError::field(
-            "adaptive",
-            "the adaptive loop runs on ISO classes in this version; leave out --adaptive with --road",
-        ));
-    }
     let (car, loads, _) = car_loads_road_of(&a.car)?;
     if !loads.is_empty() {
         return Err(RideError::field(
@@ -101,17 +96,25 @@ fn measured_surrogate(a: &SurrogateArgs, path: &str) -> Result<SurrogateReport> 
     let design_box: DesignBox = a.design_box.design_box()?;
     let plan = a.plan.plan()?;
     let levels = a.predict.unwrap_or(VALIDATION_LEVELS) as u64;
+    let options = a.adaptive.options();
     ridelab::budget::check_measured(
-        plan.points(&design_box).len() as u64 + levels * levels,
+        plan.points(&design_box).len() as u64
+            + options.map_or(0, |o| o.runs as u64)
+            + levels * levels,
         "plan",
-        "the plan and its validation grid",
-        "the plan's size or --predict",
+        "the plan, the adaptive runs and the validation grid",
+        "the plan's size, --adaptive or --predict",
     )?;
     let (shaped, tracks) = shaped_road(&a.car, path)?;
     let about = MeasuredRoad::of(path, &shaped, tracks);
     let setting = Setting::measured(&car, shaped.clone(), &design_box)?;
     let hifi = MeasuredModel::new(ModelKind::Full, &car, shaped);
-    let mut r = surrogate_report_on(a.approach, a.plan, &setting, hifi, a.predict)?;
+    let mut r = match options {
+        None => surrogate_report_on(a.approach, a.plan, &setting, hifi, a.predict)?,
+        Some(options) => adaptive::surrogate_report_on(
+            a.approach, a.plan, &car, &setting, hifi, a.predict, options,
+        )?,
+    };
     r.road = RoadScenario::Measured(about);
     Ok(r)
 }

@@ -27,7 +27,7 @@ mod reports;
 mod study;
 
 pub use check::{front_check, FrontCheck, HifiFront, HIFI_FEASIBILITY_TOLERANCE};
-pub use reports::{optimize_report, surrogate_report, AdaptiveOptimizeReport};
+pub use reports::{optimize_report, surrogate_report, surrogate_report_on, AdaptiveOptimizeReport};
 pub use study::{adaptive_study, AdaptiveStudy, StudyOptions, StudyRow};
 
 use crate::car::Car;

@@ -30,9 +30,32 @@ pub fn surrogate_report(
     options: AdaptiveOptions,
 ) -> Result<SurrogateReport> {
     let setting = Setting::new(car, road, design_box)?;
-    let hifi = Counted::new(HiFi::new(car, road)?);
+    surrogate_report_on(
+        spec,
+        plan,
+        car,
+        &setting,
+        HiFi::new(car, road)?,
+        predict_grid,
+        options,
+    )
+}
+
+/// [`surrogate_report`] on `setting` (an ISO class or a measured road: its LoFi and box)
+/// with `hifi` the full car of `car` there (the one evaluator of the plan, the loop's
+/// runs, the datum and the validation grid).
+pub fn surrogate_report_on<E: Evaluator>(
+    spec: SurrogateSpec,
+    plan: PlanSpec,
+    car: &Car,
+    setting: &Setting,
+    hifi: E,
+    predict_grid: Option<usize>,
+    options: AdaptiveOptions,
+) -> Result<SurrogateReport> {
+    let hifi = Counted::new(hifi);
     let decision = Decision::of_car(car, &hifi)?;
-    let state = run(spec, &setting, &hifi, plan, &decision, options)?;
+    let state = run(spec, setting, &hifi, plan, &decision, options)?;
     let report = state.report();
     let samples = state.samples().to_vec();
     let model = state.into_model();
@@ -56,7 +79,7 @@ pub fn surrogate_report(
         options: options.lm(),
         adaptive: Some(report),
     };
-    fitted.report(&setting, &hifi, predict_grid)
+    fitted.report(setting, &hifi, predict_grid)
 }
 
 /// `ridelab optimize` with an adaptive surrogate: the optimisation report with the loop's
