@@ -26,10 +26,10 @@
 //! fractions cancel ([`PoleZeroFilter::new`]). The caller then takes the modal route with the
 //! filters. Checked against the Lyapunov route on the road (`tests/hifi_roads.rs`).
 
-use super::{OnPoint, Point, Residue, ResidueFamily, RESIDUE_TOLERANCE};
-use crate::criteria::modal::{add_source_variances, inverse_sums};
+use super::{OnPoint, Point, Residue, ResidueFamily, MAX_GROUPS, MAX_ROOTS, RESIDUE_TOLERANCE};
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
+use crate::math;
 use crate::model::N_OUT;
 use num_complex::Complex64 as C64;
 
@@ -107,6 +107,17 @@ impl PoleZeroFilter {
             })
     }
 
+    /// `F(s)` as [`PoleZeroFilter::at`], the numerator's and denominator's products apart
+    /// and one division (what a map point takes; the two agree to rounding).
+    pub fn at_once(&self, s: C64) -> C64 {
+        let (mut num, mut den) = (C64::new(self.gain, 0.0), C64::new(1.0, 0.0));
+        for (z, p) in self.zeros.iter().zip(&self.poles) {
+            num *= s + z;
+            den *= s + p;
+        }
+        num / den
+    }
+
     /// `F(0) = K prod z_i / p_i`.
     pub fn dc_gain(&self) -> f64 {
         self.zeros
@@ -131,16 +142,21 @@ pub struct ShapedResidueRoute {
 
 impl ShapedResidueRoute {
     /// The route over `parts`; fails on no part, a weight that is not finite and
-    /// positive, or a family of more than one source.
+    /// positive, a family of more than one source, or a filter of more than
+    /// [`MAX_FILTER_POLES`] poles.
     pub fn new(parts: Vec<(ResidueFamily, f64, PoleZeroFilter)>) -> Result<ShapedResidueRoute> {
         let ok = !parts.is_empty()
-            && parts
-                .iter()
-                .all(|(f, w, _)| w.is_finite() && *w > 0.0 && f.sources.len() == 1);
+            && parts.iter().all(|(f, w, filter)| {
+                w.is_finite()
+                    && *w > 0.0
+                    && f.sources.len() == 1
+                    && filter.fractions.len() <= MAX_FILTER_POLES
+            });
         if !ok {
-            return Err(RideError::Numerical(
-                "shaped residue route: needs one-source families with positive weights".into(),
-            ));
+            return Err(RideError::Numerical(format!(
+                "shaped residue route: needs one-source families with positive weights and \
+                 filters of at most {MAX_FILTER_POLES} poles"
+            )));
         }
         Ok(ShapedResidueRoute { parts })
     }
@@ -180,81 +196,323 @@ impl OnPoint for Shaped<'_> {
             return None;
         }
         let p = &point.poles;
-        // Every root (a kept root and its conjugate), then the filter's poles.
-        let mut lam: Vec<C64> = Vec::with_capacity(2 * NP + self.filter.fractions.len());
-        let mut kept: Vec<(usize, bool)> = Vec::with_capacity(2 * NP);
+        let fractions = &self.filter.fractions;
+        // The poles of `F(s) T_g(s) / s`: one root of each conjugate pair, then the real
+        // poles (the model's real roots, then the filter's).
+        let mut ps = ReducedPoles::default();
+        let mut upper = [0usize; MAX_PAIRS];
+        let mut real = [0usize; MAX_ROOTS];
+        let (mut nu, mut nrr) = (0, 0);
         for k in 0..NP {
             if p.weight[k] == 0.0 {
                 continue;
             }
-            let l = C64::new(p.lam.re[k], p.lam.im[k]);
-            lam.push(l);
-            kept.push((k, false));
             if p.pair[k] {
-                lam.push(l.conj());
-                kept.push((k, true));
+                ps.u[nu] = C64::new(p.lam.re[k], p.lam.im[k]);
+                upper[nu] = k;
+                nu += 1;
+            } else {
+                ps.r[nrr] = p.lam.re[k];
+                real[nrr] = k;
+                nrr += 1;
             }
         }
-        let nr = lam.len();
-        for &(mu, _) in &self.filter.fractions {
-            if lam[..nr]
-                .iter()
-                .any(|&l| (l - mu).norm_sqr() <= 1e-6 * l.norm_sqr())
+        let near = |l: C64, mu: f64| (l - mu).norm_sqr() <= 1e-6 * l.norm_sqr();
+        for (i, &(mu, _)) in fractions.iter().enumerate() {
+            if ps.u[..nu].iter().any(|&l| near(l, mu))
+                || ps.r[..nrr].iter().any(|&l| near(C64::new(l, 0.0), mu))
             {
                 return None;
             }
-            lam.push(C64::new(mu, 0.0));
+            ps.r[nrr + i] = mu;
         }
-        let f_lam: Vec<C64> = lam[..nr].iter().map(|&l| self.filter.at(l)).collect();
+        ps.nu = nu;
+        ps.nr = nrr + fractions.len();
+        let weights = ps.weights();
+        let f_u: [C64; MAX_PAIRS] = std::array::from_fn(|k| {
+            if k < nu {
+                self.filter.at_once(ps.u[k])
+            } else {
+                C64::new(0.0, 0.0)
+            }
+        });
+        let f_r: [f64; MAX_ROOTS] = std::array::from_fn(|k| {
+            if k < nrr {
+                self.filter.at_once(C64::new(ps.r[k], 0.0)).re
+            } else {
+                0.0
+            }
+        });
+        // 1 / (mu_i - lambda_k) for the filter's poles against the roots, once a point
+        // (every group and output takes them).
+        let zero = C64::new(0.0, 0.0);
+        let mut to_u = [[zero; MAX_PAIRS]; MAX_FILTER_POLES];
+        let mut to_r = [[0.0; MAX_ROOTS]; MAX_FILTER_POLES];
+        for (i, &(mu, _)) in fractions.iter().enumerate() {
+            for k in 0..nu {
+                to_u[i][k] = (C64::new(mu, 0.0) - ps.u[k]).inv();
+            }
+            for k in 0..nrr {
+                to_r[i][k] = 1.0 / (mu - ps.r[k]);
+            }
+        }
         let f0 = self.filter.dc_gain();
         let groups = &family.sources[0];
         let res = &point.sources[0];
-        let mut rho: Vec<Vec<Vec<C64>>> = Vec::with_capacity(groups.len());
-        let mut gains: Vec<(f64, [f64; N_OUT])> = Vec::with_capacity(groups.len());
+        let mut rho = [[ReducedResidues::default(); N_OUT]; MAX_GROUPS];
+        let mut gains = [(0.0, [0.0; N_OUT]); MAX_GROUPS];
         for (g, grp) in groups.iter().enumerate() {
-            let mut per_output = Vec::with_capacity(N_OUT);
-            for o in 0..N_OUT {
+            for (o, out) in rho[g].iter_mut().enumerate() {
                 let r = &res.rho[g][o];
-                let all: Vec<C64> = kept
-                    .iter()
-                    .map(|&(k, conj)| {
-                        let z = C64::new(r.re[k], r.im[k]);
-                        if conj {
-                            z.conj()
-                        } else {
-                            z
-                        }
-                    })
-                    .collect();
+                let ru: [C64; MAX_PAIRS] = std::array::from_fn(|k| {
+                    if k < nu {
+                        C64::new(r.re[upper[k]], r.im[upper[k]])
+                    } else {
+                        C64::new(0.0, 0.0)
+                    }
+                });
+                let rr: [f64; MAX_ROOTS] =
+                    std::array::from_fn(|k| if k < nrr { r.re[real[k]] } else { 0.0 });
                 let gain = res.gain[g][o];
-                // T_g(mu) / mu, real for a real mu.
-                let t_over_s = |mu: f64| -> f64 {
-                    let s = C64::new(mu, 0.0);
-                    all.iter()
-                        .zip(&lam[..nr])
-                        .map(|(&rk, &lk)| rk / (s - lk))
-                        .sum::<C64>()
-                        .re
-                        + gain / mu
-                };
-                let row: Vec<C64> = all
-                    .iter()
-                    .zip(&f_lam)
-                    .map(|(&rk, &f)| rk * f)
-                    .chain(
-                        self.filter
-                            .fractions
-                            .iter()
-                            .map(|&(mu, c)| C64::new(c * t_over_s(mu), 0.0)),
-                    )
-                    .collect();
-                per_output.push(row);
+                for k in 0..nu {
+                    out.u[k] = ru[k] * f_u[k];
+                }
+                for k in 0..nrr {
+                    out.r[k] = rr[k] * f_r[k];
+                }
+                // c_i T_g(mu_i) / mu_i, real: a pair's two roots give twice the real part.
+                for (i, &(mu, c)) in fractions.iter().enumerate() {
+                    let pairs: f64 = (0..nu).map(|k| (ru[k] * to_u[i][k]).re).sum();
+                    let reals: f64 = (0..nrr).map(|k| rr[k] * to_r[i][k]).sum();
+                    out.r[nrr + i] = c * (2.0 * pairs + reals + gain / mu);
+                }
             }
-            rho.push(per_output);
-            gains.push((grp.tau, res.gain[g].map(|v| f0 * v)));
+            gains[g] = (grp.tau, res.gain[g].map(|v| f0 * v));
         }
         let mut var = [0.0; N_OUT];
-        add_source_variances(&mut var, &lam, &inverse_sums(&lam), &gains, &rho, 1.0);
+        add_reduced_variances(&mut var, &ps, &weights, &gains[..groups.len()], &rho);
         Some(var)
+    }
+}
+
+/// Most kept roots that are one of a conjugate pair (a degree-8 denominator).
+const MAX_PAIRS: usize = MAX_ROOTS / 2;
+/// Most poles of a shaping filter this route takes ([`ShapedResidueRoute::new`] refuses
+/// more; the fits make at most 8).
+const MAX_FILTER_POLES: usize = 8;
+/// Most real poles: the model's real roots and the filter's.
+const MAX_REAL: usize = MAX_ROOTS + MAX_FILTER_POLES;
+
+/// The poles of one source's transfer in the form the reduced sums take them (why and how:
+/// [`add_reduced_variances`]): `u`, one root of each conjugate pair (the other is its
+/// conjugate), and `r`, the real poles, on fixed places (a map point allocates nothing).
+#[derive(Default)]
+struct ReducedPoles {
+    u: [C64; MAX_PAIRS],
+    nu: usize,
+    r: [f64; MAX_REAL],
+    nr: usize,
+}
+
+/// The residues of one group's transfer to one output on [`ReducedPoles`]' places (a
+/// pair's other root has the conjugate residue, as the transfer is real).
+#[derive(Clone, Copy)]
+struct ReducedResidues {
+    u: [C64; MAX_PAIRS],
+    r: [f64; MAX_REAL],
+}
+
+impl Default for ReducedResidues {
+    fn default() -> Self {
+        ReducedResidues {
+            u: [C64::new(0.0, 0.0); MAX_PAIRS],
+            r: [0.0; MAX_REAL],
+        }
+    }
+}
+
+/// The closed form's weights `w(k, m) = -1 / (lambda_k + lambda_m)` on [`ReducedPoles`]:
+/// `uu[k][m]` and `uc[k][m]` for a pair root against a pair root and against its
+/// conjugate, `ur[k][m]` for a pair root against a real pole, `rr[k][m]` for two real ones.
+struct ReducedWeights {
+    uu: [[C64; MAX_PAIRS]; MAX_PAIRS],
+    uc: [[C64; MAX_PAIRS]; MAX_PAIRS],
+    ur: [[C64; MAX_REAL]; MAX_PAIRS],
+    rr: [[f64; MAX_REAL]; MAX_REAL],
+}
+
+impl ReducedPoles {
+    fn weights(&self) -> ReducedWeights {
+        let zero = C64::new(0.0, 0.0);
+        let mut w = ReducedWeights {
+            uu: [[zero; MAX_PAIRS]; MAX_PAIRS],
+            uc: [[zero; MAX_PAIRS]; MAX_PAIRS],
+            ur: [[zero; MAX_REAL]; MAX_PAIRS],
+            rr: [[0.0; MAX_REAL]; MAX_REAL],
+        };
+        let (u, r) = (&self.u[..self.nu], &self.r[..self.nr]);
+        for (k, &uk) in u.iter().enumerate() {
+            for (m, &um) in u.iter().enumerate() {
+                w.uu[k][m] = -(uk + um).inv();
+                w.uc[k][m] = -(uk + um.conj()).inv();
+            }
+            for (m, &rm) in r.iter().enumerate() {
+                w.ur[k][m] = -(uk + rm).inv();
+            }
+        }
+        for (k, &rk) in r.iter().enumerate() {
+            for (m, &rm) in r.iter().enumerate() {
+                w.rr[k][m] = -1.0 / (rk + rm);
+            }
+        }
+        w
+    }
+}
+
+/// Adds one source's variances (unit intensity) to `var`: the closed form of
+/// [`crate::criteria::criteria_modal`] over the poles `P` of its transfer, the wheel
+/// groups `(tau_g, G_g)` (by increasing delay) and the residues `rho[g][o]`, summed on
+/// half the terms. The poles are closed under conjugation with conjugate residues (a real
+/// transfer), so the sum over all of them,
+///
+/// ```text
+/// t = Re sum_{k, m in P} a_k b_m w(k, m),   a = rho_g,  b_m = rho_lm e^(lambda_m dt),
+/// ```
+///
+/// takes the rows of one root `k` of each pair (`U`) twice and the real poles' (`R`) once:
+///
+/// ```text
+/// t = 2 Re sum_{k in U} a_k [sum_{m in U} (b_m w(k, m) + conj(b_m) w(k, conj m))
+///                            + sum_{m in R} b_m w(k, m)]
+///   + sum_{k in R} a_k [2 Re sum_{m in U} b_m w(k, m) + sum_{m in R} b_m w(k, m)],
+/// ```
+///
+/// the last line in real arithmetic but for one product per pair: with the four root
+/// pairs of a half car and an 8-pole filter, 96 complex and 64 real products per group
+/// pair and output instead of 256 complex ones. The same sums as
+/// [`crate::criteria::modal::add_source_variances`] on the whole pole list, to rounding
+/// (tested).
+fn add_reduced_variances(
+    var: &mut [f64; N_OUT],
+    ps: &ReducedPoles,
+    w: &ReducedWeights,
+    groups: &[(f64, [f64; N_OUT])],
+    rho: &[[ReducedResidues; N_OUT]; MAX_GROUPS],
+) {
+    let (nu, nr) = (ps.nu, ps.nr);
+    let one = C64::new(1.0, 0.0);
+    for (gi, &(g_tau, g_gain)) in groups.iter().enumerate() {
+        for (li, &(l_tau, _)) in groups.iter().enumerate().take(gi + 1) {
+            let dt = g_tau - l_tau;
+            let mut eu = [one; MAX_PAIRS];
+            let mut er = [1.0; MAX_REAL];
+            if dt != 0.0 {
+                for k in 0..nu {
+                    eu[k] = math::cexp(ps.u[k] * dt);
+                }
+                for k in 0..nr {
+                    er[k] = math::exp(ps.r[k] * dt);
+                }
+            }
+            for (o, vo) in var.iter_mut().enumerate() {
+                let (a, l) = (&rho[gi][o], &rho[li][o]);
+                let bu: [C64; MAX_PAIRS] = std::array::from_fn(|m| l.u[m] * eu[m]);
+                let br: [f64; MAX_REAL] = std::array::from_fn(|m| l.r[m] * er[m]);
+                let mut tu = C64::new(0.0, 0.0);
+                for k in 0..nu {
+                    let mut inner = C64::new(0.0, 0.0);
+                    for m in 0..nu {
+                        inner += bu[m] * w.uu[k][m] + bu[m].conj() * w.uc[k][m];
+                    }
+                    for m in 0..nr {
+                        inner += w.ur[k][m] * br[m];
+                    }
+                    tu += a.u[k] * inner;
+                }
+                let mut tr = 0.0;
+                for k in 0..nr {
+                    let mut pairs = 0.0;
+                    for m in 0..nu {
+                        pairs += (bu[m] * w.ur[m][k]).re;
+                    }
+                    let mut reals = 0.0;
+                    for m in 0..nr {
+                        reals += br[m] * w.rr[k][m];
+                    }
+                    tr += a.r[k] * (2.0 * pairs + reals);
+                }
+                let mut t = 2.0 * tu.re + tr;
+                if gi != li {
+                    t *= 2.0; // the (l, g) ordered pair gives the same value
+                    let bx_u: C64 = (0..nu).map(|k| l.u[k] * (eu[k] - 1.0) / ps.u[k]).sum();
+                    let bx_r: f64 = (0..nr).map(|k| l.r[k] * (er[k] - 1.0) / ps.r[k]).sum();
+                    t -= 2.0 * g_gain[o] * (2.0 * bx_u.re + bx_r);
+                }
+                *vo += t;
+            }
+        }
+    }
+    for &(g_tau, g_gain) in groups {
+        for &(l_tau, l_gain) in groups {
+            for (o, v) in var.iter_mut().enumerate() {
+                *v += g_gain[o] * l_gain[o] * g_tau.min(l_tau);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::criteria::modal::{add_source_variances, inverse_sums};
+
+    /// The reduced sums equal the closed form on the whole pole list (every root with its
+    /// conjugate, conjugate residues), with two wheel groups 0.1 s apart, real roots of the
+    /// model among the poles and static gains, to 1e-12.
+    #[test]
+    fn the_reduced_sums_are_the_closed_form_on_every_pole() {
+        let u = [C64::new(-1.2, 6.5), C64::new(-9.0, 55.0)];
+        let r = [-30.0, -0.4, -4.5, -80.0];
+        let mut ps = ReducedPoles::default();
+        ps.u[..2].copy_from_slice(&u);
+        ps.r[..4].copy_from_slice(&r);
+        (ps.nu, ps.nr) = (2, 4);
+        let groups = [(0.0, [0.3, -1.1, 0.02]), (0.1, [-0.2, 0.7, 0.05])];
+        let mut rho = [[ReducedResidues::default(); N_OUT]; MAX_GROUPS];
+        let mut full: Vec<Vec<Vec<C64>>> = vec![vec![Vec::new(); N_OUT]; 2];
+        for g in 0..2 {
+            for o in 0..N_OUT {
+                let x = (1 + g * N_OUT + o) as f64;
+                let ru = [
+                    C64::new(0.3 * x, -1.0 + 0.1 * x),
+                    C64::new(-2.0 / x, 0.5 * x),
+                ];
+                let rr = [0.7 - 0.2 * x, 1.0 / x, -0.05 * x, 2.0];
+                rho[g][o].u[..2].copy_from_slice(&ru);
+                rho[g][o].r[..4].copy_from_slice(&rr);
+                full[g][o] = ru
+                    .iter()
+                    .flat_map(|&z| [z, z.conj()])
+                    .chain(rr.iter().map(|&x| C64::new(x, 0.0)))
+                    .collect();
+            }
+        }
+        let lam: Vec<C64> = u
+            .iter()
+            .flat_map(|&z| [z, z.conj()])
+            .chain(r.iter().map(|&x| C64::new(x, 0.0)))
+            .collect();
+        let (mut a, mut b) = ([0.0; N_OUT], [0.0; N_OUT]);
+        add_reduced_variances(&mut a, &ps, &ps.weights(), &groups, &rho);
+        add_source_variances(&mut b, &lam, &inverse_sums(&lam), &groups, &full, 1.0);
+        for o in 0..N_OUT {
+            assert!(b[o].abs() > 1e-3, "output {o}: {}", b[o]);
+            assert!(
+                (a[o] / b[o] - 1.0).abs() < 1e-12,
+                "output {o}: {} vs {}",
+                a[o],
+                b[o]
+            );
+        }
     }
 }
