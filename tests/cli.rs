@@ -2095,6 +2095,59 @@ fn the_adaptive_loop_takes_a_measured_road() {
     assert_eq!(v["hifi_evaluations"], 7 + 16 + 1);
 }
 
+/// `optimize --road FILE --adaptive K` (issue #31): the loop runs on the measured road, so
+/// every added sample's HiFi value is `eval --road`'s full car at its design and the pick's
+/// re-check is `eval --road`'s at the pick (the same exact route: 1e-12); the runs are
+/// numbered after the plan's, and the JSON names the road file.
+#[test]
+fn an_adaptive_optimisation_takes_a_measured_road() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    let road = format!("{root}/assets/roads/concrete-slab-5m.csv");
+    let v = json(&[
+        "optimize",
+        "--evaluator",
+        "gp-mul",
+        "--plan",
+        "ae:5",
+        "--adaptive",
+        "2",
+        "--candidates",
+        "11",
+        "--grid",
+        "41",
+        "--levels",
+        "2",
+        "--road",
+        &road,
+    ]);
+    assert_eq!(v["road"]["file"], road.as_str());
+    let eval = |ks: &Value, cs: &Value| {
+        let (ks, cs) = (ks.to_string(), cs.to_string());
+        json(&[
+            "eval", "--model", "full", "--road", &road, "--ks", &ks, "--cs", &cs,
+        ])
+    };
+    let close = |a: &Value, b: &Value, what: &str| {
+        for key in ["bacc", "dtl", "sws"] {
+            let (a, b) = (a[key].as_f64().unwrap(), b[key].as_f64().unwrap());
+            assert!((a / b - 1.0).abs() < 1e-12, "{what} {key}: {a} vs eval {b}");
+        }
+    };
+    let added = v["adaptive"]["added"].as_array().unwrap();
+    assert_eq!(added.len(), 2);
+    for (i, a) in added.iter().enumerate() {
+        assert_eq!(a["run"], 6 + i);
+        let s = &a["sample"];
+        close(&s["hifi"], &eval(&s["ks"], &s["cs"]), "added sample");
+    }
+    let pick = &v["pick"];
+    close(
+        &v["hifi_recheck"]["rechecked"],
+        &eval(&pick["ks"], &pick["cs"]),
+        "re-check",
+    );
+}
+
 /// `map --road FILE`, `optimize --road FILE` and `surrogate --road FILE` (issue #31): every map cell is
 /// `eval --road FILE` at that design (the same exact route: 1e-12) and within 3 % of the
 /// frequency route on the raw measured PSD (an independent route: the shipped class C
@@ -2102,7 +2155,7 @@ fn the_adaptive_loop_takes_a_measured_road() {
 /// is 13 %); the optimisation's datum and re-check are eval's HiFi on the same road, its
 /// front points eval's LoFi; the surrogate's HiFi samples are eval's HiFi; the JSON
 /// names the road file; a surrogate evaluator's pick is re-checked on eval's HiFi; one
-/// scenario, so cases, an adaptive optimisation, an oversized grid or validation grid and
+/// scenario, so cases, an adaptive loop on a model evaluator, an oversized grid or validation grid and
 /// Wk comfort with a surrogate are refused naming the option, and the report still takes
 /// --class only.
 #[test]

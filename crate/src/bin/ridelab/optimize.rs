@@ -248,30 +248,53 @@ fn measured_optimize(
             "wk needs --evaluator quarter or full: the surrogates are fitted to the unweighted BAcc",
         );
     }
-    if a.adaptive.adaptive.is_some() {
-        return refuse("adaptive", "the adaptive loop's surrogates are fitted on ISO classes in this version; leave out --adaptive with --road");
+    let looped = a.adaptive.options();
+    if let (Some(_), EvaluatorSpec::Model(_)) = (looped, a.evaluator) {
+        return refuse(
+            "adaptive",
+            "the adaptive loop refits a surrogate; give a surrogate --evaluator",
+        );
     }
+    // The optimisation's runs, and the loop's HiFi runs (its plan and added runs).
+    let plan_runs = match looped {
+        Some(o) => a.plan.plan()?.points(design_box).len() as u64 + o.runs as u64,
+        None => 0,
+    };
     let runs = match method {
         Method::Stm(p) => ridelab::budget::stm_runs(p.grid, p.levels),
         Method::Nsga2(p) => (p.population as u64).saturating_mul(p.generations as u64 + 1),
-    };
+    }
+    .saturating_add(plan_runs);
     let (field, options) = match method {
         Method::Stm(_) => ("grid", "--grid or --levels"),
         Method::Nsga2(_) => ("generations", "--generations or --population"),
     };
     ridelab::budget::check_measured(runs, field, "this optimisation", options)?;
     let (hifi, about) = measured_model(ModelKind::Full, car, &a.car, path, a.comfort)?;
+    let mut report = None;
     let model: Box<dyn Evaluator + Sync> = match a.evaluator {
         EvaluatorSpec::Model(ModelKind::Full) => Box::new(hifi.clone()),
         EvaluatorSpec::Model(ModelKind::Quarter) => Box::new(
             MeasuredModel::new(ModelKind::Quarter, car, hifi.road().clone())
                 .with_comfort(a.comfort),
         ),
-        // Fitted to the HiFi on this road, its LoFi the quarter car on it.
+        // Fitted to the HiFi on this road, its LoFi the quarter car on it; with
+        // --adaptive, the loop's final surrogate (the optimisation's objectives and STM).
         EvaluatorSpec::Surrogate(spec) => {
-            let samples = sample_plan(&hifi, &a.plan.plan()?, design_box)?;
             let setting = Setting::measured(car, hifi.road().clone(), design_box)?;
-            Box::new(spec.fit(&setting, &samples, &LmOptions::default())?)
+            match looped {
+                None => {
+                    let samples = sample_plan(&hifi, &a.plan.plan()?, design_box)?;
+                    Box::new(spec.fit(&setting, &samples, &LmOptions::default())?)
+                }
+                Some(options) => {
+                    let decision =
+                        adaptive::Decision::for_method(car, &hifi, method, objectives.clone())?;
+                    let state = adaptive::run(spec, &setting, &hifi, a.plan, &decision, options)?;
+                    report = Some(state.report());
+                    Box::new(state.into_model())
+                }
+            }
         }
     };
     let mut out = optimize_on_models(car, design_box, model, &hifi, method, objectives, a.comfort)?;
@@ -282,17 +305,28 @@ fn measured_optimize(
     if let Some(p) = svg_target(a.svg.as_deref())? {
         write_front_svg(&p, &out)?;
     }
+    let loop_text = report.as_ref().map(adaptive_text).unwrap_or_default();
     if a.json {
-        let mut v = serde_json::to_value(&out).map_err(|e| RideError::Numerical(e.to_string()))?;
-        v["road"] =
-            serde_json::to_value(&about).map_err(|e| RideError::Numerical(e.to_string()))?;
+        let mut v = match report {
+            None => to_value(&out)?,
+            Some(adaptive) => to_value(&adaptive::AdaptiveOptimizeReport {
+                optimize: out,
+                adaptive,
+            })?,
+        };
+        v["road"] = to_value(&about)?;
         return json(&v);
     }
     Ok(format!(
-        "on {}\n{}",
+        "on {}\n{}{loop_text}",
         crate::text::scenario_words(&RoadScenario::Measured(about)),
         optimize_text(&out)
     ))
+}
+
+/// `v` as a JSON value (to add the measured road to a report).
+fn to_value<T: serde::Serialize>(v: &T) -> Result<serde_json::Value> {
+    serde_json::to_value(v).map_err(|e| RideError::Numerical(e.to_string()))
 }
 
 /// The loop's added runs, one line each.

@@ -37,7 +37,8 @@ use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::optimize::study::REFERENCE_MARGIN;
 use crate::optimize::{
-    hypervolume, min_max_pick, reference_point, stm, FrontPoint, Pick, StmParams, SuspensionProblem,
+    hypervolume, min_max_pick, reference_point, stm, FrontPoint, Method, Pick, StmParams,
+    SuspensionProblem,
 };
 use crate::surrogate::fit::LmOptions;
 use crate::surrogate::infill::{choose, reason, Candidate, Infill, InfillSetting};
@@ -170,6 +171,26 @@ impl Decision {
             objectives: DesignObjectives::default(),
             ctx: DosContext::of_model(car, hifi)?,
             stm: StmParams::default(),
+        })
+    }
+
+    /// The decision an optimisation by `method` judges by: `objectives`, the datum's
+    /// criteria on `hifi` (one run), and `method`'s STM settings (STM's defaults for
+    /// NSGA-II), so that the loop's fronts are the optimisation's.
+    pub fn for_method<E: Evaluator + ?Sized>(
+        car: &Car,
+        hifi: &E,
+        method: &Method,
+        objectives: DesignObjectives,
+    ) -> Result<Decision> {
+        objectives.validate()?;
+        Ok(Decision {
+            objectives,
+            ctx: DosContext::of_model(car, hifi)?,
+            stm: match method {
+                Method::Stm(p) => p.clone(),
+                Method::Nsga2(_) => StmParams::default(),
+            },
         })
     }
 

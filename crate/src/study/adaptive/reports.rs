@@ -5,10 +5,10 @@ use super::{run, AdaptiveOptions, AdaptiveReport, Decision};
 use crate::analysis::HiFi;
 use crate::car::Car;
 use crate::design::DesignBox;
-use crate::dos::{DesignObjectives, DosContext};
+use crate::dos::DesignObjectives;
 use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
-use crate::optimize::{Counted, Method, StmParams};
+use crate::optimize::{Counted, Method};
 use crate::road::Road;
 use crate::study::fidelity::{Fitted, SurrogateReport};
 use crate::study::{optimize_model, EvaluatorSpec, OptimizeReport};
@@ -116,14 +116,7 @@ pub fn optimize_report(
     objectives.validate()?;
     let setting = Setting::new(car, road, design_box)?;
     let hifi = HiFi::new(car, road)?;
-    let decision = Decision {
-        objectives: objectives.clone(),
-        ctx: DosContext::of_model(car, &hifi)?,
-        stm: match method {
-            Method::Stm(p) => p.clone(),
-            Method::Nsga2(_) => StmParams::default(),
-        },
-    };
+    let decision = Decision::for_method(car, &hifi, method, objectives.clone())?;
     let state = run(spec, &setting, &hifi, plan, &decision, options)?;
     let adaptive = state.report();
     let model: Box<dyn Evaluator + Sync> = Box::new(state.into_model());
