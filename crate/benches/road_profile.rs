@@ -2,7 +2,8 @@
 //! samples, two tracks) from CSV text, describing it (Welch PSD of both tracks, coherence,
 //! ISO 8608 fit; the target is under 100 ms), shaping it at 20 m/s (Welch PSDs and the
 //! filter fits), and the criteria on the shaped road by the exact routes (the modal route
-//! and the augmented Lyapunov equations behind it; quarter car and full car) and by the
+//! and the augmented Lyapunov equations behind it; quarter car and full car; the quarter
+//! car's closed form, the LoFi of measured-road maps and surrogates) and by the
 //! frequency route on the raw PSD (full car, 1e-6), and a design point with the
 //! Wk-weighted comfort; the baseline is the full car's modal
 //! route on the ISO class C road (the ISO map's route where the residue route declines).
@@ -16,11 +17,11 @@ use ridelab::criteria::criteria_modal;
 use ridelab::evaluate::Evaluator;
 use ridelab::model::{full_car, quarter_car};
 use ridelab::road::{Road, RoadClass};
-use ridelab::road_profile::MeasuredModel;
 use ridelab::road_profile::{
     criteria_shaped, criteria_shaped_modal, criteria_shaped_spectral, describe, synthesize,
     Profile, ProfileTracks, ShapedRoad, Synthesis,
 };
+use ridelab::road_profile::{MeasuredModel, ShapedQuarter};
 use ridelab::Car;
 use std::hint::black_box;
 
@@ -52,6 +53,10 @@ fn road_profile(c: &mut Criterion) {
     let full = full_car(&car);
     g.bench_function("modal route, quarter car", |b| {
         b.iter(|| criteria_shaped_modal(black_box(&quarter), &road).unwrap())
+    });
+    let shaped_quarter = ShapedQuarter::new(road.clone());
+    g.bench_function("closed form, quarter car", |b| {
+        b.iter(|| shaped_quarter.criteria(black_box(&car.quarter())).unwrap())
     });
     g.bench_function("modal route, full car", |b| {
         b.iter(|| criteria_shaped_modal(black_box(&full), &road).unwrap())

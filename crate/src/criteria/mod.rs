@@ -26,7 +26,7 @@ pub use iso2631::{
 pub(crate) use modal::{add_source_variances, expand_sources, inverse_sums, Channel};
 pub use modal::{criteria_fast_exact, criteria_modal};
 pub use residue::{
-    Certified, Decline, PoleZeroFilter, Residue, ResidueFamily, ResidueRoads, ResidueRoute,
-    ShapedResidueRoute, MAX_DOF, RESIDUE_TOLERANCE,
+    quarter_shaped, Certified, Decline, PoleZeroFilter, Residue, ResidueFamily, ResidueRoads,
+    ResidueRoute, ShapedResidueRoute, MAX_DOF, RESIDUE_TOLERANCE,
 };
 pub use spectral::{criteria_spectral, SpectralCriteria, Spectrum};

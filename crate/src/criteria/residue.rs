@@ -73,8 +73,10 @@ use crate::road::Road;
 use nalgebra::DMatrix;
 use num_complex::Complex64 as C64;
 
+mod quarter;
 mod roads;
 mod shaped;
+pub use quarter::quarter_shaped;
 pub use roads::ResidueRoads;
 pub use shaped::{PoleZeroFilter, ShapedResidueRoute};
 

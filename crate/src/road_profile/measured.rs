@@ -5,12 +5,12 @@ use super::modal::{bacc_wk_shaped_fast, criteria_shaped_fast};
 use super::profile::Profile;
 use super::shaped::{ProfileTracks, ShapedRoad, ShapedSource};
 use crate::analysis::{half_family, Half, ModelKind};
-use crate::car::{Car, DesignDomain};
+use crate::car::{Car, DesignDomain, QuarterCar};
 use crate::comfort::Comfort;
-use crate::criteria::ShapedResidueRoute;
+use crate::criteria::{quarter_shaped, PoleZeroFilter, ShapedResidueRoute};
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
-use crate::model::LinearModel;
+use crate::model::{quarter_car, LinearModel};
 use crate::road::Road;
 use serde::Serialize;
 
@@ -19,11 +19,51 @@ use serde::Serialize;
 /// residue route with the road's filters ([`ShapedResidueRoute`]: the car's two halves,
 /// the sum of the tracks driving one and their difference the other) where it
 /// certifies the point, else the modal route with the filters, else the Lyapunov
-/// equations of the model augmented with them ([`criteria_shaped_fast`]). With
+/// equations of the model augmented with them ([`criteria_shaped_fast`]); for the quarter
+/// car the closed form of its transfer with the filters ([`ShapedQuarter`]), those two
+/// behind it. With
 /// [`Comfort::Wk`] ([`MeasuredModel::with_comfort`]) the comfort slot holds the ISO 2631-1
 /// Wk-weighted RMS body acceleration, m/s^2, by the modal route with the road's filters
 /// and Wk's, the Lyapunov equations behind it ([`bacc_wk_shaped_fast`]), as
 /// [`crate::comfort::WkComfort`] does on an ISO road.
+/// The quarter car on a shaped road, the LoFi of every measured-road map, surrogate and
+/// adaptive loop: the closed form of its transfer ([`quarter_shaped`], about a
+/// microsecond) where it applies, the modal route with the road's filters (and the
+/// Lyapunov route behind it, [`criteria_shaped_fast`]) where it declines.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShapedQuarter {
+    road: ShapedRoad,
+    /// Each source's weight on the quarter car's wheel (on the right track, as
+    /// [`crate::model::quarter_car`]'s) with its filter; `None` where a filter's partial
+    /// fractions cancel.
+    sources: Option<Vec<(f64, PoleZeroFilter)>>,
+}
+
+impl ShapedQuarter {
+    /// The quarter car's route on `road`.
+    pub fn new(road: ShapedRoad) -> ShapedQuarter {
+        let sources = road
+            .sources
+            .iter()
+            .map(|s| Some((s.weights[0], s.filter.pole_zero()?)))
+            .collect();
+        ShapedQuarter { road, sources }
+    }
+
+    /// The shaped road.
+    pub fn road(&self) -> &ShapedRoad {
+        &self.road
+    }
+
+    /// Exact RMS `[BAcc m/s^2, DTL N, SWS m]` of the (valid) quarter car `q` on the road.
+    pub fn criteria(&self, q: &QuarterCar) -> Result<Criteria> {
+        match self.sources.as_deref().and_then(|s| quarter_shaped(q, s)) {
+            Some(c) => Ok(c),
+            None => criteria_shaped_fast(&quarter_car(q), &self.road),
+        }
+    }
+}
+
 #[derive(Debug, Clone)]
 pub struct MeasuredModel {
     kind: ModelKind,
@@ -36,6 +76,8 @@ pub struct MeasuredModel {
     domain: DesignDomain,
     road: ShapedRoad,
     residue: Option<ShapedResidueRoute>,
+    /// The quarter car's closed form (the LoFi only).
+    quarter: Option<ShapedQuarter>,
 }
 
 /// A Wk-weighted BAcc route on a shaped road, m/s^2.
@@ -44,9 +86,9 @@ type WkRoute = fn(&LinearModel, &ShapedRoad) -> Result<f64>;
 impl MeasuredModel {
     /// The model of `car` (its front design is the datum) on the shaped `road`.
     pub fn new(kind: ModelKind, car: &Car, road: ShapedRoad) -> MeasuredModel {
-        let residue = match kind {
-            ModelKind::Full => residue_route(car, &road),
-            ModelKind::Quarter => None,
+        let (residue, quarter) = match kind {
+            ModelKind::Full => (residue_route(car, &road), None),
+            ModelKind::Quarter => (None, Some(ShapedQuarter::new(road.clone()))),
         };
         MeasuredModel {
             kind,
@@ -55,6 +97,7 @@ impl MeasuredModel {
             domain: car.design_domain(),
             road,
             residue,
+            quarter,
         }
     }
 
@@ -113,9 +156,15 @@ impl Evaluator for MeasuredModel {
         if !self.domain.contains(ks, cs) {
             self.car.with_front(ks, cs)?;
         }
-        let plain = match self.residue.as_ref().map(|r| r.criteria(ks, cs)) {
-            Some(Ok(Some(c))) => c,
-            Some(Err(e)) => return Err(e),
+        let residue = self.residue.as_ref().map(|r| r.criteria(ks, cs));
+        let plain = match (&self.quarter, residue) {
+            (Some(quarter), _) => quarter.criteria(&QuarterCar {
+                ks,
+                cs,
+                ..self.car.quarter()
+            })?,
+            (None, Some(Ok(Some(c)))) => c,
+            (None, Some(Err(e))) => return Err(e),
             _ => criteria_shaped_fast(&self.kind.build(&self.car.with_front(ks, cs)?), &self.road)?,
         };
         Ok(match self.wk {

@@ -16,7 +16,9 @@
 //! - **the criteria by two routes**: exact ([`criteria_shaped_fast`]: the modal route
 //!   [`criteria_shaped_modal`], the model's modes times the filters' partial fractions, and
 //!   where it declines [`criteria_shaped`], Lyapunov equations of the model augmented with
-//!   the filter, the front-rear delay exact through `exp(A tau)`) and
+//!   the filter, the front-rear delay exact through `exp(A tau)`; the quarter car's
+//!   closed form [`ShapedQuarter`] and the full car's residue route
+//!   [`crate::criteria::ShapedResidueRoute`] for maps and optimisers) and
 //!   in frequency ([`criteria_shaped_spectral`]: `|H(f)|^2 Gv(f)` integrated on the raw
 //!   Welch PSD, the delays as exact phase factors);
 //! - **playback** ([`playback`]): the profile itself as the wheels' road input of a
@@ -43,7 +45,9 @@ mod welch;
 
 pub use describe::{describe, CoherenceSeries, IsoFit, PsdSeries, RoadDescription, WelchInfo};
 pub use exact::{bacc_wk_shaped, criteria_shaped};
-pub use measured::{road_error, DesignOnRoad, MeasuredModel, MeasuredRoad, RoadScenario};
+pub use measured::{
+    road_error, DesignOnRoad, MeasuredModel, MeasuredRoad, RoadScenario, ShapedQuarter,
+};
 pub use modal::{
     bacc_wk_shaped_fast, bacc_wk_shaped_modal, criteria_shaped_fast, criteria_shaped_modal,
 };

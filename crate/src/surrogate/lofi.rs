@@ -1,15 +1,14 @@
 //! The LoFi a surrogate tunes: the front quarter car of the car on an ISO 8608 class
-//! (closed forms, or the exact route with a damped tyre) or on a measured road (the modal
-//! route with the road's shaping filters, [`criteria_shaped_fast`]), so that every
+//! (closed forms, or the exact route with a damped tyre) or on a measured road (the closed
+//! form with the road's shaping filters, [`ShapedQuarter`]), so that every
 //! approach fits and predicts on the road its HiFi samples were taken on.
 
 use crate::analysis::{front_quarter, quarter_criteria};
 use crate::car::{Car, QuarterCar};
 use crate::error::Result;
 use crate::evaluate::{Criteria, Evaluator};
-use crate::model::quarter_car;
 use crate::road::Road;
-use crate::road_profile::{criteria_shaped_fast, ShapedRoad};
+use crate::road_profile::ShapedQuarter;
 use std::sync::Arc;
 
 /// The LoFi of a surrogate: `car`'s front quarter car with the front spring and damper
@@ -21,8 +20,9 @@ pub struct SurrogateLoFi {
     /// The ISO road; on a measured road, ISO 8608's default class at that road's speed
     /// and tracks, which no value uses.
     pub road: Road,
-    /// The measured road, shaped at its speed (shared by every fitted surrogate).
-    pub measured: Option<Arc<ShapedRoad>>,
+    /// The quarter car's route on the measured road, shaped at its speed (shared by every
+    /// fitted surrogate).
+    pub measured: Option<Arc<ShapedQuarter>>,
 }
 
 impl SurrogateLoFi {
@@ -32,7 +32,7 @@ impl SurrogateLoFi {
             None => quarter_criteria(q, &self.road),
             Some(road) => {
                 q.validate()?;
-                criteria_shaped_fast(&quarter_car(q), road)
+                road.criteria(q)
             }
         }
     }

@@ -63,7 +63,7 @@ use crate::doe::Plan;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator, CRITERIA_NAMES};
 use crate::road::Road;
-use crate::road_profile::ShapedRoad;
+use crate::road_profile::{ShapedQuarter, ShapedRoad};
 use serde::{Deserialize, Serialize};
 
 /// One HiFi sample: a design point and the HiFi criteria there.
@@ -176,7 +176,7 @@ impl Setting {
             ..Road::default()
         };
         let mut setting = Setting::new(car, &iso, design_box)?;
-        setting.lofi.measured = Some(std::sync::Arc::new(road));
+        setting.lofi.measured = Some(std::sync::Arc::new(ShapedQuarter::new(road)));
         Ok(setting)
     }
 }

@@ -299,7 +299,7 @@ impl OnPoint for Shaped<'_> {
 const MAX_PAIRS: usize = MAX_ROOTS / 2;
 /// Most poles of a shaping filter this route takes ([`ShapedResidueRoute::new`] refuses
 /// more; the fits make at most 8).
-const MAX_FILTER_POLES: usize = 8;
+pub(super) const MAX_FILTER_POLES: usize = 8;
 /// Most real poles: the model's real roots and the filter's.
 const MAX_REAL: usize = MAX_ROOTS + MAX_FILTER_POLES;
 
@@ -307,19 +307,19 @@ const MAX_REAL: usize = MAX_ROOTS + MAX_FILTER_POLES;
 /// [`add_reduced_variances`]): `u`, one root of each conjugate pair (the other is its
 /// conjugate), and `r`, the real poles, on fixed places (a map point allocates nothing).
 #[derive(Default)]
-struct ReducedPoles {
-    u: [C64; MAX_PAIRS],
-    nu: usize,
-    r: [f64; MAX_REAL],
-    nr: usize,
+pub(super) struct ReducedPoles {
+    pub(super) u: [C64; MAX_PAIRS],
+    pub(super) nu: usize,
+    pub(super) r: [f64; MAX_REAL],
+    pub(super) nr: usize,
 }
 
 /// The residues of one group's transfer to one output on [`ReducedPoles`]' places (a
 /// pair's other root has the conjugate residue, as the transfer is real).
 #[derive(Clone, Copy)]
-struct ReducedResidues {
-    u: [C64; MAX_PAIRS],
-    r: [f64; MAX_REAL],
+pub(super) struct ReducedResidues {
+    pub(super) u: [C64; MAX_PAIRS],
+    pub(super) r: [f64; MAX_REAL],
 }
 
 impl Default for ReducedResidues {
@@ -334,7 +334,7 @@ impl Default for ReducedResidues {
 /// The closed form's weights `w(k, m) = -1 / (lambda_k + lambda_m)` on [`ReducedPoles`]:
 /// `uu[k][m]` and `uc[k][m]` for a pair root against a pair root and against its
 /// conjugate, `ur[k][m]` for a pair root against a real pole, `rr[k][m]` for two real ones.
-struct ReducedWeights {
+pub(super) struct ReducedWeights {
     uu: [[C64; MAX_PAIRS]; MAX_PAIRS],
     uc: [[C64; MAX_PAIRS]; MAX_PAIRS],
     ur: [[C64; MAX_REAL]; MAX_PAIRS],
@@ -342,7 +342,7 @@ struct ReducedWeights {
 }
 
 impl ReducedPoles {
-    fn weights(&self) -> ReducedWeights {
+    pub(super) fn weights(&self) -> ReducedWeights {
         let zero = C64::new(0.0, 0.0);
         let mut w = ReducedWeights {
             uu: [[zero; MAX_PAIRS]; MAX_PAIRS],
@@ -392,7 +392,7 @@ impl ReducedPoles {
 /// pair and output instead of 256 complex ones. The same sums as
 /// [`crate::criteria::modal::add_source_variances`] on the whole pole list, to rounding
 /// (tested).
-fn add_reduced_variances(
+pub(super) fn add_reduced_variances(
     var: &mut [f64; N_OUT],
     ps: &ReducedPoles,
     w: &ReducedWeights,
