@@ -83,7 +83,8 @@ pub fn quarter_shaped(q: &QuarterCar, sources: &[(f64, PoleZeroFilter)]) -> Opti
     ];
     let found = roots(&d, start(q).as_ref())?;
     let kept = &found.z[..found.n];
-    if kept.iter().any(|l| !(l.re < 0.0)) {
+    // Every root stable (a NaN is not).
+    if !kept.iter().all(|l| l.re < 0.0) {
         return None;
     }
     // D'(lambda) by Horner.
