@@ -14,12 +14,13 @@ use crate::error::{Result, RideError};
 pub const MAX_RUNS: u64 = 4_000_000;
 
 /// Most model runs one command may ask for on a measured road (`--road FILE`): there a
-/// HiFi run takes the residue route with the road's shaping filters, about 20 us
+/// HiFi run takes the residue route with the road's shaping filters, about 4 us
 /// ([`crate::road_profile::MeasuredModel`]; the default STM, 201 with 3 levels, 48 517
-/// runs, took 0.96 s on the shipped slab road), the modal route where that declines
-/// (about 0.13 ms) and the Lyapunov route where a filter's partial fractions cancel
-/// (about 1.5 ms), so this is at most about 2 s of model time, and 150 s in that worst
-/// case.
+/// runs, took 0.17 s on the shipped slab road), a LoFi run the quarter car's closed form
+/// (about 1 us), a run with the Wk-weighted comfort about 50 us (the same STM took 2.3 s),
+/// the modal route where the others decline (about 0.13 ms) and the Lyapunov route where
+/// a filter's partial fractions cancel (about 1.5 ms), so this is at most about 0.5 s of
+/// model time, 5 s with Wk, and 150 s in that worst case.
 pub const MAX_MEASURED_RUNS: u64 = 100_000;
 
 /// [`check`] on a measured road: refuses `runs` above [`MAX_MEASURED_RUNS`].
@@ -30,7 +31,7 @@ pub fn check_measured(runs: u64, field: &str, what: &str, options: &str) -> Resu
     Err(RideError::field(
         field,
         format!(
-            "{what} asks for about {} model runs on a measured road; one command takes at most {} there (about 2 s of model time, up to 150 s where the road's filter needs the slow route): lower {options}",
+            "{what} asks for about {} model runs on a measured road; one command takes at most {} there (about 0.5 s of model time, 5 s with --comfort wk, up to 150 s where the road's filter needs the slow route): lower {options}",
             group(runs),
             group(MAX_MEASURED_RUNS)
         ),

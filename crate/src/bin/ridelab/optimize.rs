@@ -221,13 +221,14 @@ fn write_front_svg(path: &Path, out: &OptimizeReport) -> Result<()> {
 /// `optimize --road FILE`: the front of the LoFi, the HiFi or a surrogate on the measured
 /// road (the models by the exact route at every design; a surrogate fitted to the HiFi's
 /// samples there, its LoFi the quarter car there), the datum and the pick's re-check on
-/// its HiFi. One scenario: `--cases` (and a car file's load_cases), `--adaptive` and
-/// `--compute gpu` are refused naming them, and `--comfort wk` with a surrogate (as on an
-/// ISO class). A run costs
-/// more here (the residue route with the road's filters: the default STM on the HiFi,
-/// 48 517 runs, took 0.96 s on the shipped slab road), so the work is bounded by
-/// [`ridelab::budget::MAX_MEASURED_RUNS`] runs (`grid^2 + 12 (grid - 1) 2^levels` for
-/// STM, `population (generations + 1)` for NSGA-II).
+/// its HiFi; with `--adaptive K` the surrogate is the adaptive loop's on this road. One
+/// scenario: `--cases` (and a car file's load_cases) and `--compute gpu` are refused
+/// naming them, `--adaptive` with a model evaluator and `--comfort wk` with a surrogate
+/// (as on an ISO class). A run costs more here (the residue route with the road's
+/// filters: the default STM on the HiFi, 48 517 runs, took 0.17 s on the shipped slab
+/// road), so the work is bounded by [`ridelab::budget::MAX_MEASURED_RUNS`] runs
+/// (`grid^2 + 12 (grid - 1) 2^levels` for STM, `population (generations + 1)` for
+/// NSGA-II, plus the loop's plan and added HiFi runs).
 fn measured_optimize(
     a: &OptimizeArgs,
     car: &Car,
