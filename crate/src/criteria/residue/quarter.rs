@@ -24,12 +24,12 @@
 //!
 //! **When it declines** (`None`; the caller then takes the modal route): the roots are
 //! not found or not stable, a filter pole comes within `1e-3` (relative) of a root, a
-//! filter has more than [`MAX_FILTER_POLES`] poles, or the partial fractions miss
+//! filter has more than 8 poles, or the partial fractions miss
 //! `F(s) H_o(s) / s` at 1 Hz or 10 Hz by more than `1e-9` (nearly repeated roots, whose
 //! residues cancel).
 
 use super::shaped::{
-    add_reduced_variances, PoleZeroFilter, ReducedPoles, ReducedResidues, MAX_FILTER_POLES,
+    add_reduced_variances, filtered, PoleZeroFilter, ReducedPoles, ReducedResidues,
 };
 use super::MAX_GROUPS;
 use crate::car::QuarterCar;
@@ -89,51 +89,42 @@ pub fn quarter_shaped(q: &QuarterCar, sources: &[(f64, PoleZeroFilter)]) -> Opti
     }
     // D'(lambda) by Horner.
     let slope = |l: C64| ((l * (4.0 * d[4]) + 3.0 * d[3]) * l + 2.0 * d[2]) * l + d[1];
+    // The residues of H_o(s) / s at the roots, the pairs' then the real ones'.
+    let mut roots = ReducedPoles::default();
+    let mut rho = [[ReducedResidues::default(); N_OUT]; MAX_GROUPS];
+    for (&l, &pair) in kept.iter().zip(&found.pair) {
+        let (n, _) = numerators(q, l);
+        let ld = l * slope(l);
+        for o in 0..N_OUT {
+            let r = n[o] / ld;
+            if pair {
+                rho[0][o].u[roots.nu] = r;
+            } else {
+                rho[0][o].r[roots.nr] = r.re;
+            }
+        }
+        if pair {
+            roots.u[roots.nu] = l;
+            roots.nu += 1;
+        } else {
+            roots.r[roots.nr] = l.re;
+            roots.nr += 1;
+        }
+    }
     let mut var = [0.0; N_OUT];
     for (weight, filter) in sources {
         if *weight == 0.0 {
             continue;
         }
-        let fractions = filter.fractions();
-        if fractions.len() > MAX_FILTER_POLES {
-            return None;
-        }
-        let mut ps = ReducedPoles::default();
-        // Residues of H_o(s) / s at the kept roots, the pairs' then the real ones'.
-        let mut rho = [[ReducedResidues::default(); N_OUT]; MAX_GROUPS];
-        let mut real_roots = 0;
-        for (&l, &pair) in kept.iter().zip(&found.pair) {
-            let (n, _) = numerators(q, l);
-            let ld = l * slope(l);
-            let f = filter.at_once(l);
-            for o in 0..N_OUT {
-                let r = n[o] / ld * f;
-                if pair {
-                    rho[0][o].u[ps.nu] = r;
-                } else {
-                    rho[0][o].r[real_roots] = r.re;
-                }
-            }
-            if pair {
-                ps.u[ps.nu] = l;
-                ps.nu += 1;
-            } else {
-                ps.r[real_roots] = l.re;
-                real_roots += 1;
-            }
-        }
-        for (i, &(mu, c)) in fractions.iter().enumerate() {
-            let near = |l: &C64| (l - mu).norm_sqr() <= 1e-6 * l.norm_sqr();
-            if kept.iter().any(near) {
-                return None;
-            }
+        // One wheel at no delay, no static gain.
+        let mut groups = [(0.0, [0.0; N_OUT])];
+        // The filter poles' residues from the transfer itself rather than from the sum
+        // over the roots (they cancel less where a real root nears a filter pole).
+        let exact = |mu: f64| {
             let (n, dm) = numerators(q, C64::new(mu, 0.0));
-            for o in 0..N_OUT {
-                rho[0][o].r[real_roots + i] = c * (n[o] / (dm * mu)).re;
-            }
-            ps.r[real_roots + i] = mu;
-        }
-        ps.nr = real_roots + fractions.len();
+            n.map(|n| (n / (dm * mu)).re)
+        };
+        let (ps, rho) = filtered(filter, &roots, &rho, &mut groups, Some(&exact))?;
         // The expansion against F(s) H_o(s) / s at 1 Hz and 10 Hz.
         for hz in [1.0, 10.0] {
             let s = C64::new(0.0, 2.0 * PI * hz);
@@ -152,7 +143,7 @@ pub fn quarter_shaped(q: &QuarterCar, sources: &[(f64, PoleZeroFilter)]) -> Opti
             }
         }
         let mut v = [0.0; N_OUT];
-        add_reduced_variances(&mut v, &ps, &ps.weights(), &[(0.0, [0.0; N_OUT])], &rho);
+        add_reduced_variances(&mut v, &ps, &ps.weights(), &groups, &rho);
         for o in 0..N_OUT {
             var[o] += weight * weight * v[o];
         }

@@ -196,67 +196,25 @@ impl OnPoint for Shaped<'_> {
             return None;
         }
         let p = &point.poles;
-        let fractions = &self.filter.fractions;
-        // The poles of `F(s) T_g(s) / s`: one root of each conjugate pair, then the real
-        // poles (the model's real roots, then the filter's).
-        let mut ps = ReducedPoles::default();
+        // The roots (one of each conjugate pair, then the real ones) and the residues of
+        // `T_g(s) / s` there.
+        let mut roots = ReducedPoles::default();
         let mut upper = [0usize; MAX_PAIRS];
         let mut real = [0usize; MAX_ROOTS];
-        let (mut nu, mut nrr) = (0, 0);
         for k in 0..NP {
             if p.weight[k] == 0.0 {
                 continue;
             }
             if p.pair[k] {
-                ps.u[nu] = C64::new(p.lam.re[k], p.lam.im[k]);
-                upper[nu] = k;
-                nu += 1;
+                roots.u[roots.nu] = C64::new(p.lam.re[k], p.lam.im[k]);
+                upper[roots.nu] = k;
+                roots.nu += 1;
             } else {
-                ps.r[nrr] = p.lam.re[k];
-                real[nrr] = k;
-                nrr += 1;
+                roots.r[roots.nr] = p.lam.re[k];
+                real[roots.nr] = k;
+                roots.nr += 1;
             }
         }
-        let near = |l: C64, mu: f64| (l - mu).norm_sqr() <= 1e-6 * l.norm_sqr();
-        for (i, &(mu, _)) in fractions.iter().enumerate() {
-            if ps.u[..nu].iter().any(|&l| near(l, mu))
-                || ps.r[..nrr].iter().any(|&l| near(C64::new(l, 0.0), mu))
-            {
-                return None;
-            }
-            ps.r[nrr + i] = mu;
-        }
-        ps.nu = nu;
-        ps.nr = nrr + fractions.len();
-        let weights = ps.weights();
-        let f_u: [C64; MAX_PAIRS] = std::array::from_fn(|k| {
-            if k < nu {
-                self.filter.at_once(ps.u[k])
-            } else {
-                C64::new(0.0, 0.0)
-            }
-        });
-        let f_r: [f64; MAX_ROOTS] = std::array::from_fn(|k| {
-            if k < nrr {
-                self.filter.at_once(C64::new(ps.r[k], 0.0)).re
-            } else {
-                0.0
-            }
-        });
-        // 1 / (mu_i - lambda_k) for the filter's poles against the roots, once a point
-        // (every group and output takes them).
-        let zero = C64::new(0.0, 0.0);
-        let mut to_u = [[zero; MAX_PAIRS]; MAX_FILTER_POLES];
-        let mut to_r = [[0.0; MAX_ROOTS]; MAX_FILTER_POLES];
-        for (i, &(mu, _)) in fractions.iter().enumerate() {
-            for k in 0..nu {
-                to_u[i][k] = (C64::new(mu, 0.0) - ps.u[k]).inv();
-            }
-            for k in 0..nrr {
-                to_r[i][k] = 1.0 / (mu - ps.r[k]);
-            }
-        }
-        let f0 = self.filter.dc_gain();
         let groups = &family.sources[0];
         let res = &point.sources[0];
         let mut rho = [[ReducedResidues::default(); N_OUT]; MAX_GROUPS];
@@ -264,35 +222,110 @@ impl OnPoint for Shaped<'_> {
         for (g, grp) in groups.iter().enumerate() {
             for (o, out) in rho[g].iter_mut().enumerate() {
                 let r = &res.rho[g][o];
-                let ru: [C64; MAX_PAIRS] = std::array::from_fn(|k| {
-                    if k < nu {
-                        C64::new(r.re[upper[k]], r.im[upper[k]])
-                    } else {
-                        C64::new(0.0, 0.0)
-                    }
-                });
-                let rr: [f64; MAX_ROOTS] =
-                    std::array::from_fn(|k| if k < nrr { r.re[real[k]] } else { 0.0 });
-                let gain = res.gain[g][o];
-                for k in 0..nu {
-                    out.u[k] = ru[k] * f_u[k];
+                for (k, &at) in upper[..roots.nu].iter().enumerate() {
+                    out.u[k] = C64::new(r.re[at], r.im[at]);
                 }
-                for k in 0..nrr {
-                    out.r[k] = rr[k] * f_r[k];
-                }
-                // c_i T_g(mu_i) / mu_i, real: a pair's two roots give twice the real part.
-                for (i, &(mu, c)) in fractions.iter().enumerate() {
-                    let pairs: f64 = (0..nu).map(|k| (ru[k] * to_u[i][k]).re).sum();
-                    let reals: f64 = (0..nrr).map(|k| rr[k] * to_r[i][k]).sum();
-                    out.r[nrr + i] = c * (2.0 * pairs + reals + gain / mu);
+                for (k, &at) in real[..roots.nr].iter().enumerate() {
+                    out.r[k] = r.re[at];
                 }
             }
-            gains[g] = (grp.tau, res.gain[g].map(|v| f0 * v));
+            gains[g] = (grp.tau, res.gain[g]);
         }
+        let gains = &mut gains[..groups.len()];
+        let (ps, rho) = filtered(self.filter, &roots, &rho, gains, None)?;
         let mut var = [0.0; N_OUT];
-        add_reduced_variances(&mut var, &ps, &weights, &gains[..groups.len()], &rho);
+        add_reduced_variances(&mut var, &ps, &ps.weights(), gains, &rho);
         Some(var)
     }
+}
+
+/// The expansion of `F(s) T_g(s) / s` (module doc) from that of `T_g(s) / s`: its roots
+/// `roots` (one of each pair, then the real ones), residues `rho[g][o]` there and, in
+/// `groups`, each group's delay and static gains `G_g`. Returns the poles (the roots, then
+/// the filter's poles among the real ones) and residues `rho_gk F(lambda_k)` and
+/// `c_i T_g(mu_i) / mu_i`, and turns the gains into `F(0) G_g`; `None` where a filter pole
+/// comes within `1e-3` (relative) of a root. Shared by the families' route and the quarter
+/// car's closed form (one copy in the page's wasm).
+///
+/// `exact`, where given, is `T_0(mu) / mu` of the one group's outputs straight from the
+/// transfer (the quarter car's), in place of the sum over the roots.
+#[inline(never)]
+pub(super) fn filtered(
+    filter: &PoleZeroFilter,
+    roots: &ReducedPoles,
+    rho: &[[ReducedResidues; N_OUT]; MAX_GROUPS],
+    groups: &mut [(f64, [f64; N_OUT])],
+    exact: Option<&dyn Fn(f64) -> [f64; N_OUT]>,
+) -> Option<(ReducedPoles, [[ReducedResidues; N_OUT]; MAX_GROUPS])> {
+    let (nu, nrr) = (roots.nu, roots.nr);
+    let fractions = &filter.fractions;
+    if fractions.len() > MAX_FILTER_POLES {
+        return None;
+    }
+    let mut ps = ReducedPoles {
+        nr: nrr + fractions.len(),
+        ..*roots
+    };
+    let near = |l: C64, mu: f64| (l - mu).norm_sqr() <= 1e-6 * l.norm_sqr();
+    for (i, &(mu, _)) in fractions.iter().enumerate() {
+        if ps.u[..nu].iter().any(|&l| near(l, mu))
+            || ps.r[..nrr].iter().any(|&l| near(C64::new(l, 0.0), mu))
+        {
+            return None;
+        }
+        ps.r[nrr + i] = mu;
+    }
+    let zero = C64::new(0.0, 0.0);
+    let (mut f_u, mut f_r) = ([zero; MAX_PAIRS], [0.0; MAX_ROOTS]);
+    for k in 0..nu {
+        f_u[k] = filter.at_once(ps.u[k]);
+    }
+    for k in 0..nrr {
+        f_r[k] = filter.at_once(C64::new(ps.r[k], 0.0)).re;
+    }
+    // 1 / (mu_i - lambda_k) for the filter's poles against the roots, once a point
+    // (every group and output takes them).
+    let mut to_u = [[zero; MAX_PAIRS]; MAX_FILTER_POLES];
+    let mut to_r = [[0.0; MAX_ROOTS]; MAX_FILTER_POLES];
+    for (i, &(mu, _)) in fractions.iter().enumerate() {
+        for k in 0..nu {
+            to_u[i][k] = (C64::new(mu, 0.0) - ps.u[k]).inv();
+        }
+        for k in 0..nrr {
+            to_r[i][k] = 1.0 / (mu - ps.r[k]);
+        }
+    }
+    let f0 = filter.dc_gain();
+    let mut out = [[ReducedResidues::default(); N_OUT]; MAX_GROUPS];
+    for (g, (_, gain)) in groups.iter_mut().enumerate() {
+        for o in 0..N_OUT {
+            let (r, x) = (&rho[g][o], &mut out[g][o]);
+            for k in 0..nu {
+                x.u[k] = r.u[k] * f_u[k];
+            }
+            for k in 0..nrr {
+                x.r[k] = r.r[k] * f_r[k];
+            }
+            // c_i T_g(mu_i) / mu_i, real: a pair's two roots give twice the real part.
+            if exact.is_none() {
+                for (i, &(mu, c)) in fractions.iter().enumerate() {
+                    let pairs: f64 = (0..nu).map(|k| (r.u[k] * to_u[i][k]).re).sum();
+                    let reals: f64 = (0..nrr).map(|k| r.r[k] * to_r[i][k]).sum();
+                    x.r[nrr + i] = c * (2.0 * pairs + reals + gain[o] / mu);
+                }
+            }
+        }
+        if let Some(t) = exact {
+            for (i, &(mu, c)) in fractions.iter().enumerate() {
+                let t = t(mu);
+                for o in 0..N_OUT {
+                    out[g][o].r[nrr + i] = c * t[o];
+                }
+            }
+        }
+        *gain = gain.map(|v| f0 * v);
+    }
+    Some((ps, out))
 }
 
 /// Most kept roots that are one of a conjugate pair (a degree-8 denominator).
@@ -306,7 +339,7 @@ const MAX_REAL: usize = MAX_ROOTS + MAX_FILTER_POLES;
 /// The poles of one source's transfer in the form the reduced sums take them (why and how:
 /// [`add_reduced_variances`]): `u`, one root of each conjugate pair (the other is its
 /// conjugate), and `r`, the real poles, on fixed places (a map point allocates nothing).
-#[derive(Default)]
+#[derive(Default, Clone, Copy)]
 pub(super) struct ReducedPoles {
     pub(super) u: [C64; MAX_PAIRS],
     pub(super) nu: usize,
