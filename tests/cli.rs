@@ -8,7 +8,7 @@ use ridelab::maps::{Grid, Scale};
 use ridelab::optimize::{recheck, run_study, Method, Nsga2Params, StmParams, SuspensionProblem};
 use ridelab::road::Road;
 use ridelab::study::{map_csv, map_report, MapSettings};
-use ridelab::study::{study, surrogate_report};
+use ridelab::study::{study, surrogate_report, OptimizeRequest};
 use ridelab::surrogate::{sample_plan, LmOptions, PlanSpec, Setting, SurrogateSpec};
 use ridelab::time_domain::{simulate, TimeOptions};
 use ridelab::{Car, Evaluator, HiFi, LoFi};
@@ -729,17 +729,12 @@ fn adaptive_json_equals_the_library_and_lists_the_samples_in_order() {
         grid: 41,
         ..StmParams::default()
     });
-    let lib = adaptive::optimize_report(
-        &car,
-        &road,
-        &b,
-        "gp-mul".parse().unwrap(),
-        ae5,
-        &method,
-        DesignObjectives::default(),
-        options,
-    )
-    .unwrap();
+    let request = OptimizeRequest {
+        evaluator: "gp-mul".parse().unwrap(),
+        plan: ae5,
+        ..OptimizeRequest::new(&car, &road, b, method.clone(), DesignObjectives::default())
+    };
+    let lib = adaptive::optimize_report(&request, options).unwrap();
     assert_same_json(&v, &to_json(&lib), "optimize --adaptive");
     let mut samples = initial;
     for a in &lib.adaptive.added {

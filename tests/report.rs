@@ -335,7 +335,7 @@ fn the_compact_car_report_builds_with_fronts() {
 fn the_adaptive_section_is_the_cli_loop_beside_the_plan() {
     use ridelab::optimize::{Method, StmParams};
     use ridelab::study::adaptive::{optimize_report, AdaptiveOptions};
-    use ridelab::study::EvaluatorSpec;
+    use ridelab::study::{EvaluatorSpec, OptimizeRequest};
     use ridelab::surrogate::{PlanSpec, SurrogateSpec};
     let r = sedan();
     let a = &r.adaptive;
@@ -344,20 +344,23 @@ fn the_adaptive_section_is_the_cli_loop_beside_the_plan() {
     let spec = SurrogateSpec::parse(&r.fidelity.chosen.surrogate).unwrap();
     let car = Car::datum();
     let road = Road::default();
-    let cli = optimize_report(
-        &car,
-        &road,
-        &ReportInputs::new(car.clone(), road).design_box,
-        EvaluatorSpec::Surrogate(spec),
-        PlanSpec::AudzeEglais(5),
-        &Method::Stm(StmParams::default()),
-        ReportInputs::new(car.clone(), road).objectives,
-        AdaptiveOptions {
-            runs: 5,
-            ..AdaptiveOptions::default()
-        },
-    )
-    .unwrap();
+    let inputs = ReportInputs::new(car.clone(), road);
+    let request = OptimizeRequest {
+        evaluator: EvaluatorSpec::Surrogate(spec),
+        plan: PlanSpec::AudzeEglais(5),
+        ..OptimizeRequest::new(
+            &car,
+            &road,
+            inputs.design_box,
+            Method::Stm(StmParams::default()),
+            inputs.objectives,
+        )
+    };
+    let options = AdaptiveOptions {
+        runs: 5,
+        ..AdaptiveOptions::default()
+    };
+    let cli = optimize_report(&request, options).unwrap();
     assert_eq!(run, &cli, "the report's loop is the CLI's");
     assert_eq!(run.adaptive.added.len(), 5);
     assert_eq!(

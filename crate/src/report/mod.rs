@@ -45,7 +45,7 @@ use crate::study::adaptive::{
     optimize_report as adaptive_optimize_report, AdaptiveOptimizeReport, AdaptiveOptions,
 };
 use crate::study::{map_report, MapReport, MapSettings};
-use crate::study::{optimize_report, EvaluatorSpec, OptimizeReport};
+use crate::study::{optimize_report, EvaluatorSpec, OptimizeReport, OptimizeRequest};
 use crate::study::{study_in, surrogate_report_in, StudyReport, SurrogateReport};
 use crate::surrogate::{PlanSpec, SurrogateSpec};
 use crate::time_domain::{simulate, TimeOptions};
@@ -705,16 +705,18 @@ fn adaptive_section(
         seed: inputs.seed,
         ..AdaptiveOptions::default()
     };
-    let run = match adaptive_optimize_report(
-        &inputs.car,
-        &inputs.road,
-        &inputs.design_box,
-        EvaluatorSpec::Surrogate(spec),
-        PlanSpec::AudzeEglais(initial),
-        &Method::Stm(StmParams::default()),
-        inputs.objectives.clone(),
-        options,
-    ) {
+    let request = OptimizeRequest {
+        evaluator: EvaluatorSpec::Surrogate(spec),
+        plan: PlanSpec::AudzeEglais(initial),
+        ..OptimizeRequest::new(
+            &inputs.car,
+            &inputs.road,
+            inputs.design_box,
+            Method::Stm(StmParams::default()),
+            inputs.objectives.clone(),
+        )
+    };
+    let run = match adaptive_optimize_report(&request, options) {
         Ok(r) => r,
         Err(RideError::Field { field, reason }) => {
             return Ok(skipped(format!(

@@ -144,19 +144,16 @@ pub(crate) fn optimize(a: OptimizeArgs) -> Result<String> {
             Ok(robust_optimize_text(&out))
         };
     }
+    let request = OptimizeRequest {
+        evaluator: a.evaluator,
+        plan: a.plan,
+        comfort: a.comfort,
+        compute: a.compute,
+        pick: a.pick,
+        ..OptimizeRequest::new(&car, &road, design_box, method, objectives)
+    };
     let (mut out, looped) = match a.adaptive.options() {
-        None => (
-            OptimizeRequest {
-                evaluator: a.evaluator,
-                plan: a.plan,
-                comfort: a.comfort,
-                compute: a.compute,
-                pick: a.pick,
-                ..OptimizeRequest::new(&car, &road, design_box, method.clone(), objectives)
-            }
-            .run()?,
-            None,
-        ),
+        None => (request.run()?, None),
         Some(_) if a.compute == Some(Compute::Gpu) => {
             return Err(RideError::field(
                 "compute",
@@ -170,16 +167,7 @@ pub(crate) fn optimize(a: OptimizeArgs) -> Result<String> {
             ))
         }
         Some(options) => {
-            let r = adaptive::optimize_report(
-                &car,
-                &road,
-                &design_box,
-                a.evaluator,
-                a.plan,
-                &method,
-                objectives,
-                options,
-            )?;
+            let r = adaptive::optimize_report(&request, options)?;
             let mut out = r.optimize;
             out.compute = a.compute.map(|_| ComputePath::Cpu);
             (out, Some(r.adaptive))

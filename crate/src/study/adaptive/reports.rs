@@ -5,13 +5,12 @@ use super::{run, AdaptiveOptions, AdaptiveReport, Decision};
 use crate::analysis::HiFi;
 use crate::car::Car;
 use crate::design::DesignBox;
-use crate::dos::DesignObjectives;
 use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
-use crate::optimize::{Counted, Method};
+use crate::optimize::Counted;
 use crate::road::Road;
 use crate::study::fidelity::{Fitted, SurrogateReport};
-use crate::study::{optimize_model, EvaluatorSpec, OptimizeReport};
+use crate::study::{optimize_model, EvaluatorSpec, OptimizeReport, OptimizeRequest};
 use crate::surrogate::{PlanSpec, Setting, SurrogateSpec};
 use serde::Serialize;
 
@@ -94,20 +93,24 @@ pub struct AdaptiveOptimizeReport {
 }
 
 /// `ridelab optimize --evaluator SURROGATE --plan PLAN --adaptive K`: the loop judged by the
-/// same objectives (against the datum's HiFi criteria) and, for STM, the same STM settings
-/// as the optimisation, then [`optimize_model`] on its final surrogate. Errors name
-/// `adaptive` for a model evaluator (the loop refits a surrogate), and the loop's fields.
+/// request's objectives (against the datum's HiFi criteria) and, for STM, its STM settings
+/// ([`Decision::for_method`]), then [`optimize_model`] on its final surrogate (the
+/// request's comfort, compute and pick are the caller's: the loop is fitted to the
+/// unweighted BAcc on the CPU, the pick is min-max). Errors name `adaptive` for a model
+/// evaluator (the loop refits a surrogate), and the loop's fields.
 pub fn optimize_report(
-    car: &Car,
-    road: &Road,
-    design_box: &DesignBox,
-    evaluator: EvaluatorSpec,
-    plan: PlanSpec,
-    method: &Method,
-    objectives: DesignObjectives,
+    request: &OptimizeRequest,
     options: AdaptiveOptions,
 ) -> Result<AdaptiveOptimizeReport> {
-    let EvaluatorSpec::Surrogate(spec) = evaluator else {
+    let OptimizeRequest {
+        car,
+        road,
+        design_box,
+        method,
+        objectives,
+        ..
+    } = request;
+    let EvaluatorSpec::Surrogate(spec) = request.evaluator else {
         return Err(RideError::field(
             "adaptive",
             "the adaptive loop refits a surrogate; give a surrogate --evaluator",
@@ -117,11 +120,11 @@ pub fn optimize_report(
     let setting = Setting::new(car, road, design_box)?;
     let hifi = HiFi::new(car, road)?;
     let decision = Decision::for_method(car, &hifi, method, objectives.clone())?;
-    let state = run(spec, &setting, &hifi, plan, &decision, options)?;
+    let state = run(spec, &setting, &hifi, request.plan, &decision, options)?;
     let adaptive = state.report();
     let model: Box<dyn Evaluator + Sync> = Box::new(state.into_model());
     Ok(AdaptiveOptimizeReport {
-        optimize: optimize_model(car, road, design_box, model, method, objectives)?,
+        optimize: optimize_model(car, road, design_box, model, method, objectives.clone())?,
         adaptive,
     })
 }
