@@ -2090,6 +2090,119 @@ fn the_adaptive_loop_takes_a_measured_road() {
     assert_eq!(v["hifi_evaluations"], 7 + 16 + 1);
 }
 
+/// `report --road FILE` (issue #31): every section on the measured road. Section 1's first
+/// rows are `eval --road`'s quarter and full car (the same exact routes: 1e-12), the
+/// Lyapunov routes agree with them (1e-8), the frequency route on the raw PSD is within
+/// the slab road's filter error (4 %) and the profile played back within 3 %; the maps'
+/// datums, the chosen surrogate's HiFi samples, the HiFi front's datum and the adaptive
+/// loop's added runs are `eval --road`'s full car at those designs (1e-12); the JSON and
+/// the documents name the road file, and carry no ISO velocity PSD.
+#[test]
+fn the_report_takes_a_measured_road() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    let road = format!("{root}/assets/roads/concrete-slab-5m.csv");
+    let dir = std::env::temp_dir().join(format!("ridelab-report-road-{}", std::process::id()));
+    let out = dir.to_str().unwrap();
+    let (code, _, err) = ridelab(&["report", "--road", &road, "--out", out]);
+    assert_eq!(code, 0, "{err}");
+    let text = |name: &str| std::fs::read_to_string(dir.join(name)).unwrap();
+    let r: Value = serde_json::from_str(&text("report.json")).unwrap();
+    let s = &r["scenario"];
+    assert_eq!(s["road"]["file"], road.as_str());
+    assert!(s.get("velocity_psd").is_none());
+    let md = text("report.md");
+    assert!(
+        md.starts_with(&format!(
+            "# RideLab study report: Mid-size sedan (datum) on the measured road {road} at 20 m/s"
+        )),
+        "{}",
+        &md[..200]
+    );
+    let eval = |model: &str, ks: &Value, cs: &Value| {
+        let (ks, cs) = (ks.to_string(), cs.to_string());
+        json(&[
+            "eval", "--model", model, "--road", &road, "--ks", &ks, "--cs", &cs,
+        ])
+    };
+    let rel = |a: &Value, b: &Value, key: &str| {
+        (a[key].as_f64().unwrap() / b[key].as_f64().unwrap() - 1.0).abs()
+    };
+    let keys = ["bacc", "dtl", "sws"];
+    let (k0, c0) = (&s["car"]["front"]["spring"], &s["car"]["front"]["damper"]);
+    let v = &r["verification"];
+    for (rows, model) in [(&v["lofi"], "quarter"), (&v["hifi"], "full")] {
+        let rows = rows.as_array().unwrap();
+        let e = eval(model, k0, c0);
+        for key in keys {
+            assert!(rel(&rows[0]["criteria"], &e, key) < 1e-12, "{model} {key}");
+        }
+        for row in rows {
+            let (route, d) = (
+                row["route"].as_str().unwrap(),
+                row["difference"].as_f64().unwrap(),
+            );
+            let bound = if route.starts_with("frequency") {
+                0.04
+            } else if route.starts_with("time domain") {
+                0.03
+            } else {
+                1e-8
+            };
+            assert!(d < bound, "{model} {route}: {d}");
+        }
+    }
+    let same = |a: &Value, b: &Value, what: &str| {
+        for key in keys {
+            assert!(
+                rel(a, b, key) < 1e-12,
+                "{what} {key}: {} vs {}",
+                a[key],
+                b[key]
+            );
+        }
+    };
+    for (map, model) in [
+        (&r["maps"]["lofi"], "quarter"),
+        (&r["maps"]["hifi"], "full"),
+    ] {
+        assert_eq!(map["road"]["file"], road.as_str());
+        let d = &map["datum"];
+        same(
+            &d["criteria"],
+            &eval(model, &d["ks"], &d["cs"]),
+            "map datum",
+        );
+    }
+    let chosen = &r["fidelity"]["chosen"];
+    assert_eq!(chosen["road"]["file"], road.as_str());
+    assert_eq!(r["fidelity"]["study"]["road"]["file"], road.as_str());
+    for sample in chosen["samples"].as_array().unwrap().iter().take(3) {
+        same(
+            &sample["hifi"],
+            &eval("full", &sample["ks"], &sample["cs"]),
+            "sample",
+        );
+    }
+    let hifi_front = &r["optimisation"]["hifi"];
+    same(
+        &hifi_front["datum"],
+        &eval("full", k0, c0),
+        "HiFi front's datum",
+    );
+    let run = &r["adaptive"]["run"];
+    let added = run["adaptive"]["added"].as_array().unwrap();
+    assert!(!added.is_empty());
+    for a in added {
+        let s = &a["sample"];
+        same(
+            &s["hifi"],
+            &eval("full", &s["ks"], &s["cs"]),
+            "adaptive run",
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// `optimize --road FILE --adaptive K` (issue #31): the loop runs on the measured road, so
 /// every added sample's HiFi value is `eval --road`'s full car at its design and the pick's
 /// re-check is `eval --road`'s at the pick (the same exact route: 1e-12); the runs are
@@ -2150,13 +2263,14 @@ fn an_adaptive_optimisation_takes_a_measured_road() {
 /// is 13 %); the optimisation's datum and re-check are eval's HiFi on the same road, its
 /// front points eval's LoFi; the surrogate's HiFi samples are eval's HiFi; the JSON
 /// names the road file; a surrogate evaluator's pick is re-checked on eval's HiFi; one
-/// scenario, so cases, an adaptive loop on a model evaluator, an oversized grid or validation grid and
-/// Wk comfort with a surrogate are refused naming the option, and the report still takes
-/// --class only.
+/// scenario, so cases (a car file's load cases on the report too), an adaptive loop on a
+/// model evaluator, an oversized grid or validation grid and Wk comfort with a surrogate
+/// are refused naming the option.
 #[test]
 fn map_optimize_and_surrogate_take_a_measured_road() {
     let road = "assets/roads/class-c-waviness-2.5.csv";
     let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    let laden = format!("{root}/assets/examples/sedan-laden.json");
     let road_path = format!("{root}/{road}");
     // `eval --road` at 25 m/s, with the profile's own tracks or `--tracks`.
     let eval_on = |tracks: Option<&str>, model: &str, ks: f64, cs: f64| {
@@ -2454,7 +2568,7 @@ fn map_optimize_and_surrogate_take_a_measured_road() {
             ],
             "comfort",
         ),
-        (vec!["report", "--road", road], "road"),
+        (vec!["report", "--road", road, "--car", &laden], "road"),
         (
             vec![
                 "surrogate",

@@ -6,6 +6,7 @@ use super::figures::Figure;
 use super::{MethodReport, RouteRow};
 use crate::dos::DesignObjectives;
 use crate::model::Mode;
+use crate::road_profile::RoadScenario;
 use crate::study::fidelity::Outcome;
 
 /// One block of the report.
@@ -113,10 +114,16 @@ pub fn blocks(r: &MethodReport, figures: Vec<(usize, Vec<Figure>)>) -> Vec<Block
     let car = &s.car;
     out.push(Block::Heading(
         1,
-        format!(
-            "RideLab study report: {} on an ISO 8608 class {:?} road at {} m/s",
-            car.name, s.road.class, s.road.speed
-        ),
+        match &s.road {
+            RoadScenario::Iso(road) => format!(
+                "RideLab study report: {} on an ISO 8608 class {:?} road at {} m/s",
+                car.name, road.class, road.speed
+            ),
+            RoadScenario::Measured(m) => format!(
+                "RideLab study report: {} on the measured road {} at {} m/s",
+                car.name, m.file, m.speed
+            ),
+        },
     ));
     out.push(Block::Paragraph(format!(
         "Surrogate-based design of the front spring rate Ks and damper rate Cs, end to end: model verification, design maps, sampling, surrogates and Pareto fronts (RideLab {}). Every number below is computed by the RideLab core for this car, road and design box.",
@@ -171,14 +178,26 @@ pub fn blocks(r: &MethodReport, figures: Vec<(usize, Vec<Figure>)>) -> Vec<Block
             ],
             vec![
                 "road".into(),
-                format!(
-                    "class {:?} at {} m/s, {:?} tracks; road velocity PSD {:.4e} m^2/s^2/Hz; rear delay {} s",
-                    s.road.class,
-                    s.road.speed,
-                    s.road.tracks,
-                    s.velocity_psd,
-                    num(s.delay, 4)
-                ),
+                match &s.road {
+                    RoadScenario::Measured(m) => format!(
+                        "the measured profile {} at {} m/s, {} tracks; shaping filters over {}..{} Hz within {:.1} % of its Welch PSD; rear delay {} s",
+                        m.file,
+                        m.speed,
+                        <&str>::from(m.tracks),
+                        m.band_hz[0],
+                        m.band_hz[1],
+                        100.0 * m.fit_error,
+                        num(s.delay, 4)
+                    ),
+                    RoadScenario::Iso(road) => format!(
+                        "class {:?} at {} m/s, {:?} tracks; road velocity PSD {:.4e} m^2/s^2/Hz; rear delay {} s",
+                        road.class,
+                        road.speed,
+                        road.tracks,
+                        s.velocity_psd.unwrap_or_default(),
+                        num(s.delay, 4)
+                    ),
+                },
             ],
             vec![
                 "design box".into(),
@@ -202,10 +221,16 @@ pub fn blocks(r: &MethodReport, figures: Vec<(usize, Vec<Figure>)>) -> Vec<Block
         3,
         "Model verification at the datum design".into(),
     ));
-    out.push(Block::Paragraph(format!(
-        "RMS criteria at the front corner over the whole band by independent routes. The time-domain record is {} s long at a {} s step (seed {}); its RMS carries the statistical error of a finite record (a few per cent).",
-        v.record.duration, v.record.dt, v.record.seed
-    )));
+    out.push(Block::Paragraph(match &s.road {
+        RoadScenario::Iso(_) => format!(
+            "RMS criteria at the front corner over the whole band by independent routes. The time-domain record is {} s long at a {} s step (seed {}); its RMS carries the statistical error of a finite record (a few per cent).",
+            v.record.duration, v.record.dt, v.record.seed
+        ),
+        RoadScenario::Measured(_) => format!(
+            "RMS criteria at the front corner by independent routes: exact with the road's shaping filters, in frequency on the measured PSD, and in time with the profile itself played back under the wheels from rest for {:.0} s at a {:.3e} s step (its RMS carries the start-up and the statistical error of one finite profile: a few per cent).",
+            v.record.duration, v.record.dt
+        ),
+    }));
     out.push(Block::Paragraph("LoFi (2-DOF quarter car):".into()));
     out.push(routes_table(&v.lofi));
     out.push(Block::Paragraph("HiFi (7-DOF full car):".into()));

@@ -24,8 +24,14 @@ pub mod document;
 pub mod figures;
 pub mod html;
 pub mod markdown;
+mod measured;
+mod road;
 
-use crate::analysis::{HiFi, ModelKind};
+pub use measured::MeasuredInputs;
+use measured::OnRoad;
+use road::{IsoRoad, SectionRoad};
+
+use crate::analysis::ModelKind;
 use crate::car::{Car, QuarterCar};
 use crate::criteria::{
     bacc_wk_exact, bacc_wk_spectral, comfort_label, criteria_exact, criteria_modal,
@@ -41,12 +47,11 @@ use crate::math;
 use crate::model::Mode;
 use crate::optimize::{front_distance, FrontDistance, Method, Nsga2Params, PickRule, StmParams};
 use crate::road::Road;
-use crate::study::adaptive::{
-    optimize_report as adaptive_optimize_report, AdaptiveOptimizeReport, AdaptiveOptions,
-};
-use crate::study::{map_report, MapReport, MapSettings};
-use crate::study::{optimize_report, EvaluatorSpec, OptimizeReport, OptimizeRequest};
-use crate::study::{study_in, surrogate_report_in, StudyReport, SurrogateReport};
+use crate::road_profile::RoadScenario;
+use crate::study::adaptive::{AdaptiveOptimizeReport, AdaptiveOptions};
+use crate::study::{EvaluatorSpec, OptimizeReport, OptimizeRequest};
+use crate::study::{MapReport, MapSettings};
+use crate::study::{StudyReport, SurrogateReport};
 use crate::surrogate::{PlanSpec, SurrogateSpec};
 use crate::time_domain::{simulate, TimeOptions};
 use serde::Serialize;
@@ -121,10 +126,13 @@ pub struct Scenario {
     pub car: Car,
     /// Its front quarter car (the LoFi).
     pub quarter: QuarterCar,
-    /// The road.
-    pub road: Road,
-    /// Road velocity PSD, one-sided, m^2/s^2/Hz.
-    pub velocity_psd: f64,
+    /// The road: an ISO class (class, speed, tracks) or a measured road (file, speed,
+    /// tracks, the shaping filters' band and error).
+    pub road: RoadScenario,
+    /// Road velocity PSD of the ISO class, one-sided, m^2/s^2/Hz (none on a measured road:
+    /// its PSD is the file's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub velocity_psd: Option<f64>,
     /// Front-rear delay `L / v`, s.
     pub delay: f64,
     /// Static front wheel load, N.
@@ -367,7 +375,35 @@ pub const SECTIONS: [&str; 6] = [
 
 /// Builds the report; `progress(k)` is called as section `k` of [`SECTIONS`] starts and
 /// with `SECTIONS.len()` at the end (the CLI times the sections with it).
-pub fn build(inputs: &ReportInputs, mut progress: impl FnMut(usize)) -> Result<MethodReport> {
+pub fn build(inputs: &ReportInputs, progress: impl FnMut(usize)) -> Result<MethodReport> {
+    build_with(inputs, &IsoRoad(&inputs.road), progress)
+}
+
+/// [`build`] on the measured road `measured` at `inputs.road`'s speed (its class is not
+/// used): `ridelab report --road FILE` (the module [`measured`]).
+pub fn build_on(
+    inputs: &ReportInputs,
+    measured: &MeasuredInputs,
+    progress: impl FnMut(usize),
+) -> Result<MethodReport> {
+    validate(inputs)?;
+    let on = OnRoad::new(&inputs.car, measured, inputs.road.speed, &inputs.design_box)?;
+    build_with(inputs, &on, progress)
+}
+
+fn validate(inputs: &ReportInputs) -> Result<()> {
+    inputs.car.validate()?;
+    inputs.road.validate()?;
+    inputs.design_box.validate()?;
+    inputs.objectives.validate()
+}
+
+/// The sections on `on`, either road (the module [`road`]).
+fn build_with<R: SectionRoad>(
+    inputs: &ReportInputs,
+    on: &R,
+    mut progress: impl FnMut(usize),
+) -> Result<MethodReport> {
     let ReportInputs {
         car,
         road,
@@ -375,22 +411,19 @@ pub fn build(inputs: &ReportInputs, mut progress: impl FnMut(usize)) -> Result<M
         objectives,
         ..
     } = inputs;
-    car.validate()?;
-    road.validate()?;
-    design_box.validate()?;
-    objectives.validate()?;
+    validate(inputs)?;
     progress(0);
     let scenario = Scenario {
         car: car.clone(),
         quarter: car.quarter(),
-        road: *road,
-        velocity_psd: road.velocity_psd(),
+        road: on.scenario(),
+        velocity_psd: on.velocity_psd(),
         delay: road.delay(car.wheelbase()),
         static_wheel_load: car.front_wheel_load(),
         design_box: *design_box,
         objectives: objectives.clone(),
     };
-    let verification = verify(car, road, inputs.seed)?;
+    let verification = on.verify(car, inputs.seed)?;
     progress(1);
     let settings = MapSettings {
         grid: Grid::over_box(design_box, MAP_POINTS, MAP_POINTS)?,
@@ -398,8 +431,8 @@ pub fn build(inputs: &ReportInputs, mut progress: impl FnMut(usize)) -> Result<M
         ..MapSettings::default()
     };
     let maps = Maps {
-        lofi: map_report(ModelKind::Quarter, car, road, &settings)?,
-        hifi: map_report(ModelKind::Full, car, road, &settings)?,
+        lofi: on.map(ModelKind::Quarter, car, &settings)?,
+        hifi: on.map(ModelKind::Full, car, &settings)?,
     };
     progress(2);
     let sampling = PLAN_SIZES
@@ -419,7 +452,7 @@ pub fn build(inputs: &ReportInputs, mut progress: impl FnMut(usize)) -> Result<M
         })
         .collect::<Result<Vec<_>>>()?;
     progress(3);
-    let study = study_in(car, road, design_box)?;
+    let study = on.study(car, design_box)?;
     let (spec, plan, chosen_because) = match inputs.surrogate {
         Some((spec, plan)) => (spec, plan, "chosen in the view".to_string()),
         None => {
@@ -440,16 +473,16 @@ pub fn build(inputs: &ReportInputs, mut progress: impl FnMut(usize)) -> Result<M
             )
         }
     };
-    let chosen = surrogate_report_in(spec, plan, car, road, design_box, None)?;
+    let chosen = on.surrogate(spec, plan, car, design_box)?;
     let fidelity = Fidelity {
         study,
         chosen_because,
         chosen,
     };
     progress(4);
-    let optimisation = optimise(inputs, spec, plan)?;
+    let optimisation = optimise(inputs, on, spec, plan)?;
     progress(5);
-    let adaptive = adaptive_section(inputs, spec, plan, &optimisation)?;
+    let adaptive = adaptive_section(inputs, on, spec, plan, &optimisation)?;
     progress(SECTIONS.len());
     Ok(MethodReport {
         version: env!("CARGO_PKG_VERSION").into(),
@@ -479,10 +512,17 @@ pub struct Documents {
 impl MethodReport {
     /// The report's title.
     pub fn title(&self) -> String {
-        format!(
-            "RideLab study report: {}, class {:?} at {} m/s",
-            self.scenario.car.name, self.scenario.road.class, self.scenario.road.speed
-        )
+        let s = &self.scenario;
+        match &s.road {
+            RoadScenario::Iso(r) => format!(
+                "RideLab study report: {}, class {:?} at {} m/s",
+                s.car.name, r.class, r.speed
+            ),
+            RoadScenario::Measured(m) => format!(
+                "RideLab study report: {}, the measured road {} at {} m/s",
+                s.car.name, m.file, m.speed
+            ),
+        }
     }
 
     /// Renders the HTML and Markdown documents and the figures.
@@ -684,6 +724,7 @@ fn verify(car: &Car, road: &Road, seed: u64) -> Result<Verification> {
 /// the reason, when section 5 has no front or the loop cannot run on so few points.
 fn adaptive_section(
     inputs: &ReportInputs,
+    on: &impl SectionRoad,
     spec: SurrogateSpec,
     plan: PlanSpec,
     o: &Optimisation,
@@ -716,7 +757,7 @@ fn adaptive_section(
             inputs.objectives.clone(),
         )
     };
-    let run = match adaptive_optimize_report(&request, options) {
+    let run = match on.adaptive(&request, options) {
         Ok(r) => r,
         Err(RideError::Field { field, reason }) => {
             return Ok(skipped(format!(
@@ -757,17 +798,24 @@ fn adaptive_section(
 }
 
 /// Section 5: the fronts on the surrogate and on the HiFi, or why there are none.
-fn optimise(inputs: &ReportInputs, spec: SurrogateSpec, plan: PlanSpec) -> Result<Optimisation> {
+fn optimise(
+    inputs: &ReportInputs,
+    on: &impl SectionRoad,
+    spec: SurrogateSpec,
+    plan: PlanSpec,
+) -> Result<Optimisation> {
     let run = |evaluator: EvaluatorSpec, method: &Method| {
-        optimize_report(
-            &inputs.car,
-            &inputs.road,
-            &inputs.design_box,
+        on.optimize(&OptimizeRequest {
             evaluator,
             plan,
-            method,
-            inputs.objectives.clone(),
-        )
+            ..OptimizeRequest::new(
+                &inputs.car,
+                &inputs.road,
+                inputs.design_box,
+                method.clone(),
+                inputs.objectives.clone(),
+            )
+        })
     };
     let stm = Method::Stm(StmParams::default());
     let nsga2 = Method::Nsga2(Nsga2Params {
@@ -796,7 +844,7 @@ fn optimise(inputs: &ReportInputs, spec: SurrogateSpec, plan: PlanSpec) -> Resul
         r.study.front.iter().map(|p| [p.bacc, p.dtl]).collect()
     };
     let stm_to_hifi = front_distance(&points(&stm_front), &points(&hifi_front));
-    let hifi = HiFi::new(&inputs.car, &inputs.road)?;
+    let hifi = on.hifi(&inputs.car)?;
     let datum = hifi.evaluate(inputs.car.front.spring, inputs.car.front.damper)?;
     let mut table = vec![PickRow {
         design: "datum".into(),
@@ -836,7 +884,7 @@ fn optimise(inputs: &ReportInputs, spec: SurrogateSpec, plan: PlanSpec) -> Resul
         .iter()
         .map(|&rule| {
             let mut r = stm_front.clone();
-            r.repick(rule, &inputs.car, &inputs.road, &inputs.design_box)?;
+            on.repick(&mut r, rule, &inputs.car, &inputs.design_box)?;
             let (p, c) = (&r.study.pick, &r.hifi_recheck);
             Ok(RulePick {
                 rule: p.rule.clone(),

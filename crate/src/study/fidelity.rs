@@ -276,8 +276,8 @@ pub struct BudgetBest {
 pub struct StudyReport {
     /// Car name.
     pub car: String,
-    /// Road scenario.
-    pub road: Road,
+    /// Road scenario: an ISO class, or a measured road (`ridelab report --road FILE`).
+    pub road: RoadScenario,
     /// Design box.
     pub design_box: DesignBox,
     /// Levels per axis of the validation grid.
@@ -398,13 +398,29 @@ pub fn study(car: &Car, road: &Road) -> Result<StudyReport> {
 
 /// [`study`] over any design box (plans, normalisation and validation grid span it).
 pub fn study_in(car: &Car, road: &Road, design_box: &DesignBox) -> Result<StudyReport> {
-    let design_box = *design_box;
-    let setting = Setting::new(car, road, &design_box)?;
-    let hifi = Counted::new(HiFi::new(car, road)?);
+    let setting = Setting::new(car, road, design_box)?;
+    study_on(
+        car,
+        &setting,
+        HiFi::new(car, road)?,
+        RoadScenario::Iso(*road),
+    )
+}
+
+/// [`study_in`] on `setting` (an ISO class or a measured road: its LoFi and box) with
+/// `hifi` the full car of `car` there; `road` is recorded.
+pub fn study_on<E: Evaluator>(
+    car: &Car,
+    setting: &Setting,
+    hifi: E,
+    road: RoadScenario,
+) -> Result<StudyReport> {
+    let design_box = setting.design_box;
+    let hifi = Counted::new(hifi);
     let validation = ValidationSet::new(&hifi, &design_box, VALIDATION_LEVELS)?;
     let rows = fidelity_study(
         &hifi,
-        &setting,
+        setting,
         &study_specs(),
         &PlanSpec::study(),
         &validation,
@@ -413,7 +429,7 @@ pub fn study_in(car: &Car, road: &Road, design_box: &DesignBox) -> Result<StudyR
     let lofi = validation.metrics(&validation.predict(&setting.lofi)?)?;
     Ok(StudyReport {
         car: car.name.clone(),
-        road: *road,
+        road,
         design_box,
         validation_levels: VALIDATION_LEVELS,
         hifi_evaluations: hifi.count(),
@@ -430,8 +446,14 @@ impl StudyReport {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "# Fidelity study: {} ({:?} road, {} m/s)\n\nValidation: {n} x {n} HiFi grid; {} HiFi evaluations in all. Best = {}.\n",
-            self.car, self.road.class, self.road.speed, self.hifi_evaluations, self.ranking,
+            "# Fidelity study: {} ({})\n\nValidation: {n} x {n} HiFi grid; {} HiFi evaluations in all. Best = {}.\n",
+            self.car,
+            match &self.road {
+                RoadScenario::Iso(r) => format!("{:?} road, {} m/s", r.class, r.speed),
+                RoadScenario::Measured(m) => format!("the measured road {}, {} m/s", m.file, m.speed),
+            },
+            self.hifi_evaluations,
+            self.ranking,
             n = self.validation_levels,
         );
         let names = CRITERIA_NAMES.map(str::to_uppercase);

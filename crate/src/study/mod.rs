@@ -25,12 +25,13 @@
 pub mod adaptive;
 pub mod fidelity;
 pub mod map;
+pub mod measured;
 pub mod optimize;
 pub mod robust;
 
 pub use fidelity::{
-    study, study_in, surrogate_report, surrogate_report_in, surrogate_report_on, StudyReport,
-    SurrogateReport,
+    study, study_in, study_on, surrogate_report, surrogate_report_in, surrogate_report_on,
+    StudyReport, SurrogateReport,
 };
 pub use map::{
     map_csv, map_report, map_report_from, map_report_on, map_report_with, CriteriaContours,

@@ -13,15 +13,16 @@ use ridelab::comfort::Comfort;
 use ridelab::design::DesignBox;
 use ridelab::dos::DesignObjectives;
 use ridelab::error::{Result, RideError};
-use ridelab::evaluate::Evaluator;
 use ridelab::gpu::{Compute, ComputePath};
 use ridelab::optimize::{Method, Nsga2Params, PickRule, StmParams};
-use ridelab::road_profile::{MeasuredModel, RoadScenario};
+use ridelab::road::Road;
+use ridelab::road_profile::RoadScenario;
 use ridelab::robust::LoadCase;
 use ridelab::study::adaptive;
-use ridelab::study::{optimize_on_models, EvaluatorSpec, OptimizeReport, OptimizeRequest};
+use ridelab::study::measured::{check_measured_request, optimize_measured};
 use ridelab::study::{robust_optimize_report, RobustOptimizeReport};
-use ridelab::surrogate::{sample_plan, LmOptions, PlanSpec, Setting};
+use ridelab::study::{EvaluatorSpec, OptimizeReport, OptimizeRequest};
+use ridelab::surrogate::PlanSpec;
 use std::path::Path;
 
 #[derive(Args)]
@@ -226,24 +227,12 @@ fn measured_optimize(
     objectives: DesignObjectives,
     path: &str,
 ) -> Result<String> {
-    let refuse = |field: &str, why: &str| Err(RideError::field(field, why));
     one_scenario(
         a.cases.cases.is_some() || !loads.is_empty(),
         a.compute == Some(Compute::Gpu),
     )?;
-    if let (Comfort::Wk, EvaluatorSpec::Surrogate(_)) = (a.comfort, a.evaluator) {
-        return refuse(
-            "comfort",
-            "wk needs --evaluator quarter or full: the surrogates are fitted to the unweighted BAcc",
-        );
-    }
     let looped = a.adaptive.options();
-    if let (Some(_), EvaluatorSpec::Model(_)) = (looped, a.evaluator) {
-        return refuse(
-            "adaptive",
-            "the adaptive loop refits a surrogate; give a surrogate --evaluator",
-        );
-    }
+    check_measured_request(a.evaluator, a.comfort, looped.is_some())?;
     // The optimisation's runs, and the loop's HiFi runs (its plan and added runs).
     let plan_runs = match looped {
         Some(o) => a.plan.plan()?.points(design_box).len() as u64 + o.runs as u64,
@@ -260,33 +249,15 @@ fn measured_optimize(
     };
     ridelab::budget::check_measured(runs, field, "this optimisation", options)?;
     let (hifi, about) = measured_model(ModelKind::Full, car, &a.car, path, a.comfort)?;
-    let mut report = None;
-    let model: Box<dyn Evaluator + Sync> = match a.evaluator {
-        EvaluatorSpec::Model(ModelKind::Full) => Box::new(hifi.clone()),
-        EvaluatorSpec::Model(ModelKind::Quarter) => Box::new(
-            MeasuredModel::new(ModelKind::Quarter, car, hifi.road().clone())
-                .with_comfort(a.comfort),
-        ),
-        // Fitted to the HiFi on this road, its LoFi the quarter car on it; with
-        // --adaptive, the loop's final surrogate (the optimisation's objectives and STM).
-        EvaluatorSpec::Surrogate(spec) => {
-            let setting = Setting::measured(car, hifi.road().clone(), design_box)?;
-            match looped {
-                None => {
-                    let samples = sample_plan(&hifi, &a.plan.plan()?, design_box)?;
-                    Box::new(spec.fit(&setting, &samples, &LmOptions::default())?)
-                }
-                Some(options) => {
-                    let decision =
-                        adaptive::Decision::for_method(car, &hifi, method, objectives.clone())?;
-                    let state = adaptive::run(spec, &setting, &hifi, a.plan, &decision, options)?;
-                    report = Some(state.report());
-                    Box::new(state.into_model())
-                }
-            }
-        }
+    // The request's ISO road is not used: the models are on the measured one.
+    let unused = Road::default();
+    let request = OptimizeRequest {
+        evaluator: a.evaluator,
+        plan: a.plan,
+        comfort: a.comfort,
+        ..OptimizeRequest::new(car, &unused, *design_box, method.clone(), objectives)
     };
-    let mut out = optimize_on_models(car, design_box, model, &hifi, method, objectives, a.comfort)?;
+    let (mut out, report) = optimize_measured(&request, &hifi, looped)?;
     out.compute = a.compute.map(|_| ComputePath::Cpu);
     if a.pick != PickRule::MinMax {
         out.repick_on(a.pick, &hifi, design_box)?;
@@ -344,11 +315,12 @@ pub(crate) fn optimize_text(out: &OptimizeReport) -> String {
     let p = &study.pick;
     let bacc = out.comfort.label();
     let mut text = format!(
-        "front: {} points on {} ({} evaluations), hypervolume {:.4} (m/s^2) N against [{:.4}, {:.2}]\n\
+        "front: {} point{} on {} ({} evaluations), hypervolume {:.4} (m/s^2) N against [{:.4}, {:.2}]\n\
          {} pick: Ks {:.1} N/m, Cs {:.1} N s/m (pseudo-weights comfort {:.2}, road holding {:.2})\n{}  \
          {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} % against the datum's HiFi criteria{}\n\
          HiFi re-check: {bacc} {:+.2} %, DTL {:+.2} %, SWS {:+.2} % (prediction error {:.3} / {:.3} / {:.3} %)\n",
         study.front.len(),
+        if study.front.len() == 1 { "" } else { "s" },
         study.evaluator,
         study.evaluations,
         study.hypervolume,

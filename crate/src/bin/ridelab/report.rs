@@ -1,9 +1,10 @@
 //! `ridelab report`: the study report as HTML, Markdown, SVG, JSON and CSV.
 
-use crate::args::{car_and_road, count_u64, json, BoxArgs, CarRoad, ObjectiveArgs};
+use crate::args::{car_loads_road_of, count_u64, json, BoxArgs, CarRoad, ObjectiveArgs};
+use crate::road::{one_scenario, profile_at};
 use clap::Args;
 use ridelab::error::{Result, RideError};
-use ridelab::report::{build, ReportInputs, SECTIONS};
+use ridelab::report::{build, build_on, MeasuredInputs, ReportInputs, SECTIONS};
 use ridelab::surrogate::{PlanSpec, SurrogateSpec};
 use std::path::PathBuf;
 
@@ -34,6 +35,18 @@ pub(crate) struct ReportArgs {
     pub(crate) json: bool,
 }
 
+/// The measured road of `report --road FILE` ([`profile_at`]). One scenario: a car file's
+/// load cases are refused naming `road`.
+fn measured_inputs(o: &CarRoad, path: &str, cases: bool) -> Result<MeasuredInputs> {
+    one_scenario(cases, false)?;
+    let (profile, _, tracks) = profile_at(o, path)?;
+    Ok(MeasuredInputs {
+        file: path.to_string(),
+        profile,
+        tracks,
+    })
+}
+
 /// `report --json`: what was written where, and what each section took.
 #[derive(serde::Serialize)]
 struct Summary {
@@ -54,7 +67,11 @@ struct SectionTime {
 }
 
 pub(crate) fn report_cmd(a: ReportArgs) -> Result<String> {
-    let (car, road) = car_and_road(&a.car)?;
+    let (car, loads, road) = car_loads_road_of(&a.car)?;
+    let measured = match a.car.road.as_deref() {
+        None => None,
+        Some(path) => Some(measured_inputs(&a.car, path, !loads.is_empty())?),
+    };
     let design_box = a.design_box.design_box()?;
     let inputs = ReportInputs {
         design_box,
@@ -74,7 +91,7 @@ pub(crate) fn report_cmd(a: ReportArgs) -> Result<String> {
     let start = std::time::Instant::now();
     let mut last = (start, None::<usize>);
     let mut sections = Vec::new();
-    let report = build(&inputs, |k| {
+    let progress = |k| {
         let now = std::time::Instant::now();
         if let Some(prev) = last.1 {
             let seconds = (now - last.0).as_secs_f64();
@@ -88,7 +105,11 @@ pub(crate) fn report_cmd(a: ReportArgs) -> Result<String> {
             eprintln!("report: {} ...", SECTIONS[k]);
         }
         last = (now, Some(k));
-    })?;
+    };
+    let report = match &measured {
+        None => build(&inputs, progress)?,
+        Some(m) => build_on(&inputs, m, progress)?,
+    };
     // Nothing is written unless every number in the report is finite.
     ridelab::finite::check(&report)?;
     let render = std::time::Instant::now();

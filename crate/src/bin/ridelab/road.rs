@@ -80,6 +80,14 @@ fn road_text(file: &str, d: &RoadDescription) -> String {
 /// their `--tracks` (default: the file's own, measured when it has two); errors name
 /// `road` (with the file's column and row) or `speed`.
 pub(crate) fn shaped_road(o: &CarRoad, path: &str) -> Result<(ShapedRoad, ProfileTracks)> {
+    let (profile, speed, tracks) = profile_at(o, path)?;
+    let shaped = ShapedRoad::from_profile(&profile, speed, tracks).map_err(road_error)?;
+    Ok((shaped, tracks))
+}
+
+/// The profile of `path`, the speed (`--speed`, checked) and how its tracks drive the car:
+/// `--tracks`, or as the file says (one column: both tracks see it; two: measured).
+pub(crate) fn profile_at(o: &CarRoad, path: &str) -> Result<(Profile, f64, ProfileTracks)> {
     let profile = read_profile(path)?;
     let speed = o.speed.unwrap_or(ridelab::road::Road::default().speed);
     ridelab::domain::SPEED.check("speed", speed)?;
@@ -88,8 +96,7 @@ pub(crate) fn shaped_road(o: &CarRoad, path: &str) -> Result<(ShapedRoad, Profil
         Some(Tracks::Correlated) => ProfileTracks::Correlated,
         Some(Tracks::Independent) => ProfileTracks::Independent,
     };
-    let shaped = ShapedRoad::from_profile(&profile, speed, tracks).map_err(road_error)?;
-    Ok((shaped, tracks))
+    Ok((profile, speed, tracks))
 }
 
 /// What a measured road (one scenario, computed on the CPU) cannot be combined with, as

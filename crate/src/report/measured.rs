@@ -1,0 +1,285 @@
+//! The report on a measured road (`ridelab report --road FILE`, issue #31): every section
+//! on the profile's road at the scenario's speed. The models are the quarter and the full
+//! car by the exact routes with the road's shaping filters ([`MeasuredModel`]); the
+//! surrogates are fitted to the full car's samples there with the quarter car there as
+//! their LoFi; section 1 checks the exact routes against each other, against the
+//! frequency route on the raw Welch PSD and against the profile itself played back under
+//! the wheels.
+
+use super::road::SectionRoad;
+use super::{rows, ComfortRow, Frf, Verification};
+use crate::analysis::ModelKind;
+use crate::car::Car;
+use crate::criteria::{comfort_label, Spectrum};
+use crate::design::DesignBox;
+use crate::error::{Result, RideError};
+use crate::evaluate::{Criteria, Evaluator};
+use crate::math;
+use crate::optimize::PickRule;
+use crate::road::Road;
+use crate::road_profile::{
+    bacc_wk_shaped_fast, criteria_shaped, criteria_shaped_modal, criteria_shaped_spectral,
+    playback, road_error, MeasuredModel, MeasuredRoad, Profile, ProfileTracks, RoadScenario,
+    ShapedRoad, ShapedSpectrum,
+};
+use crate::study::adaptive::{AdaptiveOptimizeReport, AdaptiveOptions};
+use crate::study::measured::optimize_measured;
+use crate::study::{map_report_with, study_on, surrogate_report_on};
+use crate::study::{MapReport, MapSettings, OptimizeReport, OptimizeRequest};
+use crate::study::{StudyReport, SurrogateReport};
+use crate::surrogate::{PlanSpec, Setting, SurrogateSpec};
+use crate::time_domain::{simulate_playback, TimeOptions, MAX_STEPS};
+
+/// A measured road for the report: the profile, the file it came from and how its tracks
+/// drive the car.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasuredInputs {
+    /// The file's name, as the report names the road.
+    pub file: String,
+    /// The profile.
+    pub profile: Profile,
+    /// One track on both wheels (correlated), on independent tracks, or two measured ones.
+    pub tracks: ProfileTracks,
+}
+
+/// The measured road shaped at the scenario's speed, with its models.
+pub(super) struct OnRoad<'a> {
+    inputs: &'a MeasuredInputs,
+    about: MeasuredRoad,
+    shaped: ShapedRoad,
+    lofi: MeasuredModel,
+    hifi: MeasuredModel,
+    setting: Setting,
+}
+
+impl<'a> OnRoad<'a> {
+    /// The road of `inputs` shaped at `speed`, m/s, for `car` over `design_box`.
+    pub(super) fn new(
+        car: &Car,
+        inputs: &'a MeasuredInputs,
+        speed: f64,
+        design_box: &DesignBox,
+    ) -> Result<OnRoad<'a>> {
+        let shaped =
+            ShapedRoad::from_profile(&inputs.profile, speed, inputs.tracks).map_err(road_error)?;
+        Ok(OnRoad {
+            about: MeasuredRoad::of(&inputs.file, &shaped, inputs.tracks),
+            lofi: MeasuredModel::new(ModelKind::Quarter, car, shaped.clone()),
+            hifi: MeasuredModel::new(ModelKind::Full, car, shaped.clone()),
+            setting: Setting::measured(car, shaped.clone(), design_box)?,
+            inputs,
+            shaped,
+        })
+    }
+
+    /// Section 1 at the datum design: each model by its exact routes with the road's
+    /// filters (the quarter car's closed form or the full car's residue route first, then
+    /// the modal route and the Lyapunov equations), by the frequency route on the raw PSD
+    /// and by the profile played back under the wheels from rest (`seed` does not apply);
+    /// the Wk-weighted comfort by the exact and the frequency routes; the modes and FRFs
+    /// (which do not depend on the road).
+    fn verify_at(&self, car: &Car, speed: f64) -> Result<Verification> {
+        let quarter = ModelKind::Quarter.build(car);
+        let full = ModelKind::Full.build(car);
+        let (k0, c0) = (car.front.spring, car.front.damper);
+        let raw = |model| -> Result<Criteria> {
+            Ok(criteria_shaped_spectral(model, &self.shaped, 1e-8)?.criteria)
+        };
+        let mut notes = self.shaped.notes.clone();
+        notes.push(format!(
+            "the exact routes take the road's shaping filters, whose PSD is within {:.1} % of the measured one over {:.2}..{:.1} Hz; the frequency route takes the measured (Welch) PSD itself",
+            100.0 * self.about.fit_error,
+            self.about.band_hz[0],
+            self.about.band_hz[1]
+        ));
+        let (record, lofi_played) = self.played(ModelKind::Quarter, car, speed)?;
+        let lofi = vec![
+            (
+                "closed form with the road's filters".to_string(),
+                self.lofi.evaluate(k0, c0)?,
+            ),
+            (
+                "Lyapunov with the road's filters".into(),
+                criteria_shaped(&quarter, &self.shaped)?,
+            ),
+            (
+                "frequency integration on the measured PSD".into(),
+                raw(&quarter)?,
+            ),
+            (
+                format!(
+                    "time domain, the profile played back ({:.0} s)",
+                    record.duration
+                ),
+                lofi_played,
+            ),
+        ];
+        let mut hifi = vec![(
+            "residue route with the road's filters".to_string(),
+            self.hifi.evaluate(k0, c0)?,
+        )];
+        match criteria_shaped_modal(&full, &self.shaped) {
+            Ok(c) => hifi.push(("modal expansion with the road's filters".into(), c)),
+            Err(e) => notes.push(format!("modal route does not apply: {e}")),
+        }
+        hifi.push((
+            "Lyapunov with the road's filters and the delay".into(),
+            criteria_shaped(&full, &self.shaped)?,
+        ));
+        hifi.push((
+            "frequency integration on the measured PSD, exact delay".into(),
+            raw(&full)?,
+        ));
+        let (_, hifi_played) = self.played(ModelKind::Full, car, speed)?;
+        hifi.push((
+            format!(
+                "time domain, the profile played back ({:.0} s)",
+                record.duration
+            ),
+            hifi_played,
+        ));
+        let comfort = [("LoFi", &quarter, &lofi[0].1), ("HiFi", &full, &hifi[0].1)]
+            .into_iter()
+            .map(|(name, model, plain)| {
+                let exact = bacc_wk_shaped_fast(model, &self.shaped)?;
+                let spectral = ShapedSpectrum::new(model, &self.shaped)?.bacc_wk(1e-10)?;
+                Ok(ComfortRow {
+                    model: name.into(),
+                    bacc: plain.bacc,
+                    exact,
+                    spectral,
+                    label: comfort_label(exact).into(),
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        // The FRFs do not depend on the road's spectrum: ISO 8608's road at this speed
+        // gives the delays.
+        let iso = Road {
+            speed,
+            ..Road::default()
+        };
+        let f: Vec<f64> = (0..121)
+            .map(|i| 0.1 * math::powf(1000f64, i as f64 / 120.0))
+            .collect();
+        let frf = |model: &crate::model::LinearModel| -> Result<[Vec<f64>; 3]> {
+            let sp = Spectrum::new(model, &iso)?;
+            let mut out: [Vec<f64>; 3] = Default::default();
+            for &fi in &f {
+                let h = sp.displacement_transfer(0, 2.0 * std::f64::consts::PI * fi);
+                for k in 0..3 {
+                    out[k].push(math::cabs(h[k]));
+                }
+            }
+            Ok(out)
+        };
+        Ok(Verification {
+            lofi: rows(lofi),
+            hifi: rows(hifi),
+            notes,
+            record,
+            lofi_modes: quarter.modes()?,
+            hifi_modes: full.modes()?,
+            frf: Frf {
+                lofi: frf(&quarter)?,
+                hifi: frf(&full)?,
+                f,
+            },
+            comfort,
+        })
+    }
+
+    /// `kind`'s RMS criteria with the profile played back under its wheels at `speed`
+    /// from rest (at most a 1 ms step that divides the spacing), and the run's options.
+    fn played(&self, kind: ModelKind, car: &Car, speed: f64) -> Result<(TimeOptions, Criteria)> {
+        let profile = &self.inputs.profile;
+        let dt = profile.playback_step(speed, 1e-3);
+        let wheels = playback(profile, &kind.build(car).wheels, speed, dt)?;
+        if wheels.len() as f64 > MAX_STEPS {
+            return Err(RideError::field(
+                "road",
+                format!(
+                    "playing the profile back takes {} steps of {dt:.3e} s; at most {MAX_STEPS:e}: a faster --speed",
+                    wheels.len()
+                ),
+            ));
+        }
+        let opt = TimeOptions {
+            dt,
+            duration: (wheels.len() - 1) as f64 * dt,
+            decimate: 1000,
+            ..TimeOptions::default()
+        };
+        let r = simulate_playback(kind, car, dt, &wheels.wheels, &opt)?;
+        Ok((opt, Criteria::from_array(r.rms)))
+    }
+}
+
+impl SectionRoad for OnRoad<'_> {
+    fn scenario(&self) -> RoadScenario {
+        RoadScenario::Measured(self.about.clone())
+    }
+
+    fn velocity_psd(&self) -> Option<f64> {
+        None
+    }
+
+    /// The played-back profile has no seed: `seed` does not apply.
+    fn verify(&self, car: &Car, _seed: u64) -> Result<Verification> {
+        self.verify_at(car, self.about.speed)
+    }
+
+    fn map(&self, kind: ModelKind, car: &Car, settings: &MapSettings) -> Result<MapReport> {
+        let model = match kind {
+            ModelKind::Quarter => &self.lofi,
+            ModelKind::Full => &self.hifi,
+        };
+        let mut r = map_report_with(model, car, &Road::default(), settings)?;
+        r.road = self.scenario();
+        Ok(r)
+    }
+
+    fn study(&self, car: &Car, _design_box: &DesignBox) -> Result<StudyReport> {
+        study_on(car, &self.setting, self.hifi.clone(), self.scenario())
+    }
+
+    fn surrogate(
+        &self,
+        spec: SurrogateSpec,
+        plan: PlanSpec,
+        _car: &Car,
+        _design_box: &DesignBox,
+    ) -> Result<SurrogateReport> {
+        let mut r = surrogate_report_on(spec, plan, &self.setting, self.hifi.clone(), None)?;
+        r.road = self.scenario();
+        Ok(r)
+    }
+
+    fn optimize(&self, request: &OptimizeRequest) -> Result<OptimizeReport> {
+        optimize_measured(request, &self.hifi, None).map(|(r, _)| r)
+    }
+
+    fn hifi(&self, _car: &Car) -> Result<Box<dyn Evaluator + '_>> {
+        Ok(Box::new(self.hifi.clone()))
+    }
+
+    fn repick(
+        &self,
+        r: &mut OptimizeReport,
+        rule: PickRule,
+        _car: &Car,
+        design_box: &DesignBox,
+    ) -> Result<()> {
+        r.repick_on(rule, &self.hifi, design_box)
+    }
+
+    fn adaptive(
+        &self,
+        request: &OptimizeRequest,
+        options: AdaptiveOptions,
+    ) -> Result<AdaptiveOptimizeReport> {
+        let (optimize, adaptive) = optimize_measured(request, &self.hifi, Some(options))?;
+        let adaptive = adaptive
+            .ok_or_else(|| RideError::Numerical("the adaptive loop gave no report".into()))?;
+        Ok(AdaptiveOptimizeReport { optimize, adaptive })
+    }
+}

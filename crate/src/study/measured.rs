@@ -1,0 +1,89 @@
+//! Optimisations on a measured road: `ridelab optimize --road FILE` and the report's
+//! sections 5 and 6 on one. The front's model is the quarter or the full car on the road
+//! (the exact routes with its shaping filters, [`MeasuredModel`]) or a surrogate fitted to
+//! the full car's samples there (its LoFi the quarter car there), or with the adaptive
+//! loop's options that loop's final surrogate; the datum and the pick's re-check are the
+//! full car on the road.
+
+use super::adaptive::{run, AdaptiveOptions, AdaptiveReport, Decision};
+use super::{optimize_on_models, EvaluatorSpec, OptimizeReport, OptimizeRequest};
+use crate::analysis::ModelKind;
+use crate::comfort::Comfort;
+use crate::error::{Result, RideError};
+use crate::evaluate::Evaluator;
+use crate::road_profile::MeasuredModel;
+use crate::surrogate::{sample_plan, LmOptions, Setting};
+
+/// What an optimisation on a measured road refuses, naming the field: the adaptive loop
+/// with a model evaluator (it refits a surrogate), and a surrogate with the Wk-weighted
+/// comfort (the surrogates are fitted to the unweighted BAcc).
+pub fn check_measured_request(
+    evaluator: EvaluatorSpec,
+    comfort: Comfort,
+    adaptive: bool,
+) -> Result<()> {
+    match (evaluator, comfort, adaptive) {
+        (EvaluatorSpec::Surrogate(_), Comfort::Wk, _) => Err(RideError::field(
+            "comfort",
+            "wk needs --evaluator quarter or full: the surrogates are fitted to the unweighted BAcc",
+        )),
+        (EvaluatorSpec::Model(_), _, true) => Err(RideError::field(
+            "adaptive",
+            "the adaptive loop refits a surrogate; give a surrogate --evaluator",
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// The optimisation `request` asks for on the road of `hifi` (the full car of
+/// `request.car` there, with the request's comfort measure; `request.road` is not used),
+/// with `options` through the adaptive loop (its fronts the request's objectives and STM
+/// settings, [`Decision::for_method`]); the loop's report beside it. The request's
+/// compute and pick are the caller's (the pick is min-max).
+pub fn optimize_measured(
+    request: &OptimizeRequest,
+    hifi: &MeasuredModel,
+    options: Option<AdaptiveOptions>,
+) -> Result<(OptimizeReport, Option<AdaptiveReport>)> {
+    let OptimizeRequest {
+        car,
+        design_box,
+        method,
+        objectives,
+        comfort,
+        ..
+    } = request;
+    check_measured_request(request.evaluator, *comfort, options.is_some())?;
+    let mut looped = None;
+    let model: Box<dyn Evaluator + Sync> = match request.evaluator {
+        EvaluatorSpec::Model(ModelKind::Full) => Box::new(hifi.clone()),
+        EvaluatorSpec::Model(ModelKind::Quarter) => Box::new(
+            MeasuredModel::new(ModelKind::Quarter, car, hifi.road().clone()).with_comfort(*comfort),
+        ),
+        EvaluatorSpec::Surrogate(spec) => {
+            let setting = Setting::measured(car, hifi.road().clone(), design_box)?;
+            match options {
+                None => {
+                    let samples = sample_plan(hifi, &request.plan.plan()?, design_box)?;
+                    Box::new(spec.fit(&setting, &samples, &LmOptions::default())?)
+                }
+                Some(options) => {
+                    let decision = Decision::for_method(car, hifi, method, objectives.clone())?;
+                    let state = run(spec, &setting, hifi, request.plan, &decision, options)?;
+                    looped = Some(state.report());
+                    Box::new(state.into_model())
+                }
+            }
+        }
+    };
+    let out = optimize_on_models(
+        car,
+        design_box,
+        model,
+        hifi,
+        method,
+        objectives.clone(),
+        *comfort,
+    )?;
+    Ok((out, looped))
+}
