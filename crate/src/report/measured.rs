@@ -7,14 +7,13 @@
 //! the wheels.
 
 use super::road::SectionRoad;
-use super::{rows, ComfortRow, Frf, Verification};
+use super::{frfs, rows, ComfortRow, Verification};
 use crate::analysis::ModelKind;
 use crate::car::Car;
-use crate::criteria::{comfort_label, Spectrum};
+use crate::criteria::comfort_label;
 use crate::design::DesignBox;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
-use crate::math;
 use crate::optimize::PickRule;
 use crate::road::Road;
 use crate::road_profile::{
@@ -158,20 +157,6 @@ impl<'a> OnRoad<'a> {
             speed,
             ..Road::default()
         };
-        let f: Vec<f64> = (0..121)
-            .map(|i| 0.1 * math::powf(1000f64, i as f64 / 120.0))
-            .collect();
-        let frf = |model: &crate::model::LinearModel| -> Result<[Vec<f64>; 3]> {
-            let sp = Spectrum::new(model, &iso)?;
-            let mut out: [Vec<f64>; 3] = Default::default();
-            for &fi in &f {
-                let h = sp.displacement_transfer(0, 2.0 * std::f64::consts::PI * fi);
-                for k in 0..3 {
-                    out[k].push(math::cabs(h[k]));
-                }
-            }
-            Ok(out)
-        };
         Ok(Verification {
             lofi: rows(lofi),
             hifi: rows(hifi),
@@ -179,11 +164,7 @@ impl<'a> OnRoad<'a> {
             record,
             lofi_modes: quarter.modes()?,
             hifi_modes: full.modes()?,
-            frf: Frf {
-                lofi: frf(&quarter)?,
-                hifi: frf(&full)?,
-                f,
-            },
+            frf: frfs(&quarter, &full, &iso)?,
             comfort,
         })
     }

@@ -44,7 +44,7 @@ use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::maps::Grid;
 use crate::math;
-use crate::model::Mode;
+use crate::model::{LinearModel, Mode};
 use crate::optimize::{front_distance, FrontDistance, Method, Nsga2Params, PickRule, StmParams};
 use crate::road::Road;
 use crate::road_profile::RoadScenario;
@@ -688,10 +688,25 @@ fn verify(car: &Car, road: &Road, seed: u64) -> Result<Verification> {
             })
         })
         .collect::<Result<Vec<_>>>()?;
+    Ok(Verification {
+        lofi: rows(lofi),
+        hifi: rows(hifi),
+        notes,
+        record,
+        lofi_modes: quarter.modes()?,
+        hifi_modes: full.modes()?,
+        frf: frfs(&quarter, &full, road)?,
+        comfort,
+    })
+}
+
+/// The FRFs |H| of both models from the right track's road displacement, 0.1 to 100 Hz
+/// (121 frequencies, log spaced), the rear wheels `L / v` later on `road`.
+fn frfs(quarter: &LinearModel, full: &LinearModel, road: &Road) -> Result<Frf> {
     let f: Vec<f64> = (0..121)
         .map(|i| 0.1 * math::powf(1000f64, i as f64 / 120.0))
         .collect();
-    let frf = |model: &crate::model::LinearModel| -> Result<[Vec<f64>; 3]> {
+    let frf = |model: &LinearModel| -> Result<[Vec<f64>; 3]> {
         let sp = Spectrum::new(model, road)?;
         let mut out: [Vec<f64>; 3] = Default::default();
         for &fi in &f {
@@ -702,19 +717,10 @@ fn verify(car: &Car, road: &Road, seed: u64) -> Result<Verification> {
         }
         Ok(out)
     };
-    Ok(Verification {
-        lofi: rows(lofi),
-        hifi: rows(hifi),
-        notes,
-        record,
-        lofi_modes: quarter.modes()?,
-        hifi_modes: full.modes()?,
-        frf: Frf {
-            lofi: frf(&quarter)?,
-            hifi: frf(&full)?,
-            f,
-        },
-        comfort,
+    Ok(Frf {
+        lofi: frf(quarter)?,
+        hifi: frf(full)?,
+        f,
     })
 }
 
