@@ -2203,6 +2203,66 @@ fn the_report_takes_a_measured_road() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `study --road FILE` (issue #31): the fidelity study on the measured road. Its best
+/// surrogate at 10 samples, fitted alone by `surrogate --road` on the same plan, has the
+/// same validation metrics (the same HiFi samples, LoFi and 20 x 20 grid: 1e-12); it
+/// makes as many HiFi runs as the study on an ISO class (every plan and the grid once);
+/// the JSON names the road; the adaptive study and a car file's load cases are refused.
+#[test]
+fn the_fidelity_study_takes_a_measured_road() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    let road = format!("{root}/assets/roads/concrete-slab-5m.csv");
+    let v = json(&["study", "--road", &road]);
+    assert_eq!(v["road"]["file"], road.as_str());
+    assert_eq!(v["hifi_evaluations"], json(&["study"])["hifi_evaluations"]);
+    let best = v["best_per_budget"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|b| b["samples"] == 10)
+        .unwrap();
+    let (approach, plan) = (
+        best["surrogate"].as_str().unwrap(),
+        best["plan"].as_str().unwrap(),
+    );
+    let alone = json(&[
+        "surrogate",
+        "--road",
+        &road,
+        "--approach",
+        approach,
+        "--plan",
+        plan,
+    ]);
+    for c in ["bacc", "dtl", "sws"] {
+        for m in ["rmse", "rte_max_percent", "r2"] {
+            let (a, b) = (
+                best["fitted"]["metrics"][c][m].as_f64().unwrap(),
+                alone["metrics"][c][m].as_f64().unwrap(),
+            );
+            assert!(
+                (a / b - 1.0).abs() < 1e-12,
+                "{approach} {plan} {c} {m}: {a} vs {b}"
+            );
+        }
+    }
+    let laden = format!("{root}/assets/examples/sedan-laden.json");
+    for (args, field) in [
+        (
+            vec!["study", "--road", &road, "--adaptive", "gp-mul"],
+            "adaptive",
+        ),
+        (vec!["study", "--road", &road, "--car", &laden], "road"),
+    ] {
+        let (code, _, err) = ridelab(&args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(
+            err.starts_with(&format!("error: {field}")),
+            "{args:?}: {err}"
+        );
+    }
+}
+
 /// `optimize --road FILE --adaptive K` (issue #31): the loop runs on the measured road, so
 /// every added sample's HiFi value is `eval --road`'s full car at its design and the pick's
 /// re-check is `eval --road`'s at the pick (the same exact route: 1e-12); the runs are

@@ -24,8 +24,8 @@ pub(crate) struct CarRoad {
     #[arg(long)]
     pub(crate) class: Option<RoadClass>,
     /// A measured road profile (CSV distance_m,elevation_m[,elevation_right_m]) in place
-    /// of --class on eval, map, optimize, surrogate, simulate and report (study refuses it);
-    /// see `ridelab road FILE`.
+    /// of --class on eval, map, optimize, surrogate, study, simulate and report; see
+    /// `ridelab road FILE`.
     #[arg(long, value_name = "FILE", conflicts_with = "class")]
     pub(crate) road: Option<String>,
     /// Speed, m/s [default: 20].
@@ -233,13 +233,13 @@ pub(crate) fn car_and_road(o: &CarRoad) -> Result<(Car, Road)> {
 }
 
 /// Car (with `--ks/--cs` applied to the front), the car file's load cases and road.
-/// A measured road (`--road`) is refused here: eval, map, optimize, surrogate, simulate and
-/// report take it (each before it comes here).
+/// A measured road (`--road`) is refused here: eval, map, optimize, surrogate, study,
+/// simulate and report take it (each before it comes here).
 pub(crate) fn car_loads_road(o: &CarRoad) -> Result<(Car, Vec<LoadCase>, Road)> {
     if o.road.is_some() {
         return Err(RideError::field(
             "road",
-            "a measured road works with eval, map, optimize, surrogate, simulate and report (and `ridelab road FILE` describes it); this command takes --class",
+            "a measured road works with eval, map, optimize, surrogate, study, simulate and report (and `ridelab road FILE` describes it); this command takes --class",
         ));
     }
     car_loads_road_of(o)
