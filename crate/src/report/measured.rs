@@ -7,10 +7,9 @@
 //! the wheels.
 
 use super::road::SectionRoad;
-use super::{frfs, rows, ComfortRow, Verification};
+use super::{comfort_rows, frfs, rows, Verification};
 use crate::analysis::ModelKind;
 use crate::car::Car;
-use crate::criteria::comfort_label;
 use crate::design::DesignBox;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
@@ -137,20 +136,12 @@ impl<'a> OnRoad<'a> {
             ),
             hifi_played,
         ));
-        let comfort = [("LoFi", &quarter, &lofi[0].1), ("HiFi", &full, &hifi[0].1)]
-            .into_iter()
-            .map(|(name, model, plain)| {
-                let exact = bacc_wk_shaped_fast(model, &self.shaped)?;
-                let spectral = ShapedSpectrum::new(model, &self.shaped)?.bacc_wk(1e-10)?;
-                Ok(ComfortRow {
-                    model: name.into(),
-                    bacc: plain.bacc,
-                    exact,
-                    spectral,
-                    label: comfort_label(exact).into(),
-                })
-            })
-            .collect::<Result<Vec<_>>>()?;
+        let comfort = comfort_rows(&quarter, &full, &lofi[0].1, &hifi[0].1, |model| {
+            Ok((
+                bacc_wk_shaped_fast(model, &self.shaped)?,
+                ShapedSpectrum::new(model, &self.shaped)?.bacc_wk(1e-10)?,
+            ))
+        })?;
         // The FRFs do not depend on the road's spectrum: ISO 8608's road at this speed
         // gives the delays.
         let iso = Road {

@@ -673,21 +673,10 @@ fn verify(car: &Car, road: &Road, seed: u64) -> Result<Verification> {
         format!("time domain, {RECORD_S} s record"),
         Criteria::from_array(simulate(ModelKind::Full, car, road, &hifi_record)?.rms),
     ));
-    // Beside each model's first route (exact where one applies).
-    let comfort = [("LoFi", &quarter, &lofi[0].1), ("HiFi", &full, &hifi[0].1)]
-        .into_iter()
-        .map(|(name, model, plain)| {
-            let spectral = bacc_wk_spectral(model, road, 1e-10)?;
-            let exact = bacc_wk_exact(model, road).unwrap_or(spectral);
-            Ok(ComfortRow {
-                model: name.into(),
-                bacc: plain.bacc,
-                exact,
-                spectral,
-                label: comfort_label(exact).into(),
-            })
-        })
-        .collect::<Result<Vec<_>>>()?;
+    let comfort = comfort_rows(&quarter, &full, &lofi[0].1, &hifi[0].1, |model| {
+        let spectral = bacc_wk_spectral(model, road, 1e-10)?;
+        Ok((bacc_wk_exact(model, road).unwrap_or(spectral), spectral))
+    })?;
     Ok(Verification {
         lofi: rows(lofi),
         hifi: rows(hifi),
@@ -698,6 +687,30 @@ fn verify(car: &Car, road: &Road, seed: u64) -> Result<Verification> {
         frf: frfs(&quarter, &full, road)?,
         comfort,
     })
+}
+
+/// Section 1's comfort rows beside each model's first route (`lofi`, `hifi`): the
+/// Wk-weighted BAcc `(exact, spectral)` that `wk` gives for the model, with Annex C's label.
+fn comfort_rows(
+    quarter: &LinearModel,
+    full: &LinearModel,
+    lofi: &Criteria,
+    hifi: &Criteria,
+    wk: impl Fn(&LinearModel) -> Result<(f64, f64)>,
+) -> Result<Vec<ComfortRow>> {
+    [("LoFi", quarter, lofi), ("HiFi", full, hifi)]
+        .into_iter()
+        .map(|(name, model, plain)| {
+            let (exact, spectral) = wk(model)?;
+            Ok(ComfortRow {
+                model: name.into(),
+                bacc: plain.bacc,
+                exact,
+                spectral,
+                label: comfort_label(exact).into(),
+            })
+        })
+        .collect()
 }
 
 /// The FRFs |H| of both models from the right track's road displacement, 0.1 to 100 Hz

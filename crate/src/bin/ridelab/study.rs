@@ -46,13 +46,7 @@ pub(crate) struct StudyArgs {
 pub(crate) fn study_cmd(a: StudyArgs) -> Result<String> {
     if let Some(path) = a.car.road.as_deref() {
         let r = measured_study(&a, path)?;
-        return if a.json {
-            json(&r)
-        } else if a.markdown {
-            Ok(r.to_markdown())
-        } else {
-            Ok(crate::text::plain_table(&r.to_markdown()))
-        };
+        return output(&a, &r, r.to_markdown());
     }
     let (car, road) = car_and_road(&a.car)?;
     if let Some(spec) = a.adaptive {
@@ -71,21 +65,20 @@ pub(crate) fn study_cmd(a: StudyArgs) -> Result<String> {
             RideError::Field { field, reason } => RideError::field(field.replace('_', "-"), reason),
             other => other,
         })?;
-        return if a.json {
-            json(&r)
-        } else if a.markdown {
-            Ok(r.to_markdown())
-        } else {
-            Ok(crate::text::plain_table(&r.to_markdown()))
-        };
+        return output(&a, &r, r.to_markdown());
     }
     let r = study(&car, &road)?;
+    output(&a, &r, r.to_markdown())
+}
+
+/// A study as `--json`, `--markdown` or the text table of its Markdown.
+fn output<T: serde::Serialize>(a: &StudyArgs, r: &T, markdown: String) -> Result<String> {
     if a.json {
-        json(&r)
+        json(r)
     } else if a.markdown {
-        Ok(r.to_markdown())
+        Ok(markdown)
     } else {
-        Ok(crate::text::plain_table(&r.to_markdown()))
+        Ok(crate::text::plain_table(&markdown))
     }
 }
 
