@@ -6,7 +6,7 @@ markers) from runs of the release CLI on this machine: run it, paste nothing by 
 
 Each timing is the median wall time of 3 runs of the whole process; the machine, the date
 and the load average are written with them. Counts (model runs) come from the commands'
-own JSON. The wasm size is read from dist/ when a page build is there.
+own JSON. The wasm sizes are read from dist/ when a page build is there.
 """
 import gzip
 import json
@@ -88,10 +88,15 @@ def rows():
     out.append(("`ridelab map --model full --road assets/roads/concrete-slab-5m.csv` 160 x 120 (one track, both wheels)", f"{t * 1000:.0f} ms", f"{t / iso['correlated']:.1f}x the same map on class C, correlated tracks ({iso['correlated'] * 1000:.0f} ms)"))
     t, _ = run(["map", "--model", "full", "--road", "assets/roads/class-c-waviness-2.5.csv", *grid], runs=5)
     out.append(("`ridelab map --model full --road assets/roads/class-c-waviness-2.5.csv` 160 x 120 (two measured tracks)", f"{t * 1000:.0f} ms", f"{t / iso['independent']:.1f}x the same map on class C with independent tracks ({iso['independent'] * 1000:.0f} ms), {t / iso['correlated']:.1f}x with correlated tracks"))
-    wasm = sorted((ROOT / "dist").glob("*.wasm"))
-    if wasm:
-        raw = wasm[0].read_bytes()
-        out.append(("the page's wasm (dist/, release build)", f"{len(raw):,} bytes".replace(",", " "), f"{len(gzip.compress(raw, 9)):,} gzipped (level 9)".replace(",", " ")))
+    names = {
+        "ridelab-first_bg.wasm": "the page's first-screen wasm (dist/, fetched before the first map)",
+        "ridelab_bg.wasm": "the page's on-demand wasm (dist/, the workers', fetched after the first map)",
+    }
+    for name, what in names.items():
+        path = ROOT / "dist" / name
+        if path.exists():
+            raw = path.read_bytes()
+            out.append((what, f"{len(raw):,} bytes".replace(",", " "), f"{len(gzip.compress(raw, 9)):,} gzipped (level 9)".replace(",", " ")))
     return out
 
 

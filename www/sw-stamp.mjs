@@ -36,11 +36,15 @@ export function buildId(dir) {
   return h.digest('hex').slice(0, 16);
 }
 
-/** The preload tags of a build: every module of the page (js/*.js but the worker's entry, and ridelab.js) and the wasm. */
+/**
+ * The preload tags of a build: every module of the page (js/*.js but the worker's entry)
+ * and the first screen's core (ridelab-first.js and its wasm). The workers' larger module
+ * (ridelab.js) is left to them: it loads after the first map (issue #29).
+ */
 export function preloadTags(files) {
-  const modules = files.filter((f) => (f.startsWith('js/') && f.endsWith('.js') && f !== 'js/worker.js') || f === 'ridelab.js');
+  const modules = files.filter((f) => (f.startsWith('js/') && f.endsWith('.js') && f !== 'js/worker.js') || f === 'ridelab-first.js');
   return [
-    '<link rel="preload" href="ridelab_bg.wasm" as="fetch" type="application/wasm" crossorigin>',
+    '<link rel="preload" href="ridelab-first_bg.wasm" as="fetch" type="application/wasm" crossorigin>',
     ...modules.map((f) => `<link rel="modulepreload" href="${f}">`),
   ];
 }

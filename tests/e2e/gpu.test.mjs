@@ -137,9 +137,10 @@ test('with a SwiftShader WebGPU adapter the HiFi and error maps come from the GP
         const h = window.__ridelab.hifiFront;
         return window.__ridelab.isSettled() && h && !h.error;
       }, null, { timeout: 300_000, polling: 250 });
-      const fronts = await page.evaluate(() => {
+      const fronts = await page.evaluate(async () => {
         const a = window.__ridelab;
-        const cpu = new a.api.Explorer(a.state);
+        const api = await a.onDemandApi();
+        const cpu = new api.Explorer(a.state);
         const want = cpu.hifiFront();
         cpu.free();
         return { gpu: a.hifiFront, cpu: want };
@@ -156,14 +157,15 @@ test('with a SwiftShader WebGPU adapter the HiFi and error maps come from the GP
       // compiled once) against the CPU path (a fresh session each time), 5 runs each.
       const bench = await page.evaluate(async () => {
         const a = window.__ridelab;
-        const gpu = await a.api.GpuMaps.request();
+        const api = await a.onDemandApi();
+        const gpu = await api.GpuMaps.request();
         const times = { gpu: [], cpu: [] };
         for (let k = 0; k < 5; k++) {
           let t0 = performance.now();
           await gpu.hifiMap(a.state, 160, 120);
           times.gpu.push(performance.now() - t0);
           t0 = performance.now();
-          const x = new a.api.Explorer(a.state);
+          const x = new api.Explorer(a.state);
           x.maps('hifi', 160, 120);
           times.cpu.push(performance.now() - t0);
           x.free();

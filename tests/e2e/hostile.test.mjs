@@ -310,7 +310,13 @@ test('a new build takes over only after its page booted: the old cache stays unt
   const atLoad = await page.evaluate(async () => (await caches.keys()).filter((k) => k.startsWith('ridelab-')).sort());
   assert.deepEqual(atLoad, [`ridelab-${id1}`, `ridelab-${id2}`].sort(), 'the old build\'s cache stays until the new page has booted');
   await page.waitForFunction(() => window.__ridelab && window.__ridelab.ready, null, { timeout: 30_000 });
-  await page.waitForFunction(async () => (await caches.keys()).filter((k) => k.startsWith('ridelab-')).length === 1, null, { timeout: 10_000 });
+  // (An async predicate's promise is truthy at once: poll in the page instead.)
+  await page.evaluate(async () => {
+    const t0 = performance.now();
+    while ((await caches.keys()).filter((k) => k.startsWith('ridelab-')).length !== 1 && performance.now() - t0 < 10_000) {
+      await new Promise((r) => setTimeout(r, 50));
+    }
+  });
   assert.deepEqual(await page.evaluate(async () => (await caches.keys()).filter((k) => k.startsWith('ridelab-'))), [`ridelab-${id2}`]);
   await page.keyboard.press('l');
   assert.match(await page.locator('#lesson-own button[data-own]').first().textContent(), /Kept across builds/);

@@ -36,7 +36,7 @@ test('the build id is a hash of the build, and sw.js lists every file', () => {
   assert.equal(id[1], buildId(DIST), 'the id is the hash of the files of this build');
   const files = JSON.parse(/const FILES = (\[.*\]);/.exec(sw)[1]);
   assert.deepEqual(files, ['./', ...buildFiles(DIST)]);
-  for (const f of ['index.html', 'ridelab_bg.wasm', 'ridelab.js', 'js/app.js', 'js/worker.js', 'style.css']) assert.ok(files.includes(f), f);
+  for (const f of ['index.html', 'ridelab-first_bg.wasm', 'ridelab-first.js', 'ridelab_bg.wasm', 'ridelab.js', 'js/app.js', 'js/worker.js', 'style.css']) assert.ok(files.includes(f), f);
 });
 
 test('offline: load once, stop the server, reload: the page works and computes; a new build replaces the cache', { timeout: TIMEOUT }, async (t) => {

@@ -9,7 +9,7 @@
 //   js/timecontrols.js, js/offline.js  the Time tab's fields; the service worker
 // "?engine=main" runs everything on the main thread.
 
-import init, * as api from '../ridelab.js';
+import init, * as api from '../ridelab-first.js';
 import { createEngine, deferredEngine } from './engine.js';
 import { Compute } from './compute.js';
 import { Store, scenarioKey, setKeyFields } from './store.js';
@@ -460,30 +460,42 @@ function wireExports({ store: st, controller: ctl, controls, ui, compute }) {
 async function main() {
   const controls = new Controls();
   const kind = new URLSearchParams(location.search).get('engine') === 'main' ? 'main' : 'worker';
-  // Two workers, started first (they load their own copy of the module): one answers
-  // the HiFi readout of each design (a few ms) and is never busy with long jobs; the
-  // other runs those, so a slider move never waits behind them.
+  // Two modules of the core (issue #29): this thread's first screen runs on the small
+  // ridelab-first.js; the workers, and this thread's on-demand calls (an SVG export, or
+  // everything when a worker cannot start), on ridelab.js, which has every part.
+  const loadOnDemand = () => import('../ridelab.js').then(async (full) => {
+    await full.default({ module_or_path: new URL('../ridelab_bg.wasm', import.meta.url) });
+    return full;
+  });
+  // Two workers: one answers the HiFi readout of each design (a few ms) and is never busy
+  // with long jobs; the other runs those, so a slider move never waits behind them. They
+  // start once the first map is drawn (or the maps fail, or 5 s after the module is up),
+  // so this thread's module loads and compiles alone; their calls wait until then.
   // A crashed worker is replaced and its requests run again (js/engine.js); the page says so.
+  let firstScreenDone;
+  const firstScreen = new Promise((resolve) => (firstScreenDone = resolve));
   const onRestart = (name) => ({ reason, retried, failed }) => controls.banner(
     `The ${name} worker stopped (${reason}) and was restarted.` +
     `${retried ? ` ${retried} request${retried === 1 ? ' was' : 's were'} run again.` : ''}` +
     `${failed ? ` ${failed} request${failed === 1 ? '' : 's'} crashed it twice and ${failed === 1 ? 'was' : 'were'} given up (its panel says so).` : ''}`,
     failed ? 'error' : 'warn');
-  const worker = kind === 'worker' ? createEngine(api, 'worker', { onRestart: onRestart('HiFi') }) : null;
-  const heavy = kind === 'worker' ? createEngine(api, 'worker', { gpu: computeMode(location.search), onRestart: onRestart('background') }) : null;
+  const afterFirstScreen = (options) => firstScreen.then(() => createEngine(api, 'worker', options));
+  const worker = kind === 'worker' ? afterFirstScreen({ onRestart: onRestart('HiFi') }) : null;
+  const heavy = kind === 'worker' ? afterFirstScreen({ gpu: computeMode(location.search), onRestart: onRestart('background') }) : null;
   worker?.catch(() => {}); // handled by deferredEngine (falls back to the main thread)
   heavy?.catch(() => {});
   try {
-    await init({ module_or_path: new URL('../ridelab_bg.wasm', import.meta.url) });
+    await init({ module_or_path: new URL('../ridelab-first_bg.wasm', import.meta.url) });
   } catch (e) {
     fatal(controls, `The ride models (WebAssembly) failed to load: ${e && e.message ? e.message : e}`);
     return;
   }
+  setTimeout(firstScreenDone, 5000);
   boot.marks.wasm = performance.now();
   const store = new Store();
   let compute;
   try {
-    const main = await createEngine(api, 'main');
+    const main = await createEngine(api, 'main', { loadOnDemand });
     const hifi = worker ? deferredEngine(worker, main) : main;
     compute = new Compute(api, { main, hifi, heavy: heavy ? deferredEngine(heavy, main) : main });
     Object.assign(store, await compute.boot());
@@ -556,6 +568,7 @@ async function main() {
   };
   const render = new Render(store, ui);
   controller = new Controller(store, compute, render, controls);
+  controller.onFirstMap = firstScreenDone;
   const bench = new Workbench({
     bench: $('app'),
     drawer: $('drawer'),

@@ -59,6 +59,8 @@ export class Controller {
      * Counters of what was done: fronts drawn, NSGA-II runs and the stale answers dropped,
      * and `nsgaLog` (per accepted NSGA-II answer: the scenario it was for and the one shown).
      */
+    /** Called when the first map is drawn, or the maps fail (the page starts its workers then). */
+    this.onFirstMap = () => {};
     this.counters = { frontDraws: 0, frontDrawnAt: 0, nsgaRuns: 0, nsgaDropped: 0, nsgaLog: [], firstMapAt: null, adaptiveDropped: 0 };
     /** True while the adaptive loop runs (its buttons are disabled). */
     this.adaptiveBusy = false;
@@ -377,12 +379,18 @@ export class Controller {
           if (!current || st.state !== s) continue;
           this.render.mapsDone(shown);
           this.onViewsChanged();
-          if (this.counters.firstMapAt === null) this.counters.firstMapAt = performance.now();
+          if (this.counters.firstMapAt === null) {
+            this.counters.firstMapAt = performance.now();
+            this.onFirstMap();
+          }
           this.metrics.maps.push(performance.now() - t0);
           return;
         }
       })()
-        .catch((e) => this.controls.banner(`The maps failed: ${e.message || e}`, 'error'))
+        .catch((e) => {
+          this.controls.banner(`The maps failed: ${e.message || e}`, 'error');
+          this.onFirstMap();
+        })
         .finally(() => {
           this.mapsJob = null;
         }),

@@ -243,12 +243,46 @@ export function toFailure(e) {
   return { message: String(e), field: '' };
 }
 
+/**
+ * Whether `api` (a wasm module's exports) answers `method`: the page's first-screen module
+ * (ridelab-first.js) leaves out the on-demand parts that the workers' module has.
+ */
+export function answers(api, method) {
+  // The GPU path is the heavy worker's (a main-thread host refuses it either way).
+  if (GPU_METHODS.includes(method)) return true;
+  if (FUNCTIONS.includes(method)) return typeof api[method] === 'function';
+  if (SESSION_METHODS.includes(method)) return typeof api.Explorer.prototype[method] === 'function';
+  if (ADAPTIVE_METHODS.includes(method)) return typeof api.AdaptiveRun === 'function';
+  return typeof api.Explorer.prototype[method] === 'function';
+}
+
+/**
+ * The main thread's engine: its `Host` on the first-screen module, and on a call that
+ * module does not answer (an SVG export, or every call when a worker could not start),
+ * a second `Host` on the on-demand module, which `loadOnDemand()` loads at that first
+ * call (issue #29). Each host keeps its own session.
+ */
 class MainEngine {
-  constructor(api) {
+  constructor(api, loadOnDemand) {
     this.host = new Host(api);
+    this.loadOnDemand = loadOnDemand;
+    this.onDemand = null;
     this.kind = 'main';
   }
+
+  /** The host on the on-demand module (loaded once; a failed load is tried again at the next call). */
+  full() {
+    if (!this.onDemand) {
+      this.onDemand = this.loadOnDemand().then((api) => new Host(api));
+      this.onDemand.catch(() => (this.onDemand = null));
+    }
+    return this.onDemand;
+  }
+
   call(method, ...args) {
+    if (!answers(this.host.api, method) && this.loadOnDemand) {
+      return this.full().then((host) => host.run(method, args)).catch((e) => Promise.reject(toFailure(e)));
+    }
     try {
       const value = this.host.run(method, args);
       return value instanceof Promise ? value.catch((e) => Promise.reject(toFailure(e))) : Promise.resolve(value);
@@ -349,10 +383,11 @@ class WorkerEngine {
  * An engine of the given kind ("main" or "worker"); the worker answers a ping first.
  * `gpu` ("auto", "gpu" or "cpu", js/gpupath.js `computeMode`): the worker draws the HiFi
  * maps on the GPU path where its mode finds an adapter (`GPU_METHODS`). `onRestart`: see
- * WorkerEngine (a crashed worker replaced).
+ * WorkerEngine (a crashed worker replaced). `loadOnDemand()` (main thread): resolves to the
+ * on-demand module's API, initialised (see MainEngine).
  */
-export async function createEngine(api, kind = 'main', { gpu = null, onRestart = () => {} } = {}) {
-  if (kind !== 'worker') return new MainEngine(api);
+export async function createEngine(api, kind = 'main', { gpu = null, onRestart = () => {}, loadOnDemand = null } = {}) {
+  if (kind !== 'worker') return new MainEngine(api, loadOnDemand);
   const url = new URL(gpu ? `./worker.js?gpu=${gpu}` : './worker.js', import.meta.url);
   const engine = new WorkerEngine(() => new Worker(url, { type: 'module' }), onRestart);
   await engine.call('version');

@@ -2,7 +2,7 @@
 // zip that bundles many files into one download (browsers drop bursts of downloads).
 // Everything is made in the page; nothing is sent anywhere.
 
-import { drawLineChart } from '../ridelab.js';
+import { drawLineChart } from '../ridelab-first.js';
 
 /** Saves `blob` as `name` through a temporary link (no request leaves the page). */
 export function download(name, blob) {

@@ -9,7 +9,7 @@
 
 import { paint } from './colormap.js';
 import { fmt, fmtPct } from './format.js';
-import { drawMapFrame } from '../ridelab.js';
+import { drawMapFrame } from '../ridelab-first.js';
 import { paintClass } from './classmarks.js';
 
 /** The criteria drawn as maps: plane index in the wasm map, display unit and factor. */

@@ -6,7 +6,7 @@
 // and projectors. `px` maps data to CSS px on the drawn axes, for what the page draws on
 // top (the objective plane's cloud and its live design marker).
 
-import { drawLineChart } from '../ridelab.js';
+import { drawLineChart } from '../ridelab-first.js';
 
 /** The root font size the charts' fixed type sizes are made for, px. */
 const NORMAL_TYPE_PX = 15;

@@ -117,6 +117,10 @@ export function installTestHooks({ store, controller, compute, ui, boot, lessons
     api: compute.api,
     /** The main thread's `Explorer` session moved to `state` (the engine's own: see js/engine.js `Host`). */
     session: (state) => compute.main.host.at(state),
+    /** The same on the main thread's on-demand module (ridelab.js: loaded at the first call), a promise. */
+    onDemandSession: (state) => compute.main.full().then((host) => host.at(state)),
+    /** The on-demand module itself, a promise (the first screen's is `api`). */
+    onDemandApi: () => compute.main.full().then((host) => host.api),
     engine: compute.main,
     heavyEngine: compute.heavy,
     hifiEngine: compute.hifi,

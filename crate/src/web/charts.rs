@@ -1,4 +1,4 @@
-//! SVG export of the page's charts: `lineChartSvg(spec)` and `mapChartSvg(spec)` take a
+//! SVG export of the page's charts (the spec readers are shared with `web::screen`): `lineChartSvg(spec)` and `mapChartSvg(spec)` take a
 //! plain JS object (a [`LineChart`] or [`MapChart`] spec, camelCase keys) and return the
 //! SVG document as a string, or throw a JS `Error` whose `field` names the spec field at
 //! fault (`series[1].points[7]`, `values`, an unknown key's own path such as `xlabel`;
@@ -12,7 +12,7 @@
 //! checks all of that first ([`text_measurable`]) and throws an error instead; the worker
 //! must not list these methods.
 
-use crate::chart::{line_chart_svg, map_chart_svg, LineChart, MapChart, MapMarker, Series};
+use crate::chart::MapChart;
 use crate::error::RideError;
 use js_sys::{Array, ArrayBuffer, Float64Array, Object, Reflect};
 use serde::de::DeserializeOwned;
@@ -127,32 +127,42 @@ pub(super) fn text_measurable() -> Result<(), JsValue> {
     }
 }
 
-/// A line or scatter chart as an SVG string (see [`LineChart`]): `{title, xLabel,
-/// yLabel, xLog, yLog, xRange, yRange, width, height, legend, series: [{name, colour,
-/// points: [[x, y], ...], style: "line" | "dots" | {markers: shape}, size, stroke,
-/// opacity}]}`.
-#[wasm_bindgen(js_name = lineChartSvg)]
-pub fn line_chart_svg_js(spec: JsValue) -> Result<String, JsValue> {
-    check_keys(&spec, "", &LineChart::FIELDS)?;
-    check_items(&spec, "series", &Series::FIELDS)?;
-    let chart: LineChart = read_spec(spec)?;
-    chart.layout().map_err(chart_error)?;
-    text_measurable()?;
-    line_chart_svg(&chart).map_err(chart_error)
-}
+/// The exports, in the page's on-demand wasm (the main thread loads it at the first
+/// export; its first-screen wasm leaves them out, issue #29).
+#[cfg(feature = "on-demand")]
+mod export {
+    use super::{chart_error, check_items, check_keys, read_map_spec, read_spec, text_measurable};
+    use crate::chart::{line_chart_svg, map_chart_svg, LineChart, MapChart, MapMarker, Series};
+    use js_sys::Reflect;
+    use wasm_bindgen::prelude::*;
 
-/// A design map as an SVG string (see [`MapChart`]): `{title, unit, nx, ny, values,
-/// sampling, designBox: {ks_min, ks_max, cs_min, cs_max}, colourMap, range, feasible,
-/// contours: {auto: n} | {levels: [...]}, markers: [{label, ks, cs, shape, colour, size}],
-/// width, height, legend}`; `values` and `feasible` may be typed arrays.
-#[wasm_bindgen(js_name = mapChartSvg)]
-pub fn map_chart_svg_js(spec: JsValue) -> Result<String, JsValue> {
-    check_keys(&spec, "", &MapChart::FIELDS)?;
-    check_items(&spec, "markers", &MapMarker::FIELDS)?;
-    let design_box = Reflect::get(&spec, &"designBox".into()).unwrap_or(JsValue::UNDEFINED);
-    check_keys(&design_box, "designBox", &MapChart::BOX_FIELDS)?;
-    let chart = read_map_spec(spec)?;
-    chart.layout().map_err(chart_error)?;
-    text_measurable()?;
-    map_chart_svg(&chart).map_err(chart_error)
+    /// A line or scatter chart as an SVG string (see [`LineChart`]): `{title, xLabel,
+    /// yLabel, xLog, yLog, xRange, yRange, width, height, legend, series: [{name, colour,
+    /// points: [[x, y], ...], style: "line" | "dots" | {markers: shape}, size, stroke,
+    /// opacity}]}`.
+    #[wasm_bindgen(js_name = lineChartSvg)]
+    pub fn line_chart_svg_js(spec: JsValue) -> Result<String, JsValue> {
+        check_keys(&spec, "", &LineChart::FIELDS)?;
+        check_items(&spec, "series", &Series::FIELDS)?;
+        let chart: LineChart = read_spec(spec)?;
+        chart.layout().map_err(chart_error)?;
+        text_measurable()?;
+        line_chart_svg(&chart).map_err(chart_error)
+    }
+
+    /// A design map as an SVG string (see [`MapChart`]): `{title, unit, nx, ny, values,
+    /// sampling, designBox: {ks_min, ks_max, cs_min, cs_max}, colourMap, range, feasible,
+    /// contours: {auto: n} | {levels: [...]}, markers: [{label, ks, cs, shape, colour, size}],
+    /// width, height, legend}`; `values` and `feasible` may be typed arrays.
+    #[wasm_bindgen(js_name = mapChartSvg)]
+    pub fn map_chart_svg_js(spec: JsValue) -> Result<String, JsValue> {
+        check_keys(&spec, "", &MapChart::FIELDS)?;
+        check_items(&spec, "markers", &MapMarker::FIELDS)?;
+        let design_box = Reflect::get(&spec, &"designBox".into()).unwrap_or(JsValue::UNDEFINED);
+        check_keys(&design_box, "designBox", &MapChart::BOX_FIELDS)?;
+        let chart = read_map_spec(spec)?;
+        chart.layout().map_err(chart_error)?;
+        text_measurable()?;
+        map_chart_svg(&chart).map_err(chart_error)
+    }
 }

@@ -4,7 +4,7 @@
 //! else changes) and asks it; a setter that fails leaves it at its last good state.
 //! Every method's numbers are [`Session`]'s, which the native tests check.
 
-use super::{js_error, parse_state, state_error, to_js};
+use super::{js_error, parse_state, to_js};
 use crate::analysis::ModelKind;
 use crate::car::Car;
 use crate::explorer::{EvaluatorKind, FrontModel, MapModel, ModelMap, Session};
@@ -15,7 +15,7 @@ use wasm_bindgen::prelude::*;
 
 /// The explorer session (see the module documentation).
 #[wasm_bindgen]
-pub struct Explorer(Session);
+pub struct Explorer(pub(super) Session);
 
 #[derive(Serialize)]
 #[serde(rename_all = "camelCase")]
@@ -63,6 +63,14 @@ fn map_js(m: &ModelMap) -> Result<JsValue, JsValue> {
     set("feasibleCount", (m.dos.summary.feasible as f64).into())?;
     set("datum", to_js(&m.values.datum.criteria)?)?;
     Ok(out.into())
+}
+
+/// `"gpu"` or `"cpu"`: the path that made HiFi values, as the page names it.
+pub(super) fn path_name(path: ComputePath) -> &'static str {
+    match path {
+        ComputePath::Gpu => "gpu",
+        ComputePath::Cpu => "cpu",
+    }
 }
 
 #[wasm_bindgen]
@@ -176,29 +184,11 @@ impl Explorer {
         let m = MapModel::parse(model).map_err(js_error)?;
         let out = map_js(&self.0.map(m, nx, ny).map_err(js_error)?)?;
         if matches!(m, MapModel::HiFi | MapModel::SurrogateError) {
-            if let Some(path) = self.hifi_path(nx, ny) {
-                Reflect::set(&out, &"compute".into(), &JsValue::from_str(&path))?;
+            if let Some(path) = self.0.hifi_path(nx, ny) {
+                Reflect::set(&out, &"compute".into(), &path_name(path).into())?;
             }
         }
         Ok(out)
-    }
-
-    /// Keeps HiFi values computed on the GPU (`GpuMaps.hifiMap`'s `values`, the map
-    /// layout) for the `nx` x `ny` HiFi and error maps of the current scenario; errors
-    /// name `values`, `nx` or `ny`.
-    #[wasm_bindgen(js_name = keepHifiMap)]
-    pub fn keep_hifi_map(&mut self, nx: usize, ny: usize, values: &[f64]) -> Result<(), JsValue> {
-        self.0.keep_hifi_planes(nx, ny, values).map_err(js_error)
-    }
-
-    /// `"gpu"` or `"cpu"`: the path that made the kept HiFi values on the `nx` x `ny`
-    /// grid; undefined when none are kept.
-    #[wasm_bindgen(js_name = hifiPath)]
-    pub fn hifi_path(&self, nx: usize, ny: usize) -> Option<String> {
-        self.0.hifi_path(nx, ny).map(|p| match p {
-            ComputePath::Gpu => "gpu".to_string(),
-            ComputePath::Cpu => "cpu".to_string(),
-        })
     }
 
     /// The Pareto front of comfort (the state's `comfort`: BAcc or Wk-weighted BAcc) and
@@ -217,68 +207,10 @@ impl Explorer {
         to_js(&self.0.front(method, on).map_err(js_error)?)
     }
 
-    /// The HiFi's own Pareto front (STM on the full car, the plane's settings) with its
-    /// pick, and the objective plane's front judged on the HiFi against it (both
-    /// hypervolumes against the HiFi front's reference point, the HiFi runs each took):
-    /// `{front, hifiRuns, compute, plane: {model, hifiRuns, frontPoints,
-    /// hifiFeasiblePoints, hypervolume, hypervolumeOnHifi, hypervolumeRatio,
-    /// pickGapPercent}}` (`front` as `front`'s). `values`: STM's starting grid from
-    /// `GpuMaps.stmGrid` (then `compute` is "gpu"), or undefined for the CPU HiFi. About
-    /// 5000 HiFi runs: the page asks its worker.
-    #[wasm_bindgen(js_name = hifiFront)]
-    pub fn hifi_front(&mut self, values: Option<Vec<f64>>) -> Result<JsValue, JsValue> {
-        to_js(&self.0.hifi_front(values.as_deref()).map_err(js_error)?)
-    }
-
-    /// |H| from road displacement and the output PSDs of the design by the LoFi, the HiFi
-    /// and the surrogate at `nfreq` log-spaced frequencies from 0.1 to 100 Hz:
-    /// `{f, lofi: {frf, psd}, hifi, surrogate}`, each `[bacc, dtl, sws]` (1/s^2, N/m, m/m;
-    /// (m/s^2)^2/Hz, N^2/Hz, m^2/Hz).
-    pub fn spectra(&mut self, nfreq: usize) -> Result<JsValue, JsValue> {
-        to_js(&self.0.spectra(nfreq).map_err(js_error)?)
-    }
-
-    /// Seeded time responses of the design by both models: `options` is `{duration, dt,
-    /// seed, f_min, f_max, damper: {bump, rebound, knee: {velocity, bump, rebound} | null}
-    /// | null, decimate}` (s, s, -, Hz, Hz, N s/m and m/s, -; missing fields take the core
-    /// defaults). With a damper law the run's Cs is its equivalent linear rate
-    /// `(bump + rebound) / 2`, as in `ridelab simulate --bump --rebound`. Returns
-    /// `{damper, damperRate, lofi, hifi, a, b}` with `{t, road, outputs, positions,
-    /// accelerations, rms, damper_rate, equivalent_rate}` per model.
-    #[wasm_bindgen(js_name = timeResponse)]
-    pub fn time_response(&self, options: JsValue) -> Result<JsValue, JsValue> {
-        let opt: crate::time_domain::TimeOptions = serde_wasm_bindgen::from_value(options)
-            .map_err(|e| state_error(format!("time options: {e}")))?;
-        to_js(&self.0.time_response(&opt).map_err(js_error)?)
-    }
-
-    /// The surrogate fitted to HiFi samples over the design box and validated on a
-    /// `levels x levels` HiFi grid: the `ridelab surrogate` report (samples, tuning,
-    /// diagnostics, metrics, error map, predictions), on the session's kept fit. The
-    /// validation grid runs the HiFi `levels^2` times: the page asks its worker.
-    #[wasm_bindgen(js_name = surrogateFit)]
-    pub fn surrogate_fit(&mut self, levels: usize) -> Result<JsValue, JsValue> {
-        to_js(&self.0.fit_report(levels).map_err(js_error)?)
-    }
-
     /// The surrogate fits this session has made (one per scenario change that needs the
     /// surrogate; tests read it).
     #[wasm_bindgen(js_name = fitCount)]
     pub fn fit_count(&self) -> f64 {
         self.0.fit_count() as f64
-    }
-
-    /// The study report of the scenario (as `ridelab report`, seed 1, the view's surrogate
-    /// and plan): `{title, html, markdown}`, the HTML one self-contained file. It takes
-    /// seconds: the page asks its worker.
-    #[wasm_bindgen(js_name = studyReport)]
-    pub fn study_report(&self) -> Result<JsValue, JsValue> {
-        let report = self.0.study_report().map_err(js_error)?;
-        let docs = report.documents().map_err(js_error)?;
-        to_js(&serde_json::json!({
-            "title": report.title(),
-            "html": docs.html,
-            "markdown": docs.markdown,
-        }))
     }
 }

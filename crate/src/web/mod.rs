@@ -15,12 +15,17 @@ mod charts;
 mod explorer;
 #[cfg(feature = "gpu")]
 mod gpu;
+#[cfg(feature = "on-demand")]
+mod on_demand;
+#[cfg(feature = "on-demand")]
 mod road;
 mod screen;
-pub use charts::{line_chart_svg_js, map_chart_svg_js};
 pub use explorer::Explorer;
 #[cfg(feature = "gpu")]
 pub use gpu::GpuMaps;
+#[cfg(feature = "on-demand")]
+pub use on_demand::AdaptiveRun;
+#[cfg(feature = "on-demand")]
 pub use road::{describe_road, design_on_road};
 pub use screen::{draw_line_chart_js, draw_map_frame_js};
 
@@ -319,74 +324,4 @@ pub fn damper_curve_js(damper: JsValue, v_max: f64) -> Result<JsValue, JsValue> 
         points: law.curve(v_max),
         linear_rate: law.linear_rate(),
     })
-}
-
-/// The page's "next HiFi run" (issue #15): `new AdaptiveRun(state, options?)` runs the
-/// state's plan on the HiFi and fits its surrogate. Then `propose()` says where the next
-/// HiFi run would go and why: `{candidate: {ks, cs, on_front, predicted, relative_std,
-/// ehvi, probability_feasible, value, distance}, reason}`. `step()` runs it, refits and
-/// returns `{added, step: {hifi_runs, front_points, hypervolume, pick}, recheck}`.
-/// `report()` is the loop so far (samples in order with reasons, the `history` of
-/// hypervolume and pick per HiFi run, as `ridelab surrogate ... --adaptive K` gives it),
-/// `front()` the surrogate's front, `uncertaintyMap(nx, ny)` the estimate, %, in the
-/// maps' layout, and `uncertaintyCheck(levels)` how well it predicts the true error on a
-/// `levels x levels` HiFi grid: `{levels, check: {method, description, pearson,
-/// spearman, estimated_mean_percent, true_mean_percent, map_percent}, at_samples_percent}`
-/// (by criterion `{bacc, dtl, sws}`; the grid is run on the HiFi once and kept). `options` (optional, the CLI's names): `{criterion: "ehvi-front" |
-/// "ehvi", uncertainty: "model" | "loo", candidates, min_distance, seed}`.
-#[wasm_bindgen(js_name = AdaptiveRun)]
-pub struct AdaptiveRun(crate::explorer::PageLoop);
-
-#[wasm_bindgen(js_class = AdaptiveRun)]
-impl AdaptiveRun {
-    /// The loop on `state`'s scenario; errors name the field.
-    #[wasm_bindgen(constructor)]
-    pub fn new(state: JsValue, options: JsValue) -> Result<AdaptiveRun, JsValue> {
-        let scenario = parse_state(state)?.scenario().map_err(js_error)?;
-        let options: crate::study::adaptive::AdaptiveOptions =
-            if options.is_undefined() || options.is_null() {
-                Default::default()
-            } else {
-                serde_wasm_bindgen::from_value(options)
-                    .map_err(|e| js_error(RideError::field("adaptive", e.to_string())))?
-            };
-        crate::explorer::PageLoop::new(&scenario, options)
-            .map(AdaptiveRun)
-            .map_err(js_error)
-    }
-
-    /// Where the next HiFi run would go, and why.
-    pub fn propose(&self) -> Result<JsValue, JsValue> {
-        to_js(&self.0.propose().map_err(js_error)?)
-    }
-
-    /// Runs the HiFi at the proposal, refits, re-checks the new pick on the HiFi.
-    pub fn step(&mut self) -> Result<JsValue, JsValue> {
-        to_js(&self.0.step().map_err(js_error)?)
-    }
-
-    /// The loop so far.
-    pub fn report(&self) -> Result<JsValue, JsValue> {
-        to_js(&self.0.report())
-    }
-
-    /// The surrogate's current feasible front.
-    pub fn front(&self) -> Result<JsValue, JsValue> {
-        to_js(&self.0.front())
-    }
-
-    /// The uncertainty estimate, %, at `nx` x `ny` cell centres: three planes (BAcc,
-    /// DTL, SWS), index `k nx ny + j nx + i`.
-    #[wasm_bindgen(js_name = uncertaintyMap)]
-    pub fn uncertainty_map(&self, nx: usize, ny: usize) -> Result<Float64Array, JsValue> {
-        let m = self.0.uncertainty_map(nx, ny).map_err(js_error)?;
-        Ok(Float64Array::from(m.as_slice()))
-    }
-
-    /// How well the estimate predicts the true error on the `levels x levels` HiFi grid
-    /// (errors name `levels`).
-    #[wasm_bindgen(js_name = uncertaintyCheck)]
-    pub fn uncertainty_check(&mut self, levels: usize) -> Result<JsValue, JsValue> {
-        to_js(&self.0.uncertainty_check(levels).map_err(js_error)?)
-    }
 }
