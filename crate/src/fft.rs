@@ -188,13 +188,13 @@ impl MixedRadix {
         let (wn, wp) = (top / n, top / p);
         let mut y = [C64::new(0.0, 0.0); 5];
         for k in 0..m {
-            for r in 0..p {
-                y[r] = out[r * m + k] * self.twiddles[(r * k % n) * wn];
+            for (r, yr) in y.iter_mut().enumerate().take(p) {
+                *yr = out[r * m + k] * self.twiddles[(r * k % n) * wn];
             }
             for q in 0..p {
                 let mut sum = y[0];
-                for r in 1..p {
-                    sum += y[r] * self.twiddles[(r * q % p) * wp];
+                for (r, yr) in y.iter().enumerate().take(p).skip(1) {
+                    sum += yr * self.twiddles[(r * q % p) * wp];
                 }
                 out[q * m + k] = sum;
             }

@@ -84,7 +84,8 @@ test('offline: load once, stop the server, reload: the page works and computes; 
 
   // A new build (one file changed, sw.js stamped again) served on the same origin. The
   // file is a module of js/ (style.css carries Trunk's integrity hash in index.html).
-  fs.appendFileSync(path.join(root, 'js/format.js'), '\n// the next build\n');
+  // (A statement, not a comment: the stamp minifies the scripts first, www/minify.mjs.)
+  fs.appendFileSync(path.join(root, 'js/format.js'), "\nexport const NEXT_BUILD = 'the next build';\n");
   fs.copyFileSync(path.join(ROOT, 'www/sw.js'), path.join(root, 'sw.js'));
   execFileSync(process.execPath, [path.join(ROOT, 'www/sw-stamp.mjs'), root]);
   const id2 = buildId(root);

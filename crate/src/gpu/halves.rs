@@ -170,8 +170,8 @@ fn project(
                 kr[g][i] += signs[j] * skr[i];
                 cr[g][i] += signs[j] * scr[i];
             }
-            for o in 0..N_OUT {
-                yr[g][o] += signs[j] * base.outputs[o].r[j];
+            for (y, out) in yr[g].iter_mut().zip(&base.outputs) {
+                *y += signs[j] * out.r[j];
             }
         }
     }

@@ -73,7 +73,7 @@ impl SurrogateParams for GpParams {
             models,
             diagnostics: Vec::new(),
         };
-        for k in 0..3 {
+        for (k, name) in CRITERIA_NAMES.iter().enumerate() {
             let cost = relative_cost(&model, samples, &[k])?;
             let m = &model.models[k];
             let note = format!(
@@ -85,7 +85,7 @@ impl SurrogateParams for GpParams {
                 m.sigma2()
             );
             model.diagnostics.push(FitDiagnostics::direct(
-                CRITERIA_NAMES[k].into(),
+                (*name).into(),
                 "ordinary kriging of ln(HiFi / LoFi)",
                 note,
                 cost,

@@ -215,7 +215,9 @@ impl LooField {
             .map(|(e, r2)| std::array::from_fn(|k| (e[k] * e[k] - r2[k]).max(0.0)))
             .collect();
         let n = n as f64;
-        let mut best: Option<(f64, f64, Cholesky<f64, Dyn>, Vec<[f64; 3]>)> = None;
+        // (ln L, theta, the correlation matrix's factor, its solves), the best so far.
+        type Best = (f64, f64, Cholesky<f64, Dyn>, Vec<[f64; 3]>);
+        let mut best: Option<Best> = None;
         for step in 0..LOG10_THETA_STEPS {
             let theta = math::powf(10f64, 3.0 * step as f64 / (LOG10_THETA_STEPS - 1) as f64);
             let Some(chol) = correlation_matrix([theta; 2], &x).cholesky() else {
@@ -449,8 +451,8 @@ pub fn check(est: &Uncertain, validation: &ValidationSet) -> Result<UncertaintyC
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "status", rename_all = "lowercase")]
 pub enum UncertaintyOutcome {
-    /// Estimated and checked.
-    Estimated(UncertaintyCheck),
+    /// Estimated and checked (boxed: the check is much larger than the skip).
+    Estimated(Box<UncertaintyCheck>),
     /// Not estimated (leave-one-out on too few samples), and why.
     Skipped {
         /// The method.
@@ -477,7 +479,9 @@ pub fn estimates(
         .into_iter()
         .map(
             |method| match Uncertain::fit(spec, setting, samples, options, method) {
-                Ok(est) => Ok(UncertaintyOutcome::Estimated(check(&est, validation)?)),
+                Ok(est) => Ok(UncertaintyOutcome::Estimated(Box::new(check(
+                    &est, validation,
+                )?))),
                 Err(e) => Ok(UncertaintyOutcome::Skipped {
                     method,
                     reason: e.to_string(),

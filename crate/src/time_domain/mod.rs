@@ -168,15 +168,15 @@ pub struct TimeResponse {
     pub equivalent_rate: f64,
 }
 
-/// Road profile samples `x(n dt - tau)`, `n = 0..N-1`, of one track (periodic, length N),
+/// Road profile samples `x(n dt - tau)`, `n = 0..N-1`, of one track (periodic, length N;
+/// the PSD kept within the band `(f_min, f_max)`, Hz),
 /// by `dft` (planned for length N once per run: a run realises every wheel's track).
 fn road_profile(
     dft: &mut crate::fft::Dft,
     road: &Road,
     n: usize,
     dt: f64,
-    f_min: f64,
-    f_max: f64,
+    (f_min, f_max): (f64, f64),
     phases: &[f64],
     tau: f64,
 ) -> Vec<f64> {
@@ -253,8 +253,7 @@ fn run(model: &LinearModel, road: &Road, opt: &TimeOptions, rate: f64) -> Result
                 road,
                 n,
                 h,
-                opt.f_min,
-                opt.f_max,
+                (opt.f_min, opt.f_max),
                 &phases[track],
                 tau,
             );
