@@ -14,18 +14,6 @@ use crate::model::{quarter_car, LinearModel};
 use crate::road::Road;
 use serde::Serialize;
 
-/// `kind`'s model of `car` with the front spring and damper replaced, on `road`: RMS
-/// `[BAcc m/s^2, DTL N, SWS m]` by the exact routes at each design: for the full car the
-/// residue route with the road's filters ([`ShapedResidueRoute`]: the car's two halves,
-/// the sum of the tracks driving one and their difference the other) where it
-/// certifies the point, else the modal route with the filters, else the Lyapunov
-/// equations of the model augmented with them ([`criteria_shaped_fast`]); for the quarter
-/// car the closed form of its transfer with the filters ([`ShapedQuarter`]), those two
-/// behind it. With
-/// [`Comfort::Wk`] ([`MeasuredModel::with_comfort`]) the comfort slot holds the ISO 2631-1
-/// Wk-weighted RMS body acceleration, m/s^2, by the modal route with the road's filters
-/// and Wk's, the Lyapunov equations behind it ([`bacc_wk_shaped_fast`]), as
-/// [`crate::comfort::WkComfort`] does on an ISO road.
 /// The quarter car on a shaped road, the LoFi of every measured-road map, surrogate and
 /// adaptive loop: the closed form of its transfer ([`quarter_shaped`], about a
 /// microsecond) where it applies, the modal route with the road's filters (and the
@@ -64,6 +52,40 @@ impl ShapedQuarter {
     }
 }
 
+/// The quarter car's exact criteria on a road that is not an ISO class: a measured road
+/// shaped at its speed ([`ShapedQuarter`]). The surrogates' LoFi holds it as a trait
+/// object ([`crate::surrogate::SurrogateLoFi`]), so that a build that never makes one (the
+/// page's first-screen wasm, issue #29) carries none of the shaped routes' code.
+pub trait QuarterRoute: std::fmt::Debug + Send + Sync {
+    /// Exact RMS `[BAcc m/s^2, DTL N, SWS m]` of the (valid) quarter car `q` on the road.
+    fn criteria(&self, q: &QuarterCar) -> Result<Criteria>;
+
+    /// The shaped road.
+    fn road(&self) -> &ShapedRoad;
+}
+
+impl QuarterRoute for ShapedQuarter {
+    fn criteria(&self, q: &QuarterCar) -> Result<Criteria> {
+        ShapedQuarter::criteria(self, q)
+    }
+
+    fn road(&self) -> &ShapedRoad {
+        &self.road
+    }
+}
+
+/// `kind`'s model of `car` with the front spring and damper replaced, on `road`: RMS
+/// `[BAcc m/s^2, DTL N, SWS m]` by the exact routes at each design: for the full car the
+/// residue route with the road's filters ([`ShapedResidueRoute`]: the car's two halves,
+/// the sum of the tracks driving one and their difference the other) where it
+/// certifies the point, else the modal route with the filters, else the Lyapunov
+/// equations of the model augmented with them ([`criteria_shaped_fast`]); for the quarter
+/// car the closed form of its transfer with the filters ([`ShapedQuarter`]), those two
+/// behind it. With
+/// [`Comfort::Wk`] ([`MeasuredModel::with_comfort`]) the comfort slot holds the ISO 2631-1
+/// Wk-weighted RMS body acceleration, m/s^2, by the modal route with the road's filters
+/// and Wk's, the Lyapunov equations behind it ([`bacc_wk_shaped_fast`]), as
+/// [`crate::comfort::WkComfort`] does on an ISO road.
 #[derive(Debug, Clone)]
 pub struct MeasuredModel {
     kind: ModelKind,

@@ -46,7 +46,8 @@ mod welch;
 pub use describe::{describe, CoherenceSeries, IsoFit, PsdSeries, RoadDescription, WelchInfo};
 pub use exact::{bacc_wk_shaped, criteria_shaped};
 pub use measured::{
-    road_error, DesignOnRoad, MeasuredModel, MeasuredRoad, RoadScenario, ShapedQuarter,
+    road_error, DesignOnRoad, MeasuredModel, MeasuredRoad, QuarterRoute, RoadScenario,
+    ShapedQuarter,
 };
 pub use modal::{
     bacc_wk_shaped_fast, bacc_wk_shaped_modal, criteria_shaped_fast, criteria_shaped_modal,

@@ -1,19 +1,19 @@
 //! The LoFi a surrogate tunes: the front quarter car of the car on an ISO 8608 class
 //! (closed forms, or the exact route with a damped tyre) or on a measured road (the closed
-//! form with the road's shaping filters, [`ShapedQuarter`]), so that every
-//! approach fits and predicts on the road its HiFi samples were taken on.
+//! form with the road's shaping filters, [`crate::road_profile::ShapedQuarter`]), so that
+//! every approach fits and predicts on the road its HiFi samples were taken on.
 
 use crate::analysis::{front_quarter, quarter_criteria};
 use crate::car::{Car, QuarterCar};
 use crate::error::Result;
 use crate::evaluate::{Criteria, Evaluator};
 use crate::road::Road;
-use crate::road_profile::ShapedQuarter;
+use crate::road_profile::QuarterRoute;
 use std::sync::Arc;
 
 /// The LoFi of a surrogate: `car`'s front quarter car with the front spring and damper
 /// replaced, on `measured` when there is one, else on `road`.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct SurrogateLoFi {
     /// The car (rear and masses fixed).
     pub car: Car,
@@ -22,7 +22,20 @@ pub struct SurrogateLoFi {
     pub road: Road,
     /// The quarter car's route on the measured road, shaped at its speed (shared by every
     /// fitted surrogate).
-    pub measured: Option<Arc<ShapedQuarter>>,
+    pub measured: Option<Arc<dyn QuarterRoute>>,
+}
+
+impl PartialEq for SurrogateLoFi {
+    /// Equal car, ISO road and measured road (by its shaped road).
+    fn eq(&self, other: &SurrogateLoFi) -> bool {
+        self.car == other.car
+            && self.road == other.road
+            && match (&self.measured, &other.measured) {
+                (None, None) => true,
+                (Some(a), Some(b)) => a.road() == b.road(),
+                _ => false,
+            }
+    }
 }
 
 impl SurrogateLoFi {
