@@ -7,6 +7,8 @@
 // of the core, which keeps fits and maps; a call passes the view's state and the engine
 // moves its session there by the smallest setter (js/engine.js `Host`).
 
+import { fitKeyOf } from './store.js';
+
 /** LoFi and surrogate map resolution (cells); the image is scaled smoothly onto the plot. */
 export const GRID = { nx: 160, ny: 120 };
 /** HiFi and surrogate-error map resolution (worker): the LoFi maps' own, since the
@@ -173,8 +175,27 @@ export class Compute {
     return this.main.call('maps', s, 'surrogate', GRID.nx, GRID.ny);
   }
 
+  /**
+   * Offers the heavy engine the main thread's surrogate fit of `s`, before a call that
+   * needs the surrogate, once per fit key: the worker adopts it instead of fitting again,
+   * so a scenario change costs the page one fit (issue #28). The main thread fits for
+   * its plane anyway; a state it cannot fit is left to the call's own error.
+   */
+  shareFit(s) {
+    const key = fitKeyOf(s);
+    if (this.sharedFit?.key !== key) {
+      const done = this.main.call('fitRecord', s).then(
+        (record) => record && this.heavy.call('offerFit', record).catch(() => {}),
+        () => {},
+      );
+      this.sharedFit = { key, done };
+    }
+    return this.sharedFit.done;
+  }
+
   /** The HiFi or surrogate-error maps (`model`) at the HiFi grid, with the HiFi datum's criteria (heavy worker). */
   async modelMaps(s, model, datumState) {
+    if (model === 'error') await this.shareFit(s);
     const [maps, datum] = await Promise.all([
       this.heavy.call('maps', s, model, HIFI_GRID.nx, HIFI_GRID.ny),
       model === 'hifi' ? this.heavy.call('criteria', datumState, 'hifi') : null,
@@ -197,17 +218,20 @@ export class Compute {
    * both hypervolumes against the HiFi front's reference point and the HiFi runs each
    * took (heavy worker; `{error}` when none is feasible).
    */
-  hifiFront(s) {
+  async hifiFront(s) {
+    await this.shareFit(s);
     return this.heavy.call('hifiFront', s).catch((e) => ({ error: e.message || String(e) }));
   }
 
   /** The surrogate's fit report, validated on the HiFi grid (heavy worker). */
-  fit(s) {
+  async fit(s) {
+    await this.shareFit(s);
     return this.heavy.call('surrogateFit', s, VALIDATION_LEVELS);
   }
 
   /** The seeded NSGA-II front on the plane's model (heavy worker; `{error}` when none is feasible). */
-  nsga(s) {
+  async nsga(s) {
+    await this.shareFit(s);
     return this.heavy.call('front', s, 'nsga2', planeModel(s)).catch((e) => ({ error: e.message || String(e) }));
   }
 
@@ -256,7 +280,8 @@ export class Compute {
   }
 
   /** FRFs and PSDs of the design (heavy worker). */
-  spectra(s) {
+  async spectra(s) {
+    await this.shareFit(s);
     return this.heavy.call('spectra', s, NFREQ);
   }
 

@@ -18,8 +18,15 @@ export const FUNCTIONS = [
 /** The methods of the core's `Explorer` session: an engine call is `(method, state, ...args)`. */
 export const SESSION_METHODS = [
   'describe', 'analyse', 'readout', 'designStep', 'criteria', 'mapCriteria', 'maps', 'front', 'spectra', 'timeResponse', 'surrogateFit',
-  'studyReport',
+  'studyReport', 'fitRecord',
 ];
+
+/**
+ * `offerFit(record)`: a surrogate fit another thread made (`fitRecord`'s value), which this
+ * thread's session adopts for a scenario with the same fit inputs instead of fitting again
+ * (one fit per scenario change, issue #28). Resolves to null; the workers' module has it.
+ */
+export const FIT_METHODS = ['offerFit'];
 
 /**
  * The adaptive HiFi loop's calls (issue #15), on the thread's one `AdaptiveRun` of the core
@@ -73,6 +80,19 @@ export class Host {
     this.adaptiveKey = null;
     /** Calls into the wasm module so far (setters and session methods; tests read it). */
     this.wasmCalls = 0;
+    /** The latest fit offered (`offerFit`), kept for a session made later. */
+    this.offered = null;
+  }
+
+  /** Offers the session `record` (see FIT_METHODS); a module without `offerFit` fits for itself. */
+  offerFit(record) {
+    if (typeof this.api.Explorer.prototype.offerFit !== 'function') return null;
+    this.offered = record;
+    if (this.explorer) {
+      this.wasmCalls++;
+      this.explorer.offerFit(record);
+    }
+    return null;
   }
 
   /** The session moved to `state` (throws the core's error naming the field). */
@@ -81,6 +101,7 @@ export class Host {
     if (!this.explorer) {
       this.wasmCalls++;
       this.explorer = new this.api.Explorer(state);
+      if (this.offered) this.offerFit(this.offered);
     } else if (key !== this.scenarioKey) {
       this.wasmCalls++;
       this.explorer.setState(state);
@@ -107,7 +128,9 @@ export class Host {
       const [state, ...rest] = args;
       return this.at(state)[method](...rest);
     }
-    if (ADAPTIVE_METHODS.includes(method) || FRONT_METHODS.includes(method)) return this[method](...args);
+    if (ADAPTIVE_METHODS.includes(method) || FRONT_METHODS.includes(method) || FIT_METHODS.includes(method)) {
+      return this[method](...args);
+    }
     throw { message: `no method ${method}`, field: '' };
   }
 
@@ -253,6 +276,8 @@ export function answers(api, method) {
   if (FUNCTIONS.includes(method)) return typeof api[method] === 'function';
   if (SESSION_METHODS.includes(method)) return typeof api.Explorer.prototype[method] === 'function';
   if (ADAPTIVE_METHODS.includes(method)) return typeof api.AdaptiveRun === 'function';
+  // Offered to a module without it, a fit is not needed: that module fits for itself.
+  if (FIT_METHODS.includes(method)) return true;
   return typeof api.Explorer.prototype[method] === 'function';
 }
 
@@ -270,16 +295,29 @@ class MainEngine {
     this.kind = 'main';
   }
 
-  /** The host on the on-demand module (loaded once; a failed load is tried again at the next call). */
+  /**
+   * The host on the on-demand module (loaded once; a failed load is tried again at the
+   * next call), offered the first-screen host's fits so that it does not fit again.
+   */
   full() {
     if (!this.onDemand) {
-      this.onDemand = this.loadOnDemand().then((api) => new Host(api));
+      this.onDemand = this.loadOnDemand().then((api) => {
+        const host = new Host(api);
+        if (this.host.offered) host.offerFit(this.host.offered);
+        return host;
+      });
       this.onDemand.catch(() => (this.onDemand = null));
     }
     return this.onDemand;
   }
 
   call(method, ...args) {
+    // A fit offered here (the heavy worker fell back to this thread): the first-screen
+    // host made it; kept for the on-demand host, which is given it when it loads.
+    if (FIT_METHODS.includes(method)) {
+      this.host.offered = args[0];
+      return this.onDemand ? this.onDemand.then((host) => host.run(method, args)) : Promise.resolve(null);
+    }
     if (!answers(this.host.api, method) && this.loadOnDemand) {
       return this.full().then((host) => host.run(method, args)).catch((e) => Promise.reject(toFailure(e)));
     }

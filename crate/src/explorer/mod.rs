@@ -28,4 +28,4 @@ pub use maps::{MapModel, ModelMap};
 pub use session::{DesignStep, EvaluatorKind, Session};
 pub use state::{Scenario, State, FIT_FIELDS, REPORT_FIELDS, STATE_FIELDS};
 pub use studies::{FrontModel, FrontResult, Spectra, TimeResult};
-pub use surrogate::{fit, fit_report, FitKey, FittedSurrogate};
+pub use surrogate::{fit, fit_report, FitKey, FitRecord, FittedSurrogate};

@@ -19,7 +19,7 @@ use super::hifi_front::{self, HifiFrontView};
 use super::maps::{error_values, MapModel, ModelMap};
 use super::state::{Scenario, State};
 use super::studies::{self, FrontModel, FrontResult, Spectra, TimeResult};
-use super::surrogate::{fit, fit_report, FitKey, FittedSurrogate};
+use super::surrogate::{fit, fit_report, FitKey, FitRecord, FittedSurrogate};
 use crate::analysis::{readout, report, ModelKind, Readout, Report};
 use crate::comfort::Comfort;
 use crate::dos::DosContext;
@@ -48,6 +48,9 @@ pub struct Session {
     fit: Option<Rc<FittedSurrogate>>,
     /// Surrogate fits this session has made ([`Session::fit_count`]).
     fits: u64,
+    /// A fit another session made ([`Session::offer_fit`]), adopted by the first
+    /// scenario with its inputs that asks for the surrogate.
+    offered: Option<FitRecord>,
     kept: Vec<Kept>,
     /// With robust cases, the robust front's combination and the cases' HiFi datums
     /// ([`hifi_combination`]), once per [`FitKey`]: a slider move then costs one LoFi
@@ -76,6 +79,7 @@ impl Session {
             scenario,
             fit: None,
             fits: 0,
+            offered: None,
             kept: Vec::new(),
             robust: None,
         })
@@ -119,15 +123,36 @@ impl Session {
         self.set_state(state)
     }
 
-    /// The scenario's surrogate, fitted once per [`FitKey`].
+    /// The scenario's surrogate, fitted once per [`FitKey`], or adopted from the offered
+    /// fit ([`Session::offer_fit`]) when that was made from the scenario's inputs.
     pub fn surrogate(&mut self) -> Result<Rc<FittedSurrogate>> {
         if let Some(f) = &self.fit {
             return Ok(Rc::clone(f));
         }
-        let f = Rc::new(fit(&self.scenario)?);
-        self.fits += 1;
+        let adopted = self.offered.as_ref().and_then(|r| r.adopt(&self.scenario));
+        let f = Rc::new(match adopted {
+            Some(f) => f,
+            None => {
+                let f = fit(&self.scenario)?;
+                self.fits += 1;
+                f
+            }
+        });
         self.fit = Some(Rc::clone(&f));
         Ok(f)
+    }
+
+    /// The scenario's fit as data, for another session to adopt (fitted here if not
+    /// yet); `None` when the fit has no record.
+    pub fn fit_record(&mut self) -> Result<Option<FitRecord>> {
+        let f = self.surrogate()?;
+        f.record(&self.scenario)
+    }
+
+    /// Offers this session another's fit: the surrogate of a scenario with the same fit
+    /// inputs is that fit, not a new one (the latest offer replaces an earlier one).
+    pub fn offer_fit(&mut self, record: FitRecord) {
+        self.offered = Some(record);
     }
 
     /// The criteria of the design by the fast evaluators the maps and optimisers use; the

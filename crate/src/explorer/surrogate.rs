@@ -10,15 +10,16 @@ use super::state::Scenario;
 use crate::car::Car;
 use crate::comfort::Comfort;
 use crate::design::DesignBox;
-use crate::error::Result;
+use crate::error::{Result, RideError};
 use crate::optimize::Counted;
 use crate::road::Road;
 use crate::robust::CaseSet;
 use crate::study::fidelity::Fitted;
 use crate::study::SurrogateReport;
 use crate::surrogate::{
-    sample_plan, LmOptions, PlanSpec, Sample, Setting, Surrogate, SurrogateSpec,
+    sample_plan, LmOptions, ModelRecord, PlanSpec, Sample, Setting, Surrogate, SurrogateSpec,
 };
+use serde::{Deserialize, Serialize};
 
 /// A fitted surrogate with the samples it was fitted to.
 pub struct FittedSurrogate {
@@ -59,6 +60,85 @@ impl FitKey {
             comfort: s.comfort,
             cases: s.cases.clone(),
         }
+    }
+}
+
+/// What a fit depends on ([`fit`]'s inputs): the datum car, road, design box, approach
+/// and plan; a record carries them as bytes, compared with the adopting scenario's.
+#[derive(Serialize)]
+struct FitInputs {
+    car: Car,
+    road: Road,
+    dbox: DesignBox,
+    spec: SurrogateSpec,
+    plan: PlanSpec,
+}
+
+impl FitInputs {
+    /// Scenario `s`'s fit inputs as postcard bytes.
+    fn bytes(s: &Scenario) -> Result<Vec<u8>> {
+        let inputs = FitInputs {
+            car: s.datum.clone(),
+            road: s.road,
+            dbox: s.dbox,
+            spec: s.surrogate,
+            plan: s.plan,
+        };
+        postcard::to_allocvec(&inputs).map_err(|e| RideError::field("fit", e.to_string()))
+    }
+}
+
+/// A fit as data, with the inputs it was made from: a session that fitted hands it to
+/// another ([`super::Session::fit_record`], [`super::Session::offer_fit`]), which adopts
+/// it for a scenario with the same inputs instead of fitting again. The page's main
+/// thread fits once per scenario change and its background worker adopts that fit.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct FitRecord {
+    /// [`FitInputs::bytes`] of the scenario fitted.
+    inputs: Vec<u8>,
+    plan_method: String,
+    samples: Vec<Sample>,
+    model: ModelRecord,
+}
+
+impl FittedSurrogate {
+    /// This fit of scenario `s` as data; `None` when its model has no record (a measured
+    /// road's LoFi).
+    pub fn record(&self, s: &Scenario) -> Result<Option<FitRecord>> {
+        let Some(model) = self.model.record() else {
+            return Ok(None);
+        };
+        Ok(Some(FitRecord {
+            inputs: FitInputs::bytes(s)?,
+            plan_method: self.plan_method.clone(),
+            samples: self.samples.clone(),
+            model,
+        }))
+    }
+}
+
+impl FitRecord {
+    /// The record as postcard bytes.
+    pub fn to_bytes(&self) -> Result<Vec<u8>> {
+        postcard::to_allocvec(self).map_err(|e| RideError::field("fit", e.to_string()))
+    }
+
+    /// A record from [`FitRecord::to_bytes`]; errors name `fit`.
+    pub fn from_bytes(bytes: &[u8]) -> Result<FitRecord> {
+        postcard::from_bytes(bytes)
+            .map_err(|e| RideError::field("fit", format!("not a fit record ({e})")))
+    }
+
+    /// The fit again, if it was made from scenario `s`'s inputs (else `None`): the same
+    /// samples and a model with the same predictions, bit for bit.
+    pub fn adopt(&self, s: &Scenario) -> Option<FittedSurrogate> {
+        let same = FitInputs::bytes(s).is_ok_and(|b| b == self.inputs);
+        same.then(|| FittedSurrogate {
+            model: self.model.clone().into_surrogate(s.dbox),
+            plan: s.plan,
+            plan_method: self.plan_method.clone(),
+            samples: self.samples.clone(),
+        })
     }
 }
 

@@ -201,6 +201,74 @@ fn the_fit_report_on_the_kept_fit_is_the_clis_without_a_second_fit() {
     assert_eq!(y.fit_count(), 1);
 }
 
+/// A fit handed to another session as bytes (as the page's worker receives it) is
+/// adopted there without a fit, and predicts the same bits as the fit it came from, for
+/// every approach kind (tuned by variables and by parameters, RBA, data fit, GP); it also
+/// makes the same fit report. A scenario with other fit inputs does not take it.
+#[test]
+fn an_offered_fit_is_adopted_bit_for_bit_without_fitting_again() {
+    for (sur, plan) in [
+        ("rba-mul-rbf-mq", "ae:10"),
+        ("rba-add-poly2-per-criterion", "ae:10"),
+        ("vba-qts", "grid:3"),
+        ("pba-smts-umts-kt-per-criterion", "ae:10"),
+        ("data-rbf-gauss", "ae:10"),
+        ("gp-mul", "ae:8"),
+    ] {
+        let state = |s: &mut State| {
+            s.surrogate = Some(sur.into());
+            s.plan = Some(plan.into());
+        };
+        let mut a = session(state);
+        let record = a
+            .fit_record()
+            .unwrap()
+            .expect("an ISO road's fit has a record");
+        let bytes = record.to_bytes().unwrap();
+        let cut = FitRecord::from_bytes(&bytes[..bytes.len() / 2]).unwrap_err();
+        assert!(
+            cut.to_string().starts_with("fit: not a fit record"),
+            "{cut}"
+        );
+        let mut b = session(|s| {
+            state(s);
+            s.ks = 31_000.0;
+        });
+        b.offer_fit(FitRecord::from_bytes(&bytes).unwrap());
+        let (fa, fb) = (a.surrogate().unwrap(), b.surrogate().unwrap());
+        assert_eq!(
+            (a.fit_count(), b.fit_count()),
+            (1, 0),
+            "{sur}: adopted, not fitted"
+        );
+        assert_eq!(fa.samples, fb.samples);
+        assert_eq!(fa.model.tuning(), fb.model.tuning(), "{sur}");
+        let dbox = a.scenario().dbox;
+        for i in 0..=6 {
+            for j in 0..=6 {
+                // The box and 10 % beyond it, where the reach check refuses (both alike).
+                let (ks, cs) =
+                    dbox.scale(-0.15 + 1.3 * i as f64 / 6.0, -0.15 + 1.3 * j as f64 / 6.0);
+                match (fa.model.evaluate(ks, cs), fb.model.evaluate(ks, cs)) {
+                    (Ok(x), Ok(y)) => assert_eq!(x.to_array(), y.to_array(), "{sur} at {ks}, {cs}"),
+                    (Err(x), Err(y)) => assert_eq!(x.to_string(), y.to_string()),
+                    (x, y) => panic!("{sur} at {ks}, {cs}: {x:?} against {y:?}"),
+                }
+            }
+        }
+        assert_eq!(a.fit_report(4).unwrap(), b.fit_report(4).unwrap(), "{sur}");
+        assert_eq!(b.fit_count(), 0);
+        // Other fit inputs (the plan): the offer is not taken; the session fits.
+        let mut c = session(|s| {
+            state(s);
+            s.plan = Some("grid:4".into());
+        });
+        c.offer_fit(FitRecord::from_bytes(&bytes).unwrap());
+        assert_eq!(c.surrogate().unwrap().samples.len(), 16);
+        assert_eq!(c.fit_count(), 1);
+    }
+}
+
 #[test]
 fn the_surrogate_front_pick_holds_on_the_hifi() {
     let mut x = session(|_| {});

@@ -6,8 +6,8 @@
 use super::fit::FitDiagnostics;
 use super::response::{fit_affine, method, AffineSample, Response, ResponseKind};
 use super::{
-    check_samples, relative_cost, require_samples, Approach, Parameter, Sample, Scheme, Setting,
-    Surrogate, SurrogateParams, SurrogateSpec,
+    check_samples, relative_cost, require_samples, Approach, ModelRecord, Parameter, Sample,
+    Scheme, Setting, Surrogate, SurrogateParams, SurrogateSpec,
 };
 use crate::design::DesignBox;
 use crate::error::Result;
@@ -80,7 +80,7 @@ impl SurrogateParams for DataFitParams {
 }
 
 /// A fitted data-fit baseline.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DataFit {
     spec: SurrogateSpec,
     design_box: DesignBox,
@@ -119,5 +119,9 @@ impl Surrogate for DataFit {
 
     fn diagnostics(&self) -> Vec<FitDiagnostics> {
         self.diagnostics.clone()
+    }
+
+    fn record(&self) -> Option<ModelRecord> {
+        Some(ModelRecord::Data(self.clone()))
     }
 }

@@ -16,13 +16,14 @@ use super::fit::FitDiagnostics;
 use super::kriging::Kriging;
 use super::SurrogateLoFi;
 use super::{
-    check_samples, relative_cost, require_samples, Approach, Parameter, Sample, Scheme, Setting,
-    Surrogate, SurrogateParams, SurrogateSpec,
+    check_samples, relative_cost, require_samples, Approach, ModelRecord, Parameter, Sample,
+    Scheme, Setting, Surrogate, SurrogateParams, SurrogateSpec,
 };
 use crate::design::DesignBox;
 use crate::error::Result;
 use crate::evaluate::{Criteria, Evaluator, CRITERIA_NAMES};
 use crate::math;
+use serde::{Deserialize, Serialize};
 
 /// Fewest samples of a GP correction: a mean and a variance are estimated per criterion,
 /// and leave-one-out needs one more.
@@ -96,7 +97,7 @@ impl SurrogateParams for GpParams {
 }
 
 /// A fitted GP correction of the LoFi.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Gp {
     lofi: SurrogateLoFi,
     design_box: DesignBox,
@@ -155,6 +156,13 @@ impl Surrogate for Gp {
         Ok(Some(std::array::from_fn(|k| {
             self.models[k].predict(u, v).1.sqrt()
         })))
+    }
+
+    fn record(&self) -> Option<ModelRecord> {
+        self.lofi
+            .measured
+            .is_none()
+            .then(|| ModelRecord::Gp(self.clone()))
     }
 }
 

@@ -9,7 +9,7 @@
 //! message instead of the prediction; the fidelity study shows the surrogate's row as
 //! skipped with it.
 
-use super::{FitDiagnostics, Parameter, Surrogate, SurrogateSpec};
+use super::{FitDiagnostics, ModelRecord, Parameter, Surrogate, SurrogateSpec};
 use crate::car::QuarterCar;
 use crate::design::DesignBox;
 use crate::domain::num;
@@ -120,6 +120,11 @@ impl Surrogate for Guarded {
         crate::car::check_design(ks, cs)?;
         self.check_reach(ks, cs)?;
         self.inner.relative_std(ks, cs)
+    }
+
+    /// The inner model's ([`ModelRecord::into_surrogate`] guards it again).
+    fn record(&self) -> Option<ModelRecord> {
+        self.inner.record()
     }
 }
 

@@ -35,6 +35,7 @@
 use crate::error::{Result, RideError};
 use crate::math;
 use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
+use serde::{Deserialize, Serialize};
 
 /// Nugget `nu` added to the diagonal of the correlation matrix (relative to `sigma^2`).
 pub const NUGGET: f64 = 1e-10;
@@ -66,7 +67,7 @@ pub fn correlation_matrix(theta: [f64; 2], x: &[[f64; 2]]) -> DMatrix<f64> {
 }
 
 /// A fitted ordinary Kriging model.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Kriging {
     x: Vec<[f64; 2]>,
     theta: [f64; 2],

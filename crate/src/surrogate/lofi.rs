@@ -9,11 +9,12 @@ use crate::error::Result;
 use crate::evaluate::{Criteria, Evaluator};
 use crate::road::Road;
 use crate::road_profile::QuarterRoute;
+use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
 /// The LoFi of a surrogate: `car`'s front quarter car with the front spring and damper
 /// replaced, on `measured` when there is one, else on `road`.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct SurrogateLoFi {
     /// The car (rear and masses fixed).
     pub car: Car,
@@ -21,7 +22,9 @@ pub struct SurrogateLoFi {
     /// and tracks, which no value uses.
     pub road: Road,
     /// The quarter car's route on the measured road, shaped at its speed (shared by every
-    /// fitted surrogate).
+    /// fitted surrogate). Not data: a surrogate on a measured road has no record
+    /// ([`super::Surrogate::record`]).
+    #[serde(skip)]
     pub measured: Option<Arc<dyn QuarterRoute>>,
 }
 

@@ -37,6 +37,7 @@ mod lofi;
 pub mod metrics;
 pub mod pba;
 pub mod rba;
+pub mod record;
 pub mod response;
 pub mod spec;
 mod tuned;
@@ -51,6 +52,7 @@ pub use lofi::SurrogateLoFi;
 pub use metrics::{ByCriterion, ErrorMap, Metrics};
 pub use pba::{PbaParams, Scaling};
 pub use rba::{Form, Rba, RbaParams};
+pub use record::ModelRecord;
 pub use response::{Kernel, ResponseKind};
 pub use spec::{Approach, PlanSpec, SurrogateSpec};
 pub use tuned::Tuned;
@@ -207,6 +209,10 @@ pub trait Surrogate: Evaluator + Send + Sync {
     fn relative_std(&self, _ks: f64, _cs: f64) -> Result<Option<[f64; 3]>> {
         Ok(None)
     }
+
+    /// The fitted model as data ([`record`]), to be rebuilt elsewhere with the same
+    /// predictions; `None` on a measured road, whose LoFi route is not data.
+    fn record(&self) -> Option<ModelRecord>;
 }
 
 /// A parameter set that is checked, then fitted into a [`Surrogate`].

@@ -12,7 +12,7 @@
 
 use super::fit::{check_tuning, LmOptions, Tuning};
 use super::tuned::Tuned;
-use super::{Approach, Sample, Scheme, Setting, SurrogateParams, SurrogateSpec};
+use super::{Approach, ModelRecord, Sample, Scheme, Setting, SurrogateParams, SurrogateSpec};
 use crate::car::QuarterCar;
 use crate::error::Result;
 use serde::{Deserialize, Serialize};
@@ -69,7 +69,7 @@ impl Scaling {
 
 /// The PBA tuning: `a` holds the scale factors of the scaled parameters, in the order
 /// ms, mu, kt.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ParameterTuning {
     scaling: Scaling,
     base: QuarterCar,
@@ -122,6 +122,10 @@ impl Tuning for ParameterTuning {
             }
         }
         Ok(q)
+    }
+
+    fn record(tuned: &Tuned<Self>) -> ModelRecord {
+        ModelRecord::Pba(tuned.clone())
     }
 }
 

@@ -15,8 +15,8 @@ use super::fit::FitDiagnostics;
 use super::response::{fit_affine, method, AffineSample, Response, ResponseKind};
 use super::SurrogateLoFi;
 use super::{
-    check_samples, relative_cost, require_samples, Approach, Parameter, Sample, Scheme, Setting,
-    Surrogate, SurrogateParams, SurrogateSpec,
+    check_samples, relative_cost, require_samples, Approach, ModelRecord, Parameter, Sample,
+    Scheme, Setting, Surrogate, SurrogateParams, SurrogateSpec,
 };
 use crate::design::DesignBox;
 use crate::error::{Result, RideError};
@@ -140,7 +140,7 @@ impl SurrogateParams for RbaParams {
 }
 
 /// A fitted RBA surrogate.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Rba {
     spec: SurrogateSpec,
     lofi: SurrogateLoFi,
@@ -181,5 +181,12 @@ impl Surrogate for Rba {
 
     fn diagnostics(&self) -> Vec<FitDiagnostics> {
         self.diagnostics.clone()
+    }
+
+    fn record(&self) -> Option<ModelRecord> {
+        self.lofi
+            .measured
+            .is_none()
+            .then(|| ModelRecord::Rba(self.clone()))
     }
 }

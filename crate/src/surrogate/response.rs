@@ -135,8 +135,7 @@ fn monomials(u: f64, v: f64) -> [f64; 6] {
 const MONOMIAL_NAMES: [&str; 6] = ["1", "u", "v", "uu", "uv", "vv"];
 
 /// A fitted response model over `(u, v)`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(tag = "kind", rename_all = "kebab-case")]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum Response {
     /// `p(u, v) = c^T m(u, v)`.
     Poly {

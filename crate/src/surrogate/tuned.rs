@@ -4,13 +4,14 @@
 
 use super::fit::{fit_scheme, tuned_criteria, FitDiagnostics, LmOptions, Tuning};
 use super::SurrogateLoFi;
-use super::{Parameter, Sample, Scheme, Surrogate, SurrogateSpec};
+use super::{ModelRecord, Parameter, Sample, Scheme, Surrogate, SurrogateSpec};
 use crate::car::QuarterCar;
 use crate::error::Result;
 use crate::evaluate::{Criteria, Evaluator};
+use serde::{Deserialize, Serialize};
 
 /// A fitted tuned LoFi: `S_k(x) = f~_k(x; tuning a_k)`, `a_k` shared or per criterion.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Tuned<T> {
     spec: SurrogateSpec,
     tuning: T,
@@ -97,5 +98,9 @@ impl<T: Tuning> Surrogate for Tuned<T> {
     fn tuned_quarters(&self, ks: f64, cs: f64) -> Result<Option<[QuarterCar; 3]>> {
         let q = |k| self.tuning.quarter(self.params_for(k), ks, cs);
         Ok(Some([q(0)?, q(1)?, q(2)?]))
+    }
+
+    fn record(&self) -> Option<ModelRecord> {
+        self.lofi.measured.is_none().then(|| T::record(self))
     }
 }

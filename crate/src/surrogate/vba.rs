@@ -15,7 +15,7 @@
 
 use super::fit::{check_tuning, LmOptions, Tuning};
 use super::tuned::Tuned;
-use super::{Approach, Sample, Scheme, Setting, SurrogateParams, SurrogateSpec};
+use super::{Approach, ModelRecord, Sample, Scheme, Setting, SurrogateParams, SurrogateSpec};
 use crate::car::QuarterCar;
 use crate::design::DesignBox;
 use crate::error::{Result, RideError};
@@ -94,7 +94,7 @@ impl Transform {
 }
 
 /// The VBA tuning: `a = [Ks coefficients, Cs coefficients]`.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct VariableTuning {
     transform: Transform,
     design_box: DesignBox,
@@ -175,6 +175,10 @@ impl Tuning for VariableTuning {
             cs: cs_t,
             ..self.base
         })
+    }
+
+    fn record(tuned: &Tuned<Self>) -> ModelRecord {
+        ModelRecord::Vba(tuned.clone())
     }
 }
 

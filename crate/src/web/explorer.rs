@@ -213,4 +213,14 @@ impl Explorer {
     pub fn fit_count(&self) -> f64 {
         self.0.fit_count() as f64
     }
+
+    /// The scenario's surrogate fit as bytes (`Uint8Array`; fitted here if not yet), for
+    /// another thread's session to adopt (`offerFit`, the workers' module) instead of
+    /// fitting again; undefined when the fit has no record. Errors name the field at
+    /// fault.
+    #[wasm_bindgen(js_name = fitRecord)]
+    pub fn fit_record(&mut self) -> Result<Option<Vec<u8>>, JsValue> {
+        let record = self.0.fit_record().map_err(js_error)?;
+        record.map(|r| r.to_bytes()).transpose().map_err(js_error)
+    }
 }

@@ -12,6 +12,15 @@ use wasm_bindgen::prelude::*;
 
 #[wasm_bindgen]
 impl Explorer {
+    /// Offers this session a fit another thread made (`fitRecord`'s bytes): a scenario
+    /// with the fit's inputs takes it instead of fitting again. Errors name `fit`.
+    #[wasm_bindgen(js_name = offerFit)]
+    pub fn offer_fit(&mut self, record: &[u8]) -> Result<(), JsValue> {
+        let record = crate::explorer::FitRecord::from_bytes(record).map_err(js_error)?;
+        self.0.offer_fit(record);
+        Ok(())
+    }
+
     /// Keeps HiFi values computed on the GPU (`GpuMaps.hifiMap`'s `values`, the map
     /// layout) for the `nx` x `ny` HiFi and error maps of the current scenario; errors
     /// name `values`, `nx` or `ny`.
