@@ -2207,7 +2207,7 @@ fn the_report_takes_a_measured_road() {
 /// surrogate at 10 samples, fitted alone by `surrogate --road` on the same plan, has the
 /// same validation metrics (the same HiFi samples, LoFi and 20 x 20 grid: 1e-12); it
 /// makes as many HiFi runs as the study on an ISO class (every plan and the grid once);
-/// the JSON names the road; the adaptive study and a car file's load cases are refused.
+/// the JSON names the road; a car file's load cases are refused.
 #[test]
 fn the_fidelity_study_takes_a_measured_road() {
     let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
@@ -2248,11 +2248,31 @@ fn the_fidelity_study_takes_a_measured_road() {
     }
     let laden = format!("{root}/assets/examples/sedan-laden.json");
     for (args, field) in [
-        (
-            vec!["study", "--road", &road, "--adaptive", "gp-mul"],
-            "adaptive",
-        ),
         (vec!["study", "--road", &road, "--car", &laden], "road"),
+        (
+            vec![
+                "study",
+                "--road",
+                &road,
+                "--car",
+                &laden,
+                "--adaptive",
+                "gp-mul",
+            ],
+            "road",
+        ),
+        (
+            vec![
+                "study",
+                "--road",
+                &road,
+                "--adaptive",
+                "gp-mul",
+                "--max-runs",
+                "101",
+            ],
+            "max-runs",
+        ),
     ] {
         let (code, _, err) = ridelab(&args);
         assert_eq!(code, 2, "{args:?}: {err}");
@@ -2261,6 +2281,72 @@ fn the_fidelity_study_takes_a_measured_road() {
             "{args:?}: {err}"
         );
     }
+}
+
+/// `study --road FILE --adaptive SURROGATE` (issue #31): the adaptive study on the measured
+/// road. Its initial plan is `surrogate --road`'s Audze-Eglais plan there and every sample's
+/// HiFi value is `eval --road`'s full car at its design (the same exact route: 1e-12); one
+/// row per total of HiFi runs, each front re-checked on that HiFi within a few per cent of
+/// its own front; the JSON and the table name the road file.
+#[test]
+fn the_adaptive_study_takes_a_measured_road() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    let road = format!("{root}/assets/roads/concrete-slab-5m.csv");
+    let args = [
+        "study",
+        "--road",
+        &road,
+        "--adaptive",
+        "vba-qts",
+        "--max-runs",
+        "7",
+        "--grid",
+        "41",
+    ];
+    let v = json(&[&args[..], &["--json"]].concat());
+    assert_eq!(v["road"]["file"], road.as_str());
+    let rows = v["rows"].as_array().unwrap();
+    assert_eq!(
+        rows.iter()
+            .map(|r| r["hifi_runs"].as_u64().unwrap())
+            .collect::<Vec<_>>(),
+        [6, 7]
+    );
+    for r in rows {
+        for side in ["adaptive", "audze_eglais"] {
+            let hv = r[side]["hypervolume_ratio"].as_f64().unwrap();
+            assert!(
+                hv > 0.9 && hv < 1.02,
+                "{side} at {}: HV ratio {hv}",
+                r["hifi_runs"]
+            );
+        }
+    }
+    let samples = v["samples"].as_array().unwrap();
+    assert_eq!(samples.len(), 7);
+    let plan = json(&[
+        "surrogate",
+        "--road",
+        &road,
+        "--approach",
+        "vba-qts",
+        "--plan",
+        "ae:5",
+    ]);
+    assert_eq!(samples[..5], plan["samples"].as_array().unwrap()[..]);
+    for s in samples {
+        let (ks, cs) = (s["ks"].to_string(), s["cs"].to_string());
+        let e = json(&[
+            "eval", "--model", "full", "--road", &road, "--ks", &ks, "--cs", &cs,
+        ]);
+        for key in ["bacc", "dtl", "sws"] {
+            let (a, b) = (s["hifi"][key].as_f64().unwrap(), e[key].as_f64().unwrap());
+            assert!((a / b - 1.0).abs() < 1e-12, "{key}: {a} vs eval {b}");
+        }
+    }
+    let (code, table, err) = ridelab(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(table.contains(&format!("({road} at 20 m/s)")), "{table}");
 }
 
 /// `optimize --road FILE --adaptive K` (issue #31): the loop runs on the measured road, so

@@ -4,11 +4,12 @@ use crate::args::{car_and_road, car_loads_road_of, count, json, CarRoad};
 use crate::road::{one_scenario, shaped_road};
 use clap::Args;
 use ridelab::analysis::ModelKind;
+use ridelab::car::Car;
 use ridelab::design::DesignBox;
 use ridelab::error::{Result, RideError};
 use ridelab::optimize::StmParams;
 use ridelab::road_profile::{MeasuredModel, MeasuredRoad, RoadScenario};
-use ridelab::study::adaptive::{adaptive_study, StudyOptions};
+use ridelab::study::adaptive::{adaptive_study, adaptive_study_on, AdaptiveStudy, StudyOptions};
 use ridelab::study::{study, study_on, StudyReport};
 use ridelab::surrogate::Setting;
 use ridelab::surrogate::SurrogateSpec;
@@ -45,30 +46,43 @@ pub(crate) struct StudyArgs {
 
 pub(crate) fn study_cmd(a: StudyArgs) -> Result<String> {
     if let Some(path) = a.car.road.as_deref() {
+        if let Some(spec) = a.adaptive {
+            let r = measured_adaptive_study(&a, path, spec)?;
+            return output(&a, &r, r.to_markdown());
+        }
         let r = measured_study(&a, path)?;
         return output(&a, &r, r.to_markdown());
     }
     let (car, road) = car_and_road(&a.car)?;
     if let Some(spec) = a.adaptive {
-        let d = StudyOptions::default();
-        let options = StudyOptions {
-            initial: a.initial.unwrap_or(d.initial),
-            min_runs: a.min_runs.unwrap_or(d.min_runs),
-            max_runs: a.max_runs.unwrap_or(d.max_runs),
-            stm: StmParams {
-                grid: a.grid.unwrap_or(d.stm.grid),
-                ..d.stm.clone()
-            },
-            ..d
-        };
-        let r = adaptive_study(&car, &road, spec, &options).map_err(|e| match e {
-            RideError::Field { field, reason } => RideError::field(field.replace('_', "-"), reason),
-            other => other,
-        })?;
+        let r = adaptive_study(&car, &road, spec, &study_options(&a)).map_err(option_name)?;
         return output(&a, &r, r.to_markdown());
     }
     let r = study(&car, &road)?;
     output(&a, &r, r.to_markdown())
+}
+
+/// The adaptive study's settings from the options (the defaults where left out).
+fn study_options(a: &StudyArgs) -> StudyOptions {
+    let d = StudyOptions::default();
+    StudyOptions {
+        initial: a.initial.unwrap_or(d.initial),
+        min_runs: a.min_runs.unwrap_or(d.min_runs),
+        max_runs: a.max_runs.unwrap_or(d.max_runs),
+        stm: StmParams {
+            grid: a.grid.unwrap_or(d.stm.grid),
+            ..d.stm.clone()
+        },
+        ..d
+    }
+}
+
+/// An error's field as the option that sets it (`min_runs` -> `min-runs`).
+fn option_name(e: RideError) -> RideError {
+    match e {
+        RideError::Field { field, reason } => RideError::field(field.replace('_', "-"), reason),
+        other => other,
+    }
 }
 
 /// A study as `--json`, `--markdown` or the text table of its Markdown.
@@ -86,20 +100,36 @@ fn output<T: serde::Serialize>(a: &StudyArgs, r: &T, markdown: String) -> Result
 /// validation grid the full car there, the surrogates' LoFi the quarter car there, as
 /// `surrogate --road`), in the default design box. Fixed work (every plan of the study
 /// and the 20 x 20 grid: about 3 s on the shipped slab road). One scenario: a car file's
-/// load cases exit 2 naming `road`; the adaptive study takes ISO classes (`--adaptive`
-/// with `--road` exits 2 naming `adaptive`).
+/// load cases exit 2 naming `road`.
 fn measured_study(a: &StudyArgs, path: &str) -> Result<StudyReport> {
-    if a.adaptive.is_some() {
-        return Err(RideError::field(
-            "adaptive",
-            "the adaptive study runs on ISO classes (--class) in this version; leave out --road, or use surrogate --road FILE --adaptive K",
-        ));
-    }
+    let (car, setting, hifi, road) = measured_scenario(a, path)?;
+    study_on(&car, &setting, hifi, road)
+}
+
+/// `study --road FILE --adaptive SURROGATE`: the adaptive study on the measured road, its
+/// HiFi runs (the loop's, the Audze-Eglais plans', every front's re-check) the full car
+/// there and the surrogates' LoFi the quarter car there. Bounded as on an ISO class
+/// (`--max-runs` <= 100, the fronts' STM grid by the work budget).
+fn measured_adaptive_study(
+    a: &StudyArgs,
+    path: &str,
+    spec: SurrogateSpec,
+) -> Result<AdaptiveStudy> {
+    let (car, setting, hifi, road) = measured_scenario(a, path)?;
+    adaptive_study_on(&car, &setting, &hifi, road, spec, &study_options(a)).map_err(option_name)
+}
+
+/// The car, the surrogates' setting, the full car and the road's description of a study
+/// on the profile `path` at the options' speed and tracks.
+fn measured_scenario(
+    a: &StudyArgs,
+    path: &str,
+) -> Result<(Car, Setting, MeasuredModel, RoadScenario)> {
     let (car, loads, _) = car_loads_road_of(&a.car)?;
     one_scenario(!loads.is_empty(), false)?;
     let (shaped, tracks) = shaped_road(&a.car, path)?;
     let about = MeasuredRoad::of(path, &shaped, tracks);
     let setting = Setting::measured(&car, shaped.clone(), &DesignBox::default())?;
     let hifi = MeasuredModel::new(ModelKind::Full, &car, shaped);
-    study_on(&car, &setting, hifi, RoadScenario::Measured(about))
+    Ok((car, setting, hifi, RoadScenario::Measured(about)))
 }

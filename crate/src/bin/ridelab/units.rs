@@ -37,6 +37,8 @@ pub(crate) fn unit_of(key: &str) -> Option<&'static str> {
         | "bounce" | "wheel_hop" => "Hz",
         "hypervolume" | "ehvi" | "value" => "(m/s^2) N",
         "reference_point" => "[m/s^2, N]",
+        // A front's pick as a design pair (the adaptive study's rows).
+        "pick" => "[N/m, N s/m]",
         k if k.ends_with("_percent") => "%",
         // Dimensionless: ratios, weights, errors relative to a value, normalised
         // coordinates; and counts, indices, seeds and bit masks.
@@ -80,7 +82,7 @@ pub(crate) fn unit_of(key: &str) -> Option<&'static str> {
         | "feasible" | "broken" | "bit" | "mask" | "index" | "case" | "decimate"
         | "validation_levels" | "iterations" | "starts" | "best_start" | "candidates"
         | "samples" | "segments" | "segment_samples" | "tracks" | "front_points" | "order"
-        | "initial" | "min_runs" | "max_runs" => "-",
+        | "initial" | "min_runs" | "max_runs" | "hifi_feasible_points" => "-",
         _ => return None,
     };
     Some(unit)

@@ -28,7 +28,7 @@ mod study;
 
 pub use check::{front_check, FrontCheck, HifiFront, HIFI_FEASIBILITY_TOLERANCE};
 pub use reports::{optimize_report, surrogate_report, surrogate_report_on, AdaptiveOptimizeReport};
-pub use study::{adaptive_study, AdaptiveStudy, StudyOptions, StudyRow};
+pub use study::{adaptive_study, adaptive_study_on, AdaptiveStudy, StudyOptions, StudyRow};
 
 use crate::car::Car;
 use crate::design::DesignBox;

@@ -8,8 +8,10 @@ use crate::analysis::HiFi;
 use crate::car::Car;
 use crate::design::DesignBox;
 use crate::error::{Result, RideError};
+use crate::evaluate::Evaluator;
 use crate::optimize::StmParams;
 use crate::road::Road;
+use crate::road_profile::RoadScenario;
 use crate::surrogate::uncertainty::UncertaintyMethod;
 use crate::surrogate::{sample_plan, PlanSpec, Sample, Setting, SurrogateSpec};
 use serde::{Deserialize, Serialize};
@@ -61,8 +63,8 @@ pub struct StudyRow {
 pub struct AdaptiveStudy {
     /// Car name.
     pub car: String,
-    /// Road scenario.
-    pub road: Road,
+    /// Road scenario: an ISO class (JSON as before) or a measured profile.
+    pub road: RoadScenario,
     /// Canonical surrogate name.
     pub surrogate: String,
     /// The uncertainty estimate the loop used.
@@ -90,6 +92,29 @@ pub struct AdaptiveStudy {
 pub fn adaptive_study(
     car: &Car,
     road: &Road,
+    spec: SurrogateSpec,
+    options: &StudyOptions,
+) -> Result<AdaptiveStudy> {
+    let setting = Setting::new(car, road, &DesignBox::default())?;
+    let hifi = HiFi::new(car, road)?;
+    adaptive_study_on(
+        car,
+        &setting,
+        &hifi,
+        RoadScenario::Iso(*road),
+        spec,
+        options,
+    )
+}
+
+/// [`adaptive_study`] on any HiFi (the full car on a measured road, say) with the
+/// surrogates' `setting` (its LoFi on the same road, over the default box); `road`
+/// names the road in the report.
+pub fn adaptive_study_on<E: Evaluator + Sync>(
+    car: &Car,
+    setting: &Setting,
+    hifi: &E,
+    road: RoadScenario,
     spec: SurrogateSpec,
     options: &StudyOptions,
 ) -> Result<AdaptiveStudy> {
@@ -133,20 +158,18 @@ pub fn adaptive_study(
         ),
         "--grid or --max-runs",
     )?;
-    let design_box = DesignBox::default();
-    let setting = Setting::new(car, road, &design_box)?;
-    let hifi = HiFi::new(car, road)?;
+    let design_box = setting.design_box;
     let decision = Decision {
         stm: options.stm.clone(),
-        ..Decision::of_car(car, &hifi)?
+        ..Decision::of_car(car, hifi)?
     };
-    let hifi_front = HifiFront::new(&hifi, &decision, &design_box)?;
+    let hifi_front = HifiFront::new(hifi, &decision, &design_box)?;
     let adaptive = AdaptiveOptions {
         runs: options.max_runs - options.initial,
         ..options.adaptive
     };
     let plan = PlanSpec::AudzeEglais(options.initial);
-    let initial = sample_plan(&hifi, &plan.plan()?, &design_box)?;
+    let initial = sample_plan(hifi, &plan.plan()?, &design_box)?;
     let mut state = AdaptiveLoop::new(
         spec,
         setting.clone(),
@@ -158,14 +181,14 @@ pub fn adaptive_study(
     let lm = adaptive.lm();
     let mut rows = Vec::new();
     for n in options.initial + 1..=options.max_runs {
-        state.step(&hifi)?;
+        state.step(hifi)?;
         if n < options.min_runs {
             continue;
         }
-        let looped = front_check(state.model(), &hifi, &decision, &design_box, &hifi_front, n)?;
-        let ae = sample_plan(&hifi, &PlanSpec::AudzeEglais(n).plan()?, &design_box)?;
-        let model = spec.fit(&setting, &ae, &lm)?;
-        let fixed = front_check(&*model, &hifi, &decision, &design_box, &hifi_front, n)?;
+        let looped = front_check(state.model(), hifi, &decision, &design_box, &hifi_front, n)?;
+        let ae = sample_plan(hifi, &PlanSpec::AudzeEglais(n).plan()?, &design_box)?;
+        let model = spec.fit(setting, &ae, &lm)?;
+        let fixed = front_check(&*model, hifi, &decision, &design_box, &hifi_front, n)?;
         rows.push(StudyRow {
             hifi_runs: n,
             adaptive: looped,
@@ -179,7 +202,7 @@ pub fn adaptive_study(
     let seconds = None;
     Ok(AdaptiveStudy {
         car: car.name.clone(),
-        road: *road,
+        road,
         surrogate: spec.name(),
         uncertainty: report.uncertainty,
         options: StudyOptions {
@@ -200,14 +223,16 @@ impl AdaptiveStudy {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "# Adaptive HiFi sampling: {} ({:?} road, {} m/s), {} with {} uncertainty\n\n\
+            "# Adaptive HiFi sampling: {} ({}), {} with {} uncertainty\n\n\
              Adaptive = Audze-Eglais {} + the rest by {}; AE = an Audze-Eglais plan of the same size. \
              HV ratio: the front's designs re-run on the HiFi, against STM on the HiFi itself \
              ({} HiFi runs, hypervolume {:.5} (m/s^2) N). Re-check: the min-max pick's largest \
              HiFi error. Front error: the largest error over the front's designs.{}\n",
             self.car,
-            self.road.class,
-            self.road.speed,
+            match &self.road {
+                RoadScenario::Iso(r) => format!("{:?} road, {} m/s", r.class, r.speed),
+                RoadScenario::Measured(m) => format!("{} at {} m/s", m.file, m.speed),
+            },
             self.surrogate,
             self.uncertainty.name(),
             self.options.initial,
