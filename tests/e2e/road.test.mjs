@@ -67,8 +67,14 @@ function sameAsCli(road, s, datum, file, twoTracks = false) {
   for (const [model, key] of [['quarter', 'quarter'], ['full', 'full']]) {
     const want = cliEval(model, file, s, twoTracks);
     for (const c of ['bacc', 'dtl', 'sws']) close(road.on[key][c], want[c], `${model} ${c} at Ks ${s.ks}, Cs ${s.cs}, ${s.speed} m/s`);
+    close(road.on.bacc_wk[key], want.bacc_wk, `${model} bacc_wk at Ks ${s.ks}, Cs ${s.cs}, ${s.speed} m/s`);
     const atDatum = cliEval(model, file, { ...s, ...datum }, twoTracks);
     for (const c of ['bacc', 'dtl', 'sws']) close(road.on[`datum_${key}`][c], atDatum[c], `${model} datum ${c}`);
+    close(road.on.bacc_wk[`datum_${key}`], atDatum.bacc_wk, `${model} datum bacc_wk`);
+    if (model === 'full') {
+      assert.equal(road.on.bacc_wk.comfort, want.comfort);
+      assert.equal(road.on.bacc_wk.datum_comfort, atDatum.comfort);
+    }
   }
 }
 
@@ -112,8 +118,9 @@ test('a dropped road: described and judged as the CLI does, kept through bad fil
 
   // The table shows the numbers in the page's units with the change against the datum.
   const rows = await page.$$eval('#road-table tbody tr', (trs) => trs.map((tr) => tr.textContent));
-  assert.equal(rows.length, 3);
-  assert.match(rows[2], /SWS mm/);
+  assert.equal(rows.length, 4);
+  assert.match(rows[1], /BAcc Wk m\/s²/);
+  assert.match(rows[3], /SWS mm/);
   assert.match(await page.textContent('#road-table caption'), /at 27 m\/s, measured tracks/);
 
   // The chart is drawn, with its axes' units.

@@ -20,9 +20,16 @@ const SETTLE_MS = 150;
 /** The rows of the judgement table: key, name, unit, scale from SI. */
 const ROWS = [
   ['bacc', 'BAcc', 'm/s²', 1],
+  ['bacc_wk', 'BAcc Wk', 'm/s²', 1],
   ['dtl', 'DTL', 'N', 1],
   ['sws', 'SWS', 'mm', 1000],
 ];
+
+/**
+ * Row `k` of the judgement `on` for `model` ('quarter', 'full', 'datum_quarter' or
+ * 'datum_full'): the criteria, or the ISO 2631-1 Wk-weighted BAcc (`bacc_wk`).
+ */
+const valueOf = (on, model, k) => (k === 'bacc_wk' ? on.bacc_wk[model] : on[model][k]);
 
 /** The state fields the judgement depends on. */
 const judgedOn = (s) => JSON.stringify([s.car, s.carJson ?? null, s.ks, s.cs, s.speed, s.tracks]);
@@ -146,15 +153,17 @@ export class RoadPanel {
     const r = on.road;
     t.querySelector('caption').textContent =
       `The design and the datum on ${r.file} at ${Number(r.speed.toPrecision(4))} m/s, ${r.tracks} tracks ` +
-      `(exact route; the shaping filter's PSD error ${(100 * r.fit_error).toFixed(1)} % over ${fmt(r.band_hz[0], 2)}–${fmt(r.band_hz[1], 3)} Hz; BAcc unweighted)`;
+      `(exact route; the shaping filter's PSD error ${(100 * r.fit_error).toFixed(1)} % over ${fmt(r.band_hz[0], 2)}–${fmt(r.band_hz[1], 3)} Hz; ` +
+      `BAcc unweighted, BAcc Wk weighted by ISO 2631-1: the full car ${on.bacc_wk.comfort}, at the datum ${on.bacc_wk.datum_comfort})`;
     const pct = (a, b) => `${a >= b ? '+' : '−'}${Math.abs(100 * (a / b - 1)).toFixed(1)} %`;
     const body = t.querySelector('tbody');
     body.replaceChildren(...ROWS.map(([k, label, unit, scale]) => {
       const tr = document.createElement('tr');
+      const [q, f, q0, f0] = ['quarter', 'full', 'datum_quarter', 'datum_full'].map((m) => valueOf(on, m, k));
       const cells = [
         `${label} <span class="unit">${unit}</span>`,
-        fmt(on.quarter[k] * scale, 4), pct(on.quarter[k], on.datum_quarter[k]),
-        fmt(on.full[k] * scale, 4), pct(on.full[k], on.datum_full[k]),
+        fmt(q * scale, 4), pct(q, q0),
+        fmt(f * scale, 4), pct(f, f0),
       ];
       cells.forEach((html, i) => {
         const td = document.createElement(i === 0 ? 'th' : 'td');

@@ -7,7 +7,7 @@ use super::shaped::{ProfileTracks, ShapedRoad, ShapedSource};
 use crate::analysis::{half_family, Half, ModelKind};
 use crate::car::{Car, DesignDomain, QuarterCar};
 use crate::comfort::Comfort;
-use crate::criteria::{quarter_shaped, PoleZeroFilter, ShapedResidueRoute};
+use crate::criteria::{comfort_label, quarter_shaped, PoleZeroFilter, ShapedResidueRoute};
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::model::{quarter_car, LinearModel};
@@ -282,8 +282,29 @@ pub struct DesignOnRoad {
     pub datum_quarter: Criteria,
     /// The full car at the datum.
     pub datum_full: Criteria,
+    /// The ISO 2631-1 Wk-weighted RMS body acceleration of the same four, m/s^2
+    /// (`eval --road`'s `bacc_wk`), with Annex C's words for the full car's.
+    pub bacc_wk: WkOnRoad,
     /// Notes from shaping the road at this speed (band clipped, resampling, ...).
     pub notes: Vec<String>,
+}
+
+/// [`DesignOnRoad`]'s Wk-weighted BAcc, m/s^2, by [`MeasuredModel::with_comfort`]'s
+/// exact route (the model with the road's filters and Wk's).
+#[derive(Debug, Clone, Serialize)]
+pub struct WkOnRoad {
+    /// The quarter car at the design.
+    pub quarter: f64,
+    /// The full car at the design.
+    pub full: f64,
+    /// The quarter car at the datum.
+    pub datum_quarter: f64,
+    /// The full car at the datum.
+    pub datum_full: f64,
+    /// ISO 2631-1 Annex C's words for `full` (`eval --road --model full`'s `comfort`).
+    pub comfort: &'static str,
+    /// The same for `datum_full`.
+    pub datum_comfort: &'static str,
 }
 
 impl DesignOnRoad {
@@ -308,12 +329,32 @@ impl DesignOnRoad {
             MeasuredModel::new(ModelKind::Full, datum, shaped.clone()),
         );
         let (k0, c0) = (datum.front.spring, datum.front.damper);
+        let (on, at_datum) = (
+            [quarter.evaluate(ks, cs)?, full.evaluate(ks, cs)?],
+            [quarter.evaluate(k0, c0)?, full.evaluate(k0, c0)?],
+        );
+        let (quarter_wk, full_wk) = (
+            quarter.with_comfort(Comfort::Wk),
+            full.with_comfort(Comfort::Wk),
+        );
+        let (wk_full, wk_datum_full) = (
+            full_wk.evaluate(ks, cs)?.bacc,
+            full_wk.evaluate(k0, c0)?.bacc,
+        );
         Ok(DesignOnRoad {
             road: MeasuredRoad::of(file, &shaped, tracks),
-            quarter: quarter.evaluate(ks, cs)?,
-            full: full.evaluate(ks, cs)?,
-            datum_quarter: quarter.evaluate(k0, c0)?,
-            datum_full: full.evaluate(k0, c0)?,
+            quarter: on[0],
+            full: on[1],
+            datum_quarter: at_datum[0],
+            datum_full: at_datum[1],
+            bacc_wk: WkOnRoad {
+                quarter: quarter_wk.evaluate(ks, cs)?.bacc,
+                full: wk_full,
+                datum_quarter: quarter_wk.evaluate(k0, c0)?.bacc,
+                datum_full: wk_datum_full,
+                comfort: comfort_label(wk_full),
+                datum_comfort: comfort_label(wk_datum_full),
+            },
             notes: shaped.notes.clone(),
         })
     }

@@ -47,7 +47,7 @@ pub use describe::{describe, CoherenceSeries, IsoFit, PsdSeries, RoadDescription
 pub use exact::{bacc_wk_shaped, criteria_shaped};
 pub use measured::{
     road_error, DesignOnRoad, MeasuredModel, MeasuredRoad, QuarterRoute, RoadScenario,
-    ShapedQuarter,
+    ShapedQuarter, WkOnRoad,
 };
 pub use modal::{
     bacc_wk_shaped_fast, bacc_wk_shaped_modal, criteria_shaped_fast, criteria_shaped_modal,

@@ -183,7 +183,9 @@ fn the_shipped_examples_are_the_stated_synthetic_roads() {
 /// range or a profile too short for the speed refused by name.
 #[test]
 fn a_design_on_a_dropped_road_agrees_with_its_iso_class() {
+    use crate::analysis::ModelKind;
     use crate::analysis::{HiFi, LoFi};
+    use crate::comfort::Comfort;
     use crate::evaluate::{Criteria, Evaluator};
     use crate::road::{Road, Tracks};
     let profile = synthesize(&Synthesis {
@@ -230,6 +232,44 @@ fn a_design_on_a_dropped_road_agrees_with_its_iso_class() {
         "datum full",
         &on.datum_full,
         hifi.evaluate(q.ks, q.cs).unwrap(),
+    );
+    // The Wk-weighted BAcc against the ISO class's exact Wk route, as the criteria above.
+    let wk = |model: ModelKind, ks: f64, cs: f64| {
+        Comfort::Wk
+            .evaluator(model, &car, &road)
+            .unwrap()
+            .evaluate(ks, cs)
+            .unwrap()
+            .bacc
+    };
+    for (what, got, want) in [
+        (
+            "quarter",
+            on.bacc_wk.quarter,
+            wk(ModelKind::Quarter, ks, cs),
+        ),
+        ("full", on.bacc_wk.full, wk(ModelKind::Full, ks, cs)),
+        (
+            "datum quarter",
+            on.bacc_wk.datum_quarter,
+            wk(ModelKind::Quarter, q.ks, q.cs),
+        ),
+        (
+            "datum full",
+            on.bacc_wk.datum_full,
+            wk(ModelKind::Full, q.ks, q.cs),
+        ),
+    ] {
+        assert!(
+            (got / want - 1.0).abs() < 0.10,
+            "Wk {what}: {got} against ISO {want}"
+        );
+    }
+    // Weighting lowers BAcc (Wk is below 1 away from 4..8 Hz), and names its comfort.
+    assert!(on.bacc_wk.full < on.full.bacc && on.bacc_wk.full > 0.3 * on.full.bacc);
+    assert_eq!(
+        on.bacc_wk.comfort,
+        crate::criteria::comfort_label(on.bacc_wk.full)
     );
     assert_eq!(on.road.speed, 20.0);
     assert_eq!(on.road.file, "c.csv");
