@@ -657,6 +657,7 @@ fn optimize_json_equals_the_library() {
 #[test]
 fn adaptive_json_equals_the_library_and_lists_the_samples_in_order() {
     use ridelab::study::adaptive::{self, AdaptiveOptions};
+    use ridelab::study::SurrogateRequest;
     let (car, road, b) = (Car::datum(), Road::default(), ridelab::DesignBox::default());
     let hifi = HiFi::new(&car, &road).unwrap();
     let options = AdaptiveOptions {
@@ -680,7 +681,12 @@ fn adaptive_json_equals_the_library_and_lists_the_samples_in_order() {
         "--predict",
         "grid:4",
     ]);
-    let lib = adaptive::surrogate_report(spec, ae5, &car, &road, &b, Some(4), options).unwrap();
+    let request = SurrogateRequest {
+        predict_grid: Some(4),
+        adaptive: Some(options),
+        ..SurrogateRequest::new(spec, ae5)
+    };
+    let lib = request.report(&car, &road).unwrap();
     assert_same_json(&v, &to_json(&lib), "surrogate --adaptive");
     let samples = v["samples"].as_array().unwrap();
     assert_eq!(samples.len(), 7);
@@ -2347,6 +2353,90 @@ fn the_adaptive_study_takes_a_measured_road() {
     let (code, table, err) = ridelab(&args);
     assert_eq!(code, 0, "{err}");
     assert!(table.contains(&format!("({road} at 20 m/s)")), "{table}");
+}
+
+/// The box and objectives wherever they apply (issue #28): `study` takes a box (its plans,
+/// grid and fronts span it) and, with `--adaptive`, objectives; `surrogate --adaptive`
+/// takes objectives. On the rough class C profile the default 7 mm SWS limit holds
+/// nowhere, so the adaptive study is refused naming `sws_limit`; with `--sws-limit 0.012`
+/// it runs, and each row's pick sits on that limit: its predicted SWS (the HiFi's at the
+/// pick, `eval --road`, times the row's re-check error) at most 12 mm, the HiFi's within
+/// 3 % of it. Objectives where nothing judges designs exit 2 naming them.
+#[test]
+fn the_box_and_objectives_apply_to_study_and_surrogate() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    let road = format!("{root}/assets/roads/class-c-waviness-2.5.csv");
+    let base = [
+        "study",
+        "--road",
+        &road,
+        "--adaptive",
+        "gp-mul",
+        "--max-runs",
+        "7",
+        "--grid",
+        "41",
+    ];
+    let (code, _, err) = ridelab(&base);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.starts_with("error: sws_limit: no feasible design"),
+        "{err}"
+    );
+    let v = json(
+        &[
+            &base[..],
+            &["--sws-limit", "0.012", "--ks-range", "12000:38000"],
+        ]
+        .concat(),
+    );
+    assert_eq!(v["options"]["objectives"]["sws_limit"], 0.012);
+    assert_eq!(v["options"]["design_box"]["ks_min"], 12000.0);
+    for s in v["samples"].as_array().unwrap() {
+        let ks = s["ks"].as_f64().unwrap();
+        assert!((12000.0..=38000.0).contains(&ks), "sample at Ks {ks}");
+    }
+    for r in v["rows"].as_array().unwrap() {
+        let pick = &r["adaptive"]["pick"];
+        let (ks, cs) = (pick[0].to_string(), pick[1].to_string());
+        let e = json(&[
+            "eval", "--model", "full", "--road", &road, "--ks", &ks, "--cs", &cs,
+        ]);
+        let sws = e["sws"].as_f64().unwrap();
+        let error = r["adaptive"]["recheck_percent"][2].as_f64().unwrap();
+        let predicted = sws * (1.0 + error / 100.0);
+        assert!(
+            predicted <= 0.012 * (1.0 + 1e-9),
+            "pick ({ks}, {cs}): predicted SWS {predicted} m"
+        );
+        assert!(
+            (sws / 0.012 - 1.0).abs() < 0.03,
+            "pick ({ks}, {cs}): HiFi SWS {sws} m"
+        );
+    }
+    // The fidelity study over a box.
+    let f = json(&["study", "--ks-range", "15000:30000"]);
+    assert_eq!(f["design_box"]["ks_max"], 30000.0);
+    for (args, field) in [
+        (vec!["study", "--sws-limit", "0.01"], "sws-limit"),
+        (vec!["study", "--no-worse", "bacc"], "no-worse"),
+        (
+            vec!["surrogate", "--approach", "gp-mul", "--dtl-margin", "3"],
+            "dtl-margin",
+        ),
+        (
+            vec!["study", "--adaptive", "gp-mul", "--sws-limit", "-1"],
+            "sws-limit",
+        ),
+        (vec!["study", "--ks-range", "30000:20000"], "ks-range"),
+    ] {
+        let (code, _, err) = ridelab(&args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(
+            err.starts_with(&format!("error: {field}")),
+            "{args:?}: {err}"
+        );
+    }
 }
 
 /// `optimize --road FILE --adaptive K` (issue #31): the loop runs on the measured road, so

@@ -28,6 +28,7 @@ pub mod map;
 pub mod measured;
 pub mod optimize;
 pub mod robust;
+pub mod surrogate;
 
 pub use fidelity::{
     study, study_in, study_on, surrogate_report, surrogate_report_in, surrogate_report_on,
@@ -45,3 +46,4 @@ pub use robust::{
     case_map_report, robust_map_report, robust_optimize_report, CaseInfo, CaseMapReport,
     RobustMapReport, RobustOptimizeReport, RobustProblem,
 };
+pub use surrogate::SurrogateRequest;

@@ -98,7 +98,8 @@ impl BoxArgs {
     }
 }
 
-/// Design objectives beyond the defaults (optimize, report, map).
+/// Design objectives beyond the defaults (map, optimize, report; surrogate and study with
+/// `--adaptive`, whose fronts judge designs).
 #[derive(Args)]
 pub(crate) struct ObjectiveArgs {
     /// RMS SWS limit, m [default: 0.007].
@@ -139,6 +140,23 @@ fn no_worse(s: &str) -> Result<[bool; 3]> {
 }
 
 impl ObjectiveArgs {
+    /// Refuses the objectives where nothing judges designs (`why` says so): an error
+    /// naming the first option given, if any.
+    pub(crate) fn refuse(&self, why: &str) -> Result<()> {
+        let given = [
+            ("sws-limit", self.sws_limit.is_some()),
+            ("dtl-margin", self.dtl_margin.is_some()),
+            ("travel", self.travel.is_some()),
+            ("bounce-band", self.bounce_band.is_some()),
+            ("damping-band", self.damping_band.is_some()),
+            ("no-worse", self.no_worse.is_some()),
+        ];
+        match given.iter().find(|(_, set)| *set) {
+            Some((name, _)) => Err(RideError::field(*name, why.to_string())),
+            None => Ok(()),
+        }
+    }
+
     /// The objectives: the defaults with these options applied, validated.
     pub(crate) fn objectives(&self) -> Result<DesignObjectives> {
         let o = DesignObjectives {

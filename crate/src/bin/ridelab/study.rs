@@ -1,16 +1,15 @@
 //! `ridelab study`: the fidelity study, or the adaptive study of one surrogate.
 
-use crate::args::{car_and_road, car_loads_road_of, count, json, CarRoad};
+use crate::args::{car_and_road, car_loads_road_of, count, json, BoxArgs, CarRoad, ObjectiveArgs};
 use crate::road::{one_scenario, shaped_road};
 use clap::Args;
 use ridelab::analysis::ModelKind;
 use ridelab::car::Car;
-use ridelab::design::DesignBox;
 use ridelab::error::{Result, RideError};
 use ridelab::optimize::StmParams;
 use ridelab::road_profile::{MeasuredModel, MeasuredRoad, RoadScenario};
 use ridelab::study::adaptive::{adaptive_study, adaptive_study_on, AdaptiveStudy, StudyOptions};
-use ridelab::study::{study, study_on, StudyReport};
+use ridelab::study::{study_in, study_on, StudyReport};
 use ridelab::surrogate::Setting;
 use ridelab::surrogate::SurrogateSpec;
 
@@ -34,6 +33,12 @@ pub(crate) struct StudyArgs {
     /// included), 2..2001 [default: 201].
     #[arg(long, value_parser = count, requires = "adaptive", allow_negative_numbers = true)]
     pub(crate) grid: Option<usize>,
+    /// The box every plan, validation grid and front spans.
+    #[command(flatten)]
+    pub(crate) design_box: BoxArgs,
+    /// What the adaptive study's fronts judge designs by (with `--adaptive` only).
+    #[command(flatten)]
+    pub(crate) objectives: ObjectiveArgs,
     #[command(flatten)]
     pub(crate) car: CarRoad,
     /// The whole study as JSON (SI units, with a `units` object) instead of the text table.
@@ -45,6 +50,11 @@ pub(crate) struct StudyArgs {
 }
 
 pub(crate) fn study_cmd(a: StudyArgs) -> Result<String> {
+    if a.adaptive.is_none() {
+        a.objectives.refuse(
+            "the fidelity study judges fits, not designs; the objectives apply to the adaptive study's fronts (--adaptive SURROGATE)",
+        )?;
+    }
     if let Some(path) = a.car.road.as_deref() {
         if let Some(spec) = a.adaptive {
             let r = measured_adaptive_study(&a, path, spec)?;
@@ -55,17 +65,18 @@ pub(crate) fn study_cmd(a: StudyArgs) -> Result<String> {
     }
     let (car, road) = car_and_road(&a.car)?;
     if let Some(spec) = a.adaptive {
-        let r = adaptive_study(&car, &road, spec, &study_options(&a)).map_err(option_name)?;
+        let r = adaptive_study(&car, &road, spec, &study_options(&a)?).map_err(option_name)?;
         return output(&a, &r, r.to_markdown());
     }
-    let r = study(&car, &road)?;
+    let r = study_in(&car, &road, &a.design_box.design_box()?)?;
     output(&a, &r, r.to_markdown())
 }
 
-/// The adaptive study's settings from the options (the defaults where left out).
-fn study_options(a: &StudyArgs) -> StudyOptions {
+/// The adaptive study's settings from the options (the defaults where left out); errors
+/// name the box or an objective.
+fn study_options(a: &StudyArgs) -> Result<StudyOptions> {
     let d = StudyOptions::default();
-    StudyOptions {
+    Ok(StudyOptions {
         initial: a.initial.unwrap_or(d.initial),
         min_runs: a.min_runs.unwrap_or(d.min_runs),
         max_runs: a.max_runs.unwrap_or(d.max_runs),
@@ -73,8 +84,10 @@ fn study_options(a: &StudyArgs) -> StudyOptions {
             grid: a.grid.unwrap_or(d.stm.grid),
             ..d.stm.clone()
         },
+        design_box: a.design_box.design_box()?,
+        objectives: a.objectives.objectives()?,
         ..d
-    }
+    })
 }
 
 /// An error's field as the option that sets it (`min_runs` -> `min-runs`).
@@ -98,7 +111,7 @@ fn output<T: serde::Serialize>(a: &StudyArgs, r: &T, markdown: String) -> Result
 
 /// `study --road FILE`: the fidelity study on the measured road (its HiFi samples and
 /// validation grid the full car there, the surrogates' LoFi the quarter car there, as
-/// `surrogate --road`), in the default design box. Fixed work (every plan of the study
+/// `surrogate --road`), in the options' design box. Fixed work (every plan of the study
 /// and the 20 x 20 grid: about 3 s on the shipped slab road). One scenario: a car file's
 /// load cases exit 2 naming `road`.
 fn measured_study(a: &StudyArgs, path: &str) -> Result<StudyReport> {
@@ -116,7 +129,7 @@ fn measured_adaptive_study(
     spec: SurrogateSpec,
 ) -> Result<AdaptiveStudy> {
     let (car, setting, hifi, road) = measured_scenario(a, path)?;
-    adaptive_study_on(&car, &setting, &hifi, road, spec, &study_options(a)).map_err(option_name)
+    adaptive_study_on(&car, &setting, &hifi, road, spec, &study_options(a)?).map_err(option_name)
 }
 
 /// The car, the surrogates' setting, the full car and the road's description of a study
@@ -129,7 +142,7 @@ fn measured_scenario(
     one_scenario(!loads.is_empty(), false)?;
     let (shaped, tracks) = shaped_road(&a.car, path)?;
     let about = MeasuredRoad::of(path, &shaped, tracks);
-    let setting = Setting::measured(&car, shaped.clone(), &DesignBox::default())?;
+    let setting = Setting::measured(&car, shaped.clone(), &a.design_box.design_box()?)?;
     let hifi = MeasuredModel::new(ModelKind::Full, &car, shaped);
     Ok((car, setting, hifi, RoadScenario::Measured(about)))
 }

@@ -1,14 +1,15 @@
 //! `ridelab surrogate`: a surrogate fitted to HiFi samples and validated on a HiFi grid.
 
-use crate::args::{car_and_road, car_loads_road_of, json, AdaptiveArgs, BoxArgs, CarRoad};
+use crate::args::{
+    car_and_road, car_loads_road_of, json, AdaptiveArgs, BoxArgs, CarRoad, ObjectiveArgs,
+};
 use crate::road::shaped_road;
 use clap::Args;
 use ridelab::analysis::ModelKind;
 use ridelab::design::DesignBox;
 use ridelab::error::{Result, RideError};
 use ridelab::road_profile::{MeasuredModel, MeasuredRoad, RoadScenario};
-use ridelab::study::adaptive;
-use ridelab::study::{surrogate_report_in, surrogate_report_on, SurrogateReport};
+use ridelab::study::{SurrogateReport, SurrogateRequest};
 use ridelab::surrogate::VALIDATION_LEVELS;
 use ridelab::surrogate::{PlanSpec, Setting, SurrogateSpec};
 
@@ -27,6 +28,9 @@ pub(crate) struct SurrogateArgs {
     pub(crate) design_box: BoxArgs,
     #[command(flatten)]
     pub(crate) adaptive: AdaptiveArgs,
+    /// What the adaptive loop's fronts judge designs by (with `--adaptive` only).
+    #[command(flatten)]
+    pub(crate) objectives: ObjectiveArgs,
     #[command(flatten)]
     pub(crate) car: CarRoad,
     /// The whole fit as JSON (SI units, with a `units` object) instead of the text summary.
@@ -61,22 +65,28 @@ pub(crate) fn surrogate_cmd(a: SurrogateArgs) -> Result<String> {
     }
 }
 
+/// The request of the options: errors name the box, an objective given without
+/// `--adaptive` (a plain fit judges no designs) or an invalid one.
+fn request(a: &SurrogateArgs) -> Result<SurrogateRequest> {
+    let adaptive = a.adaptive.options();
+    if adaptive.is_none() {
+        a.objectives.refuse(
+            "a plain fit judges no designs; the objectives apply to the adaptive loop's fronts (--adaptive K)",
+        )?;
+    }
+    Ok(SurrogateRequest {
+        design_box: a.design_box.design_box()?,
+        predict_grid: a.predict,
+        adaptive,
+        objectives: a.objectives.objectives()?,
+        ..SurrogateRequest::new(a.approach, a.plan)
+    })
+}
+
 /// The surrogate on an ISO class, plain or adaptive.
 fn iso_surrogate(a: &SurrogateArgs) -> Result<SurrogateReport> {
     let (car, road) = car_and_road(&a.car)?;
-    let design_box = a.design_box.design_box()?;
-    match a.adaptive.options() {
-        None => surrogate_report_in(a.approach, a.plan, &car, &road, &design_box, a.predict),
-        Some(options) => adaptive::surrogate_report(
-            a.approach,
-            a.plan,
-            &car,
-            &road,
-            &design_box,
-            a.predict,
-            options,
-        ),
-    }
+    request(a)?.report(&car, &road)
 }
 
 /// `surrogate --road FILE`: the surrogate's HiFi samples and validation grid are the full
@@ -93,13 +103,13 @@ fn measured_surrogate(a: &SurrogateArgs, path: &str) -> Result<SurrogateReport> 
             "a measured road is one scenario: a car file's load_cases take ISO classes (--class)",
         ));
     }
-    let design_box: DesignBox = a.design_box.design_box()?;
+    let req = request(a)?;
+    let design_box: DesignBox = req.design_box;
     let plan = a.plan.plan()?;
     let levels = a.predict.unwrap_or(VALIDATION_LEVELS) as u64;
-    let options = a.adaptive.options();
     ridelab::budget::check_measured(
         plan.points(&design_box).len() as u64
-            + options.map_or(0, |o| o.runs as u64)
+            + req.adaptive.map_or(0, |o| o.runs as u64)
             + levels * levels,
         "plan",
         "the plan, the adaptive runs and the validation grid",
@@ -109,12 +119,7 @@ fn measured_surrogate(a: &SurrogateArgs, path: &str) -> Result<SurrogateReport> 
     let about = MeasuredRoad::of(path, &shaped, tracks);
     let setting = Setting::measured(&car, shaped.clone(), &design_box)?;
     let hifi = MeasuredModel::new(ModelKind::Full, &car, shaped);
-    let mut r = match options {
-        None => surrogate_report_on(a.approach, a.plan, &setting, hifi, a.predict)?,
-        Some(options) => adaptive::surrogate_report_on(
-            a.approach, a.plan, &car, &setting, hifi, a.predict, options,
-        )?,
-    };
+    let mut r = req.report_on(&car, &setting, hifi)?;
     r.road = RoadScenario::Measured(about);
     Ok(r)
 }

@@ -27,7 +27,7 @@ mod reports;
 mod study;
 
 pub use check::{front_check, FrontCheck, HifiFront, HIFI_FEASIBILITY_TOLERANCE};
-pub use reports::{optimize_report, surrogate_report, surrogate_report_on, AdaptiveOptimizeReport};
+pub use reports::{optimize_report, AdaptiveOptimizeReport};
 pub use study::{adaptive_study, adaptive_study_on, AdaptiveStudy, StudyOptions, StudyRow};
 
 use crate::car::Car;
@@ -143,7 +143,7 @@ impl AdaptiveOptions {
             .unwrap_or_else(|| UncertaintyMethod::default_for(spec))
     }
 
-    fn lm(&self) -> LmOptions {
+    pub(crate) fn lm(&self) -> LmOptions {
         LmOptions {
             seed: self.seed,
             ..LmOptions::default()

@@ -1,85 +1,14 @@
-//! The CLI's reports of the adaptive loop: `ridelab surrogate ... --adaptive K` and
-//! `ridelab optimize --evaluator SURROGATE ... --adaptive K`.
+//! The CLI's report of the adaptive loop in an optimisation: `ridelab optimize
+//! --evaluator SURROGATE ... --adaptive K` (`ridelab surrogate ... --adaptive K` is
+//! [`crate::study::SurrogateRequest`]'s).
 
 use super::{run, AdaptiveOptions, AdaptiveReport, Decision};
 use crate::analysis::HiFi;
-use crate::car::Car;
-use crate::design::DesignBox;
 use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
-use crate::optimize::Counted;
-use crate::road::Road;
-use crate::study::fidelity::{Fitted, SurrogateReport};
 use crate::study::{optimize_model, EvaluatorSpec, OptimizeReport, OptimizeRequest};
-use crate::surrogate::{PlanSpec, Setting, SurrogateSpec};
+use crate::surrogate::Setting;
 use serde::Serialize;
-
-/// `ridelab surrogate --plan PLAN --adaptive K`: the loop on `car` and `road` over
-/// `design_box` (default objectives, the datum's HiFi criteria, default STM), then the
-/// final surrogate's report as [`super::surrogate_report_in`] gives it for a plain plan,
-/// with the loop's report in `adaptive`. Errors name the loop's fields, `plan` or
-/// `predict-grid`.
-pub fn surrogate_report(
-    spec: SurrogateSpec,
-    plan: PlanSpec,
-    car: &Car,
-    road: &Road,
-    design_box: &DesignBox,
-    predict_grid: Option<usize>,
-    options: AdaptiveOptions,
-) -> Result<SurrogateReport> {
-    let setting = Setting::new(car, road, design_box)?;
-    surrogate_report_on(
-        spec,
-        plan,
-        car,
-        &setting,
-        HiFi::new(car, road)?,
-        predict_grid,
-        options,
-    )
-}
-
-/// [`surrogate_report`] on `setting` (an ISO class or a measured road: its LoFi and box)
-/// with `hifi` the full car of `car` there (the one evaluator of the plan, the loop's
-/// runs, the datum and the validation grid).
-pub fn surrogate_report_on<E: Evaluator>(
-    spec: SurrogateSpec,
-    plan: PlanSpec,
-    car: &Car,
-    setting: &Setting,
-    hifi: E,
-    predict_grid: Option<usize>,
-    options: AdaptiveOptions,
-) -> Result<SurrogateReport> {
-    let hifi = Counted::new(hifi);
-    let decision = Decision::of_car(car, &hifi)?;
-    let state = run(spec, setting, &hifi, plan, &decision, options)?;
-    let report = state.report();
-    let samples = state.samples().to_vec();
-    let model = state.into_model();
-    let fitted = Fitted {
-        spec,
-        plan: format!(
-            "{} + {} adaptive ({})",
-            plan.name(),
-            options.runs,
-            options.criterion.name()
-        ),
-        plan_method: format!(
-            "{}, then {} HiFi runs by {} on the {} uncertainty",
-            plan.plan()?.method,
-            options.runs,
-            options.criterion.name(),
-            report.uncertainty.name()
-        ),
-        samples,
-        model: &*model,
-        options: options.lm(),
-        adaptive: Some(report),
-    };
-    fitted.report(setting, &hifi, predict_grid)
-}
 
 /// `ridelab optimize` with an adaptive surrogate: the optimisation report with the loop's
 /// report beside it.

@@ -7,6 +7,7 @@ use super::{
 use crate::analysis::HiFi;
 use crate::car::Car;
 use crate::design::DesignBox;
+use crate::dos::DesignObjectives;
 use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
 use crate::optimize::StmParams;
@@ -31,11 +32,15 @@ pub struct StudyOptions {
     pub stm: StmParams,
     /// The loop's settings (`runs` is set by the study).
     pub adaptive: AdaptiveOptions,
+    /// The design box every plan, loop and front spans.
+    pub design_box: DesignBox,
+    /// What every front (the HiFi's own included) and the loop judge designs by.
+    pub objectives: DesignObjectives,
 }
 
 impl Default for StudyOptions {
     /// 5 Audze-Eglais points, then 6 to 20 HiFi samples in all; default STM (201 x 201,
-    /// 3 levels).
+    /// 3 levels); the default box and objectives.
     fn default() -> Self {
         StudyOptions {
             initial: 5,
@@ -43,6 +48,8 @@ impl Default for StudyOptions {
             max_runs: 20,
             stm: StmParams::default(),
             adaptive: AdaptiveOptions::default(),
+            design_box: DesignBox::default(),
+            objectives: DesignObjectives::default(),
         }
     }
 }
@@ -83,7 +90,7 @@ pub struct AdaptiveStudy {
     pub seconds: Option<f64>,
 }
 
-/// The adaptive study of `spec` for `car` on `road` over the default box (module doc):
+/// The adaptive study of `spec` for `car` on `road` over `options`' box (module doc):
 /// for every total `N` of HiFi samples from `min_runs` to `max_runs`, the loop (an
 /// Audze-Eglais plan of `initial` points plus `N - initial` adaptive runs; one loop serves
 /// every `N`, as it adds one sample at a time) against an Audze-Eglais plan of `N` points,
@@ -95,7 +102,7 @@ pub fn adaptive_study(
     spec: SurrogateSpec,
     options: &StudyOptions,
 ) -> Result<AdaptiveStudy> {
-    let setting = Setting::new(car, road, &DesignBox::default())?;
+    let setting = Setting::new(car, road, &options.design_box)?;
     let hifi = HiFi::new(car, road)?;
     adaptive_study_on(
         car,
@@ -108,8 +115,8 @@ pub fn adaptive_study(
 }
 
 /// [`adaptive_study`] on any HiFi (the full car on a measured road, say) with the
-/// surrogates' `setting` (its LoFi on the same road, over the default box); `road`
-/// names the road in the report.
+/// surrogates' `setting` (its LoFi on the same road; its box, not `options`', is the
+/// study's); `road` names the road in the report.
 pub fn adaptive_study_on<E: Evaluator + Sync>(
     car: &Car,
     setting: &Setting,
@@ -139,6 +146,7 @@ pub fn adaptive_study_on<E: Evaluator + Sync>(
         ));
     }
     options.stm.validate()?;
+    options.objectives.validate()?;
     // Two fronts per row and the HiFi's own, each STM; the loop's infill predictions.
     let rows = (options.max_runs - options.min_runs + 1) as u64;
     let fronts = 2 * rows + 1;
@@ -160,6 +168,7 @@ pub fn adaptive_study_on<E: Evaluator + Sync>(
     )?;
     let design_box = setting.design_box;
     let decision = Decision {
+        objectives: options.objectives.clone(),
         stm: options.stm.clone(),
         ..Decision::of_car(car, hifi)?
     };
@@ -207,6 +216,7 @@ pub fn adaptive_study_on<E: Evaluator + Sync>(
         uncertainty: report.uncertainty,
         options: StudyOptions {
             adaptive,
+            design_box,
             ..options.clone()
         },
         hifi_front,
