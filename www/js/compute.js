@@ -127,7 +127,7 @@ export class Compute {
     ]);
     let front;
     try {
-      front = await main.call('front', s, 'stm', plane);
+      front = await this.front(s, 'stm');
     } catch (e) {
       // Not a bad input (the state passed describe): no feasible design, or a numerical failure.
       front = { error: e.message || String(e) };
@@ -229,10 +229,21 @@ export class Compute {
     return this.heavy.call('surrogateFit', s, VALIDATION_LEVELS);
   }
 
+  /**
+   * The plane's front by `method` ("stm": main thread, "nsga2": heavy worker); with robust
+   * cases the robust front (`robustFront`) on the heavy worker either way, whose module
+   * has the robust optimiser (the first-screen wasm leaves it out, issue #29).
+   */
+  front(s, method) {
+    const plane = planeModel(s);
+    if (plane === 'robust') return this.heavy.call('robustFront', s, method, plane);
+    return (method === 'stm' ? this.main : this.heavy).call('front', s, method, plane);
+  }
+
   /** The seeded NSGA-II front on the plane's model (heavy worker; `{error}` when none is feasible). */
   async nsga(s) {
     await this.shareFit(s);
-    return this.heavy.call('front', s, 'nsga2', planeModel(s)).catch((e) => ({ error: e.message || String(e) }));
+    return this.front(s, 'nsga2').catch((e) => ({ error: e.message || String(e) }));
   }
 
   /** The study report of the view, `{title, html, markdown}`, as `ridelab report` writes it (heavy worker; seconds). */

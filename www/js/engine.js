@@ -18,7 +18,7 @@ export const FUNCTIONS = [
 /** The methods of the core's `Explorer` session: an engine call is `(method, state, ...args)`. */
 export const SESSION_METHODS = [
   'describe', 'analyse', 'readout', 'designStep', 'criteria', 'mapCriteria', 'maps', 'front', 'spectra', 'timeResponse', 'surrogateFit',
-  'studyReport', 'fitRecord',
+  'studyReport', 'fitRecord', 'robustFront',
 ];
 
 /**

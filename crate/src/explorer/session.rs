@@ -516,20 +516,40 @@ impl Session {
     /// measure). The surrogate is fitted to the unweighted BAcc: with Wk comfort its front
     /// is refused (an error naming `comfort`), as `ridelab optimize --comfort wk` refuses it.
     ///
-    /// With robust cases the LoFi's front is the robust one ([`FrontModel::Robust`], as
-    /// `ridelab optimize --cases`: every case's datum is its HiFi datum); the surrogate is
-    /// fitted to one case, so its front is refused (an error naming `cases`).
+    /// With robust cases the LoFi's front is the robust one ([`Session::robust_front`]).
     pub fn front(&mut self, method: &str, model: FrontModel) -> Result<FrontResult> {
-        if let Some(set) = &self.scenario.cases {
-            return match model {
-                FrontModel::LoFi | FrontModel::Robust => {
-                    studies::robust_front(&self.scenario, set, method, ModelKind::Quarter)
-                }
-                FrontModel::Surrogate => Err(RideError::field(
-                    "cases",
-                    "the surrogate is fitted to the car as given (one case); the robust front is the LoFi's",
-                )),
-            };
+        if self.scenario.cases.is_some() {
+            return self.robust_front(method, model);
+        }
+        self.single_front(method, model)
+    }
+
+    /// With robust cases, the LoFi's robust front ([`FrontModel::Robust`], as `ridelab
+    /// optimize --cases`: every case's datum is its HiFi datum); the surrogate is fitted to
+    /// one case, so its front is refused (an error naming `cases`); without cases an error
+    /// naming `cases`. The page's workers answer it: its first-screen wasm leaves the
+    /// robust optimisation out (issue #29).
+    pub fn robust_front(&self, method: &str, model: FrontModel) -> Result<FrontResult> {
+        let set = self.cases("front")?;
+        match model {
+            FrontModel::LoFi | FrontModel::Robust => {
+                studies::robust_front(&self.scenario, set, method, ModelKind::Quarter)
+            }
+            FrontModel::Surrogate => Err(RideError::field(
+                "cases",
+                "the surrogate is fitted to the car as given (one case); the robust front is the LoFi's",
+            )),
+        }
+    }
+
+    /// The front of a scenario without robust cases ([`Session::front`]); with cases an
+    /// error naming `cases` (their front is [`Session::robust_front`]'s).
+    pub fn single_front(&mut self, method: &str, model: FrontModel) -> Result<FrontResult> {
+        if self.scenario.cases.is_some() {
+            return Err(RideError::field(
+                "cases",
+                "with robust cases the front is the robust one (robustFront)",
+            ));
         }
         match model {
             FrontModel::Robust => Err(self.cases("front").unwrap_err()),

@@ -290,6 +290,19 @@ fn bad_cases_are_named_and_the_last_good_state_kept() {
     assert_eq!(field(&e), "case");
     let e = s.front("stm", FrontModel::Surrogate).unwrap_err();
     assert_eq!(field(&e), "cases");
+    // The page's first-screen wasm asks for a single scenario's front only; with cases it
+    // is refused, and the robust front (the workers') is `front`'s.
+    assert_eq!(
+        field(&s.single_front("stm", FrontModel::LoFi).unwrap_err()),
+        "cases"
+    );
+    assert_eq!(
+        s.robust_front("stm", FrontModel::Robust)
+            .unwrap()
+            .study
+            .front,
+        s.front("stm", FrontModel::Robust).unwrap().study.front
+    );
     // The robust HiFi front runs on the CPU: GPU values (one case's grid) are refused.
     let planes = vec![1.0; 3 * studies::STM_GRID * studies::STM_GRID];
     assert_eq!(field(&s.hifi_front(Some(&planes)).unwrap_err()), "cases");
@@ -303,6 +316,10 @@ fn bad_cases_are_named_and_the_last_good_state_kept() {
     assert_eq!(field(&e), "case");
     assert_eq!(
         field(&plain.front("stm", FrontModel::Robust).unwrap_err()),
+        "cases"
+    );
+    assert_eq!(
+        field(&plain.robust_front("stm", FrontModel::LoFi).unwrap_err()),
         "cases"
     );
     assert_eq!(

@@ -197,14 +197,12 @@ impl Explorer {
     /// 60 x 60), its hypervolume, the pick of the state's `pick` rule and the pick re-checked
     /// on the HiFi model: `{study: {front, hypervolume, referencePoint, pick, evaluations,
     /// ..}, datum, datumHifi, recheck, comfort, pseudoWeights}` (`pseudoWeights[k]`: front
-    /// point k's `[comfort, road holding]`). With robust cases it is the robust front of
-    /// `ridelab optimize --cases` ("lofi" or "robust"; "surrogate" is refused naming
-    /// `cases`) with `robust: {combine, normalisation, cases}` (each case's pick as that
-    /// command's JSON `cases`). With no feasible design the error names the binding
-    /// objective.
+    /// point k's `[comfort, road holding]`). With robust cases it is refused naming
+    /// `cases`: their front is `robustFront`'s (the workers' module). With no feasible
+    /// design the error names the binding objective.
     pub fn front(&mut self, method: &str, model: Option<String>) -> Result<JsValue, JsValue> {
         let on = FrontModel::parse(model.as_deref().unwrap_or("lofi")).map_err(js_error)?;
-        to_js(&self.0.front(method, on).map_err(js_error)?)
+        to_js(&self.0.single_front(method, on).map_err(js_error)?)
     }
 
     /// The surrogate fits this session has made (one per scenario change that needs the

@@ -7,11 +7,23 @@
 use super::explorer::path_name;
 use super::{js_error, parse_state, state_error, to_js, Explorer};
 use crate::error::RideError;
+use crate::explorer::FrontModel;
 use js_sys::Float64Array;
 use wasm_bindgen::prelude::*;
 
 #[wasm_bindgen]
 impl Explorer {
+    /// With robust cases, the robust front of `ridelab optimize --cases` on `model`
+    /// ("lofi" or "robust"; "surrogate" is refused naming `cases`) by `method` ("stm" or
+    /// "nsga2"), as `front` gives a front, with `robust: {combine, normalisation, cases}`
+    /// (each case's pick as that command's JSON `cases`). Without cases an error naming
+    /// `cases`. In the workers' module only: the first screen needs no robust optimiser.
+    #[wasm_bindgen(js_name = robustFront)]
+    pub fn robust_front(&self, method: &str, model: Option<String>) -> Result<JsValue, JsValue> {
+        let on = FrontModel::parse(model.as_deref().unwrap_or("lofi")).map_err(js_error)?;
+        to_js(&self.0.robust_front(method, on).map_err(js_error)?)
+    }
+
     /// Offers this session a fit another thread made (`fitRecord`'s bytes): a scenario
     /// with the fit's inputs takes it instead of fitting again. Errors name `fit`.
     #[wasm_bindgen(js_name = offerFit)]
