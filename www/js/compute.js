@@ -231,13 +231,15 @@ export class Compute {
 
   /**
    * The plane's front by `method` ("stm": main thread, "nsga2": heavy worker); with robust
-   * cases the robust front (`robustFront`) on the heavy worker either way, whose module
-   * has the robust optimiser (the first-screen wasm leaves it out, issue #29).
+   * cases the robust front (`robustFront`) in a worker, whose module has the robust
+   * optimiser (the first-screen wasm leaves it out, issue #29): STM on the HiFi worker,
+   * which no long job holds up, NSGA-II on the heavy one.
    */
   front(s, method) {
     const plane = planeModel(s);
-    if (plane === 'robust') return this.heavy.call('robustFront', s, method, plane);
-    return (method === 'stm' ? this.main : this.heavy).call('front', s, method, plane);
+    const stm = method === 'stm';
+    if (plane === 'robust') return (stm ? this.hifi : this.heavy).call('robustFront', s, method, plane);
+    return (stm ? this.main : this.heavy).call('front', s, method, plane);
   }
 
   /** The seeded NSGA-II front on the plane's model (heavy worker; `{error}` when none is feasible). */
