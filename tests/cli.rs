@@ -47,6 +47,16 @@ fn json(args: &[&str]) -> Value {
     v
 }
 
+/// Runs `args` and checks that the CLI refuses them: exit 2, the error naming `field`.
+fn refused(args: &[&str], field: &str) {
+    let (code, _, err) = ridelab(args);
+    assert_eq!(code, 2, "{args:?}: {err}");
+    assert!(
+        err.starts_with(&format!("error: {field}")),
+        "{args:?}: {err}"
+    );
+}
+
 fn numbers_without_units(
     v: &Value,
     path: &mut Vec<String>,
@@ -2280,12 +2290,7 @@ fn the_fidelity_study_takes_a_measured_road() {
             "max-runs",
         ),
     ] {
-        let (code, _, err) = ridelab(&args);
-        assert_eq!(code, 2, "{args:?}: {err}");
-        assert!(
-            err.starts_with(&format!("error: {field}")),
-            "{args:?}: {err}"
-        );
+        refused(&args, field);
     }
 }
 
@@ -2430,12 +2435,7 @@ fn the_box_and_objectives_apply_to_study_and_surrogate() {
         ),
         (vec!["study", "--ks-range", "30000:20000"], "ks-range"),
     ] {
-        let (code, _, err) = ridelab(&args);
-        assert_eq!(code, 2, "{args:?}: {err}");
-        assert!(
-            err.starts_with(&format!("error: {field}")),
-            "{args:?}: {err}"
-        );
+        refused(&args, field);
     }
 }
 
@@ -2837,11 +2837,6 @@ fn map_optimize_and_surrogate_take_a_measured_road() {
                 *a = &p;
             }
         }
-        let (code, _, err) = ridelab(&full);
-        assert_eq!(code, 2, "{args:?}: {err}");
-        assert!(
-            err.starts_with(&format!("error: {field}")),
-            "{args:?}: {err}"
-        );
+        refused(&full, field);
     }
 }
