@@ -79,7 +79,7 @@ export class Render {
     this.plane();
     renderPick($('op-pick'), st.front);
     renderHifiFront($('op-hifi'), currentHifiFront(st), st.front);
-    if (this.ui.robust) this.ui.robust.show(st);
+    if (this.ui.robust) this.ui.robust.show({ cases: st.state.cases, mapCase: st.state.case, desc: st.desc });
     renderCasePicks($('op-cases'), st.front);
     this.pickSummary();
     this.controls();

@@ -262,9 +262,13 @@ export class RobustPanel {
     this.els.count.classList.toggle('bad', n > MAX_CASES);
   }
 
-  /** Shows the store's state: the tables and text when its cases changed, the map selector, the per-case table. */
-  show(st) {
-    const text = st.state.cases || null;
+  /**
+   * Shows the view's cases (`cases`: the state's cases text or null; `mapCase`: the
+   * state's `case`, the map shown; `desc`: the core's description, its case names and
+   * rule): the tables and text when the cases changed, and the map selector.
+   */
+  show({ cases, mapCase, desc }) {
+    const text = cases || null;
     if (text !== this.shownText) {
       this.shownText = text;
       this.model = (text && readCases(text)) || { load: [], operating: [], combine: 'worst' };
@@ -275,17 +279,17 @@ export class RobustPanel {
       this.changed();
     }
     const sel = this.els.caseSelect;
-    const names = (st.desc && st.desc.cases) || [];
+    const names = (desc && desc.cases) || [];
     const want = ['robust', ...names.map((_, k) => String(k))];
     if (sel.options.length !== want.length || [...sel.options].some((o, i) => o.value !== want[i] || (i > 0 && o.textContent !== `case ${i - 1}: ${names[i - 1]}`))) {
       sel.replaceChildren(...want.map((v, i) => {
         const o = document.createElement('option');
         o.value = v;
-        o.textContent = i === 0 ? (names.length ? `Robust (${ruleText(st.desc)})` : 'Robust (no cases)') : `case ${i - 1}: ${names[i - 1]}`;
+        o.textContent = i === 0 ? (names.length ? `Robust (${ruleText(desc)})` : 'Robust (no cases)') : `case ${i - 1}: ${names[i - 1]}`;
         return o;
       }));
     }
-    sel.value = st.state.case && st.state.case !== 'robust' ? st.state.case : 'robust';
+    sel.value = mapCase && mapCase !== 'robust' ? mapCase : 'robust';
     sel.disabled = !names.length;
     this.els.clear.disabled = !text;
   }
