@@ -4,6 +4,7 @@
 use ridelab::analysis::{report, ModelKind};
 use ridelab::car::PRESETS;
 use ridelab::dos::{DesignObjectives, DosContext};
+use ridelab::gpu::Compute;
 use ridelab::maps::{Grid, Scale};
 use ridelab::optimize::{recheck, run_study, Method, Nsga2Params, StmParams, SuspensionProblem};
 use ridelab::road::Road;
@@ -311,7 +312,7 @@ fn map_json_and_csv_equal_the_library() {
                 speed: 25.0,
                 ..Road::default()
             };
-            let lib = map_report(kind, &Car::datum(), &road, &settings).unwrap();
+            let lib = map_report(kind, &Car::datum(), &road, &settings, Compute::Cpu).unwrap();
             let mut json_args = args.clone();
             json_args.push("--json");
             let v = json(&json_args);
@@ -1352,6 +1353,7 @@ fn map_and_optimize_write_svg_charts_and_print_the_same() {
         &Car::datum(),
         &Road::default(),
         &settings,
+        Compute::Cpu,
     )
     .unwrap();
     for ((key, chart), unit) in ridelab::chart::map_report_charts(&report).into_iter().zip([

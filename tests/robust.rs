@@ -11,7 +11,7 @@ use ridelab::maps::Grid;
 use ridelab::optimize::{non_dominated, Method, PickRule, StmParams};
 use ridelab::robust::{CaseSet, Combine, LoadCase, Operating};
 use ridelab::study::{case_map_report, robust_map_report, robust_optimize_report};
-use ridelab::study::{map_report_on, MapSettings};
+use ridelab::study::{map_report, MapSettings};
 use ridelab::study::{optimize_report_with, EvaluatorSpec};
 use ridelab::surrogate::PlanSpec;
 use ridelab::{Car, Evaluator, HiFi, LoFi, Road, RoadClass};
@@ -158,7 +158,7 @@ fn the_robust_map_of_one_case_is_that_case() {
             )
             .unwrap();
             let c = &set.cases[0];
-            let single = map_report_on(model, &c.car, &c.road, &s, Compute::Cpu).unwrap();
+            let single = map_report(model, &c.car, &c.road, &s, Compute::Cpu).unwrap();
             let r = robust_map_report(model, &car, &road, &set, &s, Compute::Cpu).unwrap();
             assert_eq!(r.map.bacc, single.bacc);
             assert_eq!(r.map.dtl, single.dtl);
@@ -497,6 +497,7 @@ fn default_outputs_unchanged_and_robust_json_is_the_library() {
             grid: Grid::parse("10000:40000:7", "500:4000:6").unwrap(),
             ..MapSettings::default()
         },
+        Compute::Cpu,
     )
     .unwrap();
     assert_eq!(

@@ -12,7 +12,7 @@ use ridelab::gpu::Compute;
 use ridelab::maps::Grid;
 use ridelab::robust::{CaseSet, Combine, LoadCase, Operating};
 use ridelab::study::robust_map_report;
-use ridelab::study::{map_report_on, MapSettings};
+use ridelab::study::{map_report, MapSettings};
 use ridelab::{Car, Road, RoadClass};
 use std::hint::black_box;
 
@@ -48,7 +48,7 @@ fn robust(c: &mut Criterion) {
             name,
             n,
             || {
-                map_report_on(model, &car, &road, &settings, Compute::Cpu).unwrap();
+                map_report(model, &car, &road, &settings, Compute::Cpu).unwrap();
             },
             || {
                 robust_map_report(model, &car, &road, &set, &settings, Compute::Cpu).unwrap();
@@ -57,9 +57,7 @@ fn robust(c: &mut Criterion) {
         let mut g = c.benchmark_group(format!("robust {name} {n}x{n}"));
         g.sample_size(10);
         g.bench_function("single case", |b| {
-            b.iter(|| {
-                map_report_on(model, black_box(&car), &road, &settings, Compute::Cpu).unwrap()
-            })
+            b.iter(|| map_report(model, black_box(&car), &road, &settings, Compute::Cpu).unwrap())
         });
         g.bench_function("2 load cases x 3 speeds", |b| {
             b.iter(|| {

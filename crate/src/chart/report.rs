@@ -154,6 +154,7 @@ mod tests {
     use super::super::svgcheck::{all, parse, texts};
     use super::super::{line_chart_svg, map_chart_svg};
     use super::*;
+    use crate::gpu::Compute;
     use crate::maps::Grid;
     use crate::study::{map_report, MapSettings};
     use crate::{Car, ModelKind, Road};
@@ -169,6 +170,7 @@ mod tests {
             &Car::datum(),
             &Road::default(),
             &settings,
+            Compute::Cpu,
         )
         .unwrap();
         let charts = map_report_charts(&r);

@@ -10,6 +10,7 @@ use crate::car::Car;
 use crate::design::DesignBox;
 use crate::error::Result;
 use crate::evaluate::Evaluator;
+use crate::gpu::Compute;
 use crate::optimize::PickRule;
 use crate::road::Road;
 use crate::road_profile::RoadScenario;
@@ -78,7 +79,7 @@ impl SectionRoad for IsoRoad<'_> {
     }
 
     fn map(&self, kind: ModelKind, car: &Car, settings: &MapSettings) -> Result<MapReport> {
-        map_report(kind, car, self.0, settings)
+        map_report(kind, car, self.0, settings, Compute::Cpu)
     }
 
     fn study(&self, car: &Car, design_box: &DesignBox) -> Result<StudyReport> {

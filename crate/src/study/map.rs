@@ -171,9 +171,9 @@ pub struct MapReport {
     pub adapter: Option<String>,
 }
 
-/// The map of `car` on `road` by the LoFi (`quarter`) or HiFi (`full`) model; the datum
-/// design is the car's front spring and damper.
-pub fn map_report(
+/// The map of `car` on `road` by the LoFi (`quarter`) or HiFi (`full`) model on the CPU;
+/// the datum design is the car's front spring and damper.
+fn cpu_map_report(
     model: ModelKind,
     car: &Car,
     road: &Road,
@@ -293,11 +293,13 @@ pub fn map_report_from(
     })
 }
 
-/// As [`map_report`], the HiFi fields on the path `compute` asks for
-/// ([`HiFiGrid::compute`]: `Auto` takes a hardware GPU when there is one); the report's
-/// `compute` says which ran. The LoFi has no GPU path: `Compute::Gpu` with
-/// [`ModelKind::Quarter`] is an error naming `compute`, `Auto` maps on the CPU.
-pub fn map_report_on(
+/// The map of `car` on `road` by the LoFi (`quarter`) or HiFi (`full`) model (the datum
+/// design is the car's front spring and damper), the HiFi fields on the path `compute`
+/// asks for ([`HiFiGrid::compute`]: `Auto` takes a hardware GPU when there is one,
+/// `Compute::Cpu` the CPU); the report's `compute` says which ran. The LoFi has no GPU
+/// path: `Compute::Gpu` with [`ModelKind::Quarter`] is an error naming `compute`, `Auto`
+/// maps on the CPU.
+pub fn map_report(
     model: ModelKind,
     car: &Car,
     road: &Road,
@@ -310,14 +312,14 @@ pub fn map_report_on(
             "compute",
             "gpu: the GPU path maps the full model only (use --compute cpu or auto with the quarter car)",
         )),
-        (ModelKind::Quarter, _) => map_report(model, car, road, settings),
+        (ModelKind::Quarter, _) => cpu_map_report(model, car, road, settings),
         // The exact Wk route runs on the CPU (the GPU route has no Wk filter).
         (ModelKind::Full, Compute::Gpu) if settings.comfort == Comfort::Wk => Err(RideError::field(
             "comfort",
             "wk: the Wk-weighted comfort is computed on the CPU (use --compute cpu or auto)",
         )),
         (ModelKind::Full, _) if settings.comfort == Comfort::Wk => {
-            map_report(model, car, road, settings)
+            cpu_map_report(model, car, road, settings)
         }
         (ModelKind::Full, _) => {
             settings.validate()?;
@@ -391,7 +393,7 @@ mod tests {
         let car = Car::datum();
         let road = Road::default();
         let s = settings(21, 15);
-        let r = map_report(ModelKind::Quarter, &car, &road, &s).unwrap();
+        let r = map_report(ModelKind::Quarter, &car, &road, &s, Compute::Cpu).unwrap();
         assert_eq!(r.evaluator, "quarter");
         assert_eq!(r.bacc.len(), 21 * 15);
         assert_eq!(r.datum.ks, car.front.spring);
@@ -466,7 +468,7 @@ mod tests {
         };
         let mut s = settings(5, 4);
         s.scale = Scale::Relative;
-        let r = map_report(ModelKind::Full, &car, &road, &s).unwrap();
+        let r = map_report(ModelKind::Full, &car, &road, &s, Compute::Cpu).unwrap();
         assert_eq!(r.evaluator, "full");
         assert_eq!(r.units.dtl, "-");
         let hifi = HiFi::new(&car, &road).unwrap();
@@ -494,13 +496,15 @@ mod tests {
         let car = Car::datum();
         let mut s = MapSettings::default();
         s.grid.cs.n = 1;
-        let e = map_report(ModelKind::Quarter, &car, &Road::default(), &s).unwrap_err();
+        let e =
+            map_report(ModelKind::Quarter, &car, &Road::default(), &s, Compute::Cpu).unwrap_err();
         assert!(e.to_string().starts_with("cs-range: "), "{e}");
         let s = MapSettings {
             contour_levels: 51,
             ..MapSettings::default()
         };
-        let e = map_report(ModelKind::Quarter, &car, &Road::default(), &s).unwrap_err();
+        let e =
+            map_report(ModelKind::Quarter, &car, &Road::default(), &s, Compute::Cpu).unwrap_err();
         assert!(e.to_string().starts_with("contour_levels: "), "{e}");
         let s: MapSettings = serde_json::from_str(r#"{"scale": "relative"}"#).unwrap();
         assert_eq!(s.grid, Grid::default());

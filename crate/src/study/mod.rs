@@ -35,8 +35,8 @@ pub use fidelity::{
     StudyReport, SurrogateReport,
 };
 pub use map::{
-    map_csv, map_report, map_report_from, map_report_on, map_report_with, CriteriaContours,
-    Feasibility, MapReport, MapSettings, MaskBit, Units, LAYOUT,
+    map_csv, map_report, map_report_from, map_report_with, CriteriaContours, Feasibility,
+    MapReport, MapSettings, MaskBit, Units, LAYOUT,
 };
 pub use optimize::{
     optimize_model, optimize_model_with, optimize_on_models, optimize_report, optimize_report_on,

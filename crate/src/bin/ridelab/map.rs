@@ -18,7 +18,7 @@ use ridelab::road_profile::RoadScenario;
 use ridelab::robust::LoadCase;
 use ridelab::robust::{CaseSet, Combine};
 use ridelab::study::{case_map_report, robust_map_report};
-use ridelab::study::{map_csv, map_report_on, map_report_with, MapReport, MapSettings};
+use ridelab::study::{map_csv, map_report, map_report_with, MapReport, MapSettings};
 use std::path::{Path, PathBuf};
 
 #[derive(Args)]
@@ -92,7 +92,7 @@ pub(crate) fn map_cmd(a: MapArgs) -> Result<String> {
     }
     let (r, json_text) = match (set, a.case) {
         (None, None) => {
-            let r = map_report_on(a.model, &car, &road, &settings, a.compute)?;
+            let r = map_report(a.model, &car, &road, &settings, a.compute)?;
             let text = if a.json { json(&r)? } else { String::new() };
             (r, text)
         }

@@ -14,7 +14,7 @@ use crate::maps::{default_threads, map_grid, DatumPoint, Dcs, DosMap, FeasiblePo
 use crate::road::Road;
 use crate::robust::cases::{Case, CaseSet, Combine};
 use crate::robust::objective::Combination;
-use crate::study::{map_report_from, map_report_on, map_report_with, MapReport, MapSettings};
+use crate::study::{map_report, map_report_from, map_report_with, MapReport, MapSettings};
 use serde::Serialize;
 
 /// One case as a report lists it.
@@ -125,7 +125,7 @@ pub fn case_map_report(
             ),
         )
     })?;
-    let map = map_report_on(model, &case.car, &case.road, settings, compute)?;
+    let map = map_report(model, &case.car, &case.road, settings, compute)?;
     let info = CaseInfo::new(set, index, map.datum.criteria);
     Ok(CaseMapReport { map, case: info })
 }
@@ -219,7 +219,7 @@ pub fn robust_fields(
 }
 
 /// The robust map of `set` by `model` (each case's map on `compute`, as
-/// [`map_report_on`], see [`case_maps`]); `car` names the report and gives the datum design (the front
+/// [`map_report`], see [`case_maps`]); `car` names the report and gives the datum design (the front
 /// spring and damper every case shares), `road` is recorded.
 pub fn robust_map_report(
     model: ModelKind,
@@ -283,20 +283,20 @@ pub fn robust_map_report(
     Ok(RobustMapReport { map, robust })
 }
 
-/// Every case's map report as [`map_report_on`] gives it (`settings` as the robust map
+/// Every case's map report as [`map_report`] gives it (`settings` as the robust map
 /// sets them), in case order. On the HiFi's CPU path (unweighted BAcc) the cases of one
 /// loaded car ([`CaseSet::car_runs`]) are mapped together by one [`HiFiRoads`]: the same
 /// values bit for bit, the road-independent work done once a grid point (for 2 load
 /// cases x 3 speeds about 2 single maps' work instead of 6). Cases the GPU maps stay on
 /// it; where anything fails, the run's cases are mapped one by one, so errors are
-/// those of [`map_report_on`] too.
+/// those of [`map_report`] too.
 fn case_maps(
     model: ModelKind,
     set: &CaseSet,
     settings: &MapSettings,
     compute: Compute,
 ) -> Result<Vec<MapReport>> {
-    let one = |c: &Case| map_report_on(model, &c.car, &c.road, settings, compute);
+    let one = |c: &Case| map_report(model, &c.car, &c.road, settings, compute);
     if model != ModelKind::Full || settings.comfort != Comfort::Bacc {
         return set.cases.iter().map(one).collect();
     }
