@@ -48,6 +48,26 @@ fn json(args: &[&str]) -> Value {
     v
 }
 
+/// `eval --model full --road road` at the design `(ks, cs)` (JSON numbers).
+fn full_on_road(road: &str, ks: &Value, cs: &Value) -> Value {
+    let (ks, cs) = (ks.to_string(), cs.to_string());
+    json(&[
+        "eval", "--model", "full", "--road", road, "--ks", &ks, "--cs", &cs,
+    ])
+}
+
+/// Every sample's HiFi criteria equal `eval --road`'s full car at its design (the same
+/// exact route: 1e-12).
+fn samples_equal_eval(samples: &[Value], road: &str) {
+    for s in samples {
+        let e = full_on_road(road, &s["ks"], &s["cs"]);
+        for key in ["bacc", "dtl", "sws"] {
+            let (a, b) = (s["hifi"][key].as_f64().unwrap(), e[key].as_f64().unwrap());
+            assert!((a / b - 1.0).abs() < 1e-12, "{key}: {a} vs eval {b}");
+        }
+    }
+}
+
 /// Runs `args` and checks that the CLI refuses them: exit 2, the error naming `field`.
 fn refused(args: &[&str], field: &str) {
     let (code, _, err) = ridelab(args);
@@ -2094,16 +2114,7 @@ fn the_adaptive_loop_takes_a_measured_road() {
         assert_eq!(a["run"], 6 + i);
         assert_eq!(a["sample"], samples[5 + i]);
     }
-    for s in samples {
-        let (ks, cs) = (s["ks"].to_string(), s["cs"].to_string());
-        let e = json(&[
-            "eval", "--model", "full", "--road", &road, "--ks", &ks, "--cs", &cs,
-        ]);
-        for key in ["bacc", "dtl", "sws"] {
-            let (a, b) = (s["hifi"][key].as_f64().unwrap(), e[key].as_f64().unwrap());
-            assert!((a / b - 1.0).abs() < 1e-12, "{key}: {a} vs eval {b}");
-        }
-    }
+    samples_equal_eval(samples, &road);
     // 7 samples, the 4 x 4 validation grid and the datum (the SWS limit's context).
     assert_eq!(v["hifi_evaluations"], 7 + 16 + 1);
 }
@@ -2347,16 +2358,7 @@ fn the_adaptive_study_takes_a_measured_road() {
         "ae:5",
     ]);
     assert_eq!(samples[..5], plan["samples"].as_array().unwrap()[..]);
-    for s in samples {
-        let (ks, cs) = (s["ks"].to_string(), s["cs"].to_string());
-        let e = json(&[
-            "eval", "--model", "full", "--road", &road, "--ks", &ks, "--cs", &cs,
-        ]);
-        for key in ["bacc", "dtl", "sws"] {
-            let (a, b) = (s["hifi"][key].as_f64().unwrap(), e[key].as_f64().unwrap());
-            assert!((a / b - 1.0).abs() < 1e-12, "{key}: {a} vs eval {b}");
-        }
-    }
+    samples_equal_eval(samples, &road);
     let (code, table, err) = ridelab(&args);
     assert_eq!(code, 0, "{err}");
     assert!(table.contains(&format!("({road} at 20 m/s)")), "{table}");
@@ -2405,10 +2407,8 @@ fn the_box_and_objectives_apply_to_study_and_surrogate() {
     }
     for r in v["rows"].as_array().unwrap() {
         let pick = &r["adaptive"]["pick"];
-        let (ks, cs) = (pick[0].to_string(), pick[1].to_string());
-        let e = json(&[
-            "eval", "--model", "full", "--road", &road, "--ks", &ks, "--cs", &cs,
-        ]);
+        let (ks, cs) = (&pick[0], &pick[1]);
+        let e = full_on_road(&road, ks, cs);
         let sws = e["sws"].as_f64().unwrap();
         let error = r["adaptive"]["recheck_percent"][2].as_f64().unwrap();
         let predicted = sws * (1.0 + error / 100.0);
@@ -2467,12 +2467,7 @@ fn an_adaptive_optimisation_takes_a_measured_road() {
         &road,
     ]);
     assert_eq!(v["road"]["file"], road.as_str());
-    let eval = |ks: &Value, cs: &Value| {
-        let (ks, cs) = (ks.to_string(), cs.to_string());
-        json(&[
-            "eval", "--model", "full", "--road", &road, "--ks", &ks, "--cs", &cs,
-        ])
-    };
+    let eval = |ks: &Value, cs: &Value| full_on_road(&road, ks, cs);
     let close = |a: &Value, b: &Value, what: &str| {
         for key in ["bacc", "dtl", "sws"] {
             let (a, b) = (a[key].as_f64().unwrap(), b[key].as_f64().unwrap());

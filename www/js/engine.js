@@ -84,11 +84,13 @@ export class Host {
     this.offered = null;
   }
 
-  /** Offers the session `record` (see FIT_METHODS); a module without `offerFit` fits for itself. */
+  /**
+   * Offers the session `record` (see FIT_METHODS), kept for a session made later; a module
+   * without `offerFit` (the first screen's) keeps it only to pass on, and fits for itself.
+   */
   offerFit(record) {
-    if (typeof this.api.Explorer.prototype.offerFit !== 'function') return null;
     this.offered = record;
-    if (this.explorer) {
+    if (this.explorer && typeof this.explorer.offerFit === 'function') {
       this.wasmCalls++;
       this.explorer.offerFit(record);
     }
@@ -276,8 +278,6 @@ export function answers(api, method) {
   if (FUNCTIONS.includes(method)) return typeof api[method] === 'function';
   if (SESSION_METHODS.includes(method)) return typeof api.Explorer.prototype[method] === 'function';
   if (ADAPTIVE_METHODS.includes(method)) return typeof api.AdaptiveRun === 'function';
-  // Offered to a module without it, a fit is not needed: that module fits for itself.
-  if (FIT_METHODS.includes(method)) return true;
   return typeof api.Explorer.prototype[method] === 'function';
 }
 
@@ -315,7 +315,7 @@ class MainEngine {
     // A fit offered here (the heavy worker fell back to this thread): the first-screen
     // host made it; kept for the on-demand host, which is given it when it loads.
     if (FIT_METHODS.includes(method)) {
-      this.host.offered = args[0];
+      this.host.offerFit(args[0]);
       return this.onDemand ? this.onDemand.then((host) => host.run(method, args)) : Promise.resolve(null);
     }
     if (!answers(this.host.api, method) && this.loadOnDemand) {
