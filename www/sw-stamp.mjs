@@ -38,13 +38,38 @@ export function buildId(dir) {
   return h.digest('hex').slice(0, 16);
 }
 
+/** The static imports (`import ... from './x.js'`, `export ... from`) of a module's text: dynamic `import()` left out. */
+function staticImports(text) {
+  const out = [];
+  const re = /(?:^|[;}\s])(?:import|export)\s*(?:[\w*{}\s,$]*?\sfrom\s*|[\w*{}\s,$]*?from(?=["']))?["']([^"']+)["']/g;
+  for (const m of text.matchAll(re)) if (m[1].startsWith('.')) out.push(m[1]);
+  return out;
+}
+
 /**
- * The preload tags of a build: every module of the page (js/*.js but the worker's entry)
- * and the first screen's core (ridelab-first.js and its wasm). The workers' larger module
- * (ridelab.js) is left to them: it loads after the first map (issue #29).
+ * The modules the page's entry `entry` (a path in `dir`) loads before it runs: its static
+ * import graph, paths relative to `dir`. What a module loads with `import()` (a panel's
+ * code on first use) is not among them.
  */
-export function preloadTags(files) {
-  const modules = files.filter((f) => (f.startsWith('js/') && f.endsWith('.js') && f !== 'js/worker.js') || f === 'ridelab-first.js');
+export function firstScreenModules(dir, entry = 'js/app.js') {
+  const seen = new Set();
+  const walk = (f) => {
+    if (seen.has(f) || !fs.existsSync(path.join(dir, f))) return;
+    seen.add(f);
+    const text = fs.readFileSync(path.join(dir, f), 'utf8');
+    for (const spec of staticImports(text)) walk(path.posix.normalize(path.posix.join(path.posix.dirname(f), spec)));
+  };
+  walk(entry);
+  return [...seen].sort();
+}
+
+/**
+ * The preload tags of a build: the first screen's core wasm and every module the page's
+ * entry imports statically (`modules`, [`firstScreenModules`]), the first screen's core
+ * (ridelab-first.js) among them. The workers' larger module (ridelab.js) is left to them:
+ * it loads after the first map (issue #29); so is a module the page imports on first use.
+ */
+export function preloadTags(modules) {
   return [
     '<link rel="preload" href="ridelab-first_bg.wasm" as="fetch" type="application/wasm" crossorigin>',
     ...modules.map((f) => `<link rel="modulepreload" href="${f}">`),
@@ -56,7 +81,7 @@ export function addPreloads(dir) {
   const page = path.join(dir, 'index.html');
   const html = fs.readFileSync(page, 'utf8');
   if (html.includes('rel="modulepreload"')) return 0;
-  const tags = preloadTags(buildFiles(dir));
+  const tags = preloadTags(firstScreenModules(dir));
   const at = html.indexOf('<link');
   if (at < 0) throw new Error(`sw-stamp: ${page} has no <link> to put the preloads before`);
   fs.writeFileSync(page, `${html.slice(0, at)}${tags.join('\n  ')}\n  ${html.slice(at)}`);

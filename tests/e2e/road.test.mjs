@@ -26,7 +26,7 @@ function cli(args) {
   const candidates = [process.env.RIDELAB_CLI, path.join(ROOT, 'target/debug/ridelab'), path.join(ROOT, 'target/release/ridelab')];
   const c = candidates.filter(Boolean).find((x) => fs.existsSync(x));
   assert.ok(c, 'the native CLI is built (cargo build -p ridelab)');
-  return JSON.parse(execFileSync(c, [...args, '--json'], { encoding: 'utf8' }));
+  return JSON.parse(execFileSync(c, [...args, '--json'], { encoding: 'utf8', maxBuffer: 256 * 1024 * 1024 }));
 }
 
 /** `ridelab eval --road file` at the page's state `s` (design, speed; one-track tracks as the page's). */
@@ -88,7 +88,12 @@ async function openWithRoad(hash, [width, height], file) {
   const datum = await page.evaluate(() => ({ ks: window.__ridelab.desc.datumKs, cs: window.__ridelab.desc.datumCs }));
   await page.click('#tab-car');
   await page.evaluate(() => (document.getElementById('road-box').open = true));
+  // The maps and front on a road are code the first screen does not fetch.
+  const fetched = () => page.evaluate(() => performance.getEntriesByType('resource').map((e) => e.name).filter((n) => n.endsWith('/js/roadstudy.js')).length);
+  assert.equal(await fetched(), 0, 'js/roadstudy.js fetched before a road');
   await choose(page, file);
+  await page.waitForFunction(() => window.__ridelab.roadStudy, null, { timeout: 60_000 });
+  assert.equal(await fetched(), 1, 'js/roadstudy.js fetched with the first road');
   return { page, context, log, datum };
 }
 
@@ -177,6 +182,89 @@ test('a one-track road drives the wheels as the page\'s tracks say, as the CLI w
   ({ road, state } = await judgedNow(page));
   assert.equal(road.on.road.tracks, 'correlated');
   sameAsCli(road, state, datum, file);
+  assertClean(log);
+  await context.close();
+});
+
+/** Waits until the road's maps and front are shown for the page's current state and `model`. */
+async function studiedNow(page, model) {
+  await page.waitForFunction((m) => {
+    const r = window.__ridelab.roadStudy;
+    const s = window.__ridelab.state;
+    return r && r.model === m && r.map && r.map.road.speed === s.speed && (r.front || r.status) && window.__ridelab.isSettled();
+  }, model, { timeout: 120_000 });
+  return page.evaluate(() => {
+    const r = window.__ridelab.roadStudy;
+    const plain = (m) => ({ ...m, values: Array.from(m.values), broken: Array.from(m.broken), ksValues: Array.from(m.ksValues), csValues: Array.from(m.csValues) });
+    return { study: { ...r, map: plain(r.map) }, state: window.__ridelab.state };
+  });
+}
+
+/** The page's maps and front on `file` equal `ridelab map` and `ridelab optimize --road FILE` (`model` 'quarter' or 'full') at the page's state `s`. */
+function studySameAsCli({ map, front }, s, file, model) {
+  const { nx, ny, ksValues: ks, csValues: cs } = map;
+  const road = ['--car', s.car, '--road', file, '--speed', String(s.speed), '--tracks', s.tracks];
+  const want = cli(['map', '--model', model, ...road, '--ks-range', `${ks[0]}:${ks[nx - 1]}:${nx}`, '--cs-range', `${cs[0]}:${cs[ny - 1]}:${ny}`]);
+  assert.equal(want.bacc.length, nx * ny);
+  const n = nx * ny;
+  ['bacc', 'dtl', 'sws'].forEach((c, k) => {
+    for (let i = 0; i < n; i++) close(map.values[k * n + i], want[c][i], `${model} map ${c} at point ${i}`);
+  });
+  assert.deepEqual(map.broken, want.feasibility.mask, 'the objectives\' mask');
+  for (const c of ['bacc', 'dtl', 'sws']) close(map.datum[c], want.datum.criteria[c], `${model} map's datum ${c}`);
+  const opt = cli(['optimize', '--evaluator', model, ...road]);
+  assert.equal(front.front.length, opt.front.length, 'front points');
+  front.front.forEach((p, i) => {
+    for (const c of ['ks', 'cs', 'bacc', 'dtl']) close(p[c], opt.front[i][c], `${model} front point ${i} ${c}`);
+  });
+  for (const c of ['ks', 'cs']) close(front.pick[c], opt.pick[c], `${model} pick ${c}`);
+  for (const c of ['bacc', 'dtl', 'sws']) close(front.hifi_recheck.rechecked[c], opt.hifi_recheck.rechecked[c], `${model} pick's HiFi ${c}`);
+  close(front.hypervolume, opt.hypervolume, `${model} hypervolume`);
+  assert.deepEqual(front.road, { ...opt.road, file: path.basename(file) });
+  assert.deepEqual(map.road, front.road);
+}
+
+test('the maps and front on a dropped road: ridelab map and optimize --road, redone for a new speed, not for a new design', { timeout: TIMEOUT }, async () => {
+  const SLAB = path.join(ROOT, 'assets/roads/concrete-slab-5m.csv');
+  const { page, context, log } = await openWithRoad('#car=sedan&class=B&speed=20&tracks=correlated', [1600, 1000], SLAB);
+  let { study, state } = await studiedNow(page, 'hifi');
+  assert.equal(study.status, '');
+  assert.equal(study.map.nx * study.map.ny, 4800);
+  studySameAsCli(study, state, SLAB, 'full');
+  const drawn = await page.evaluate(() => {
+    const ink = (c) => {
+      const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      let n = 0;
+      for (let i = 0; i < d.length; i += 4) if (d[i] < 200 || d[i + 1] < 200 || d[i + 2] < 200) n++;
+      return { n, w: c.clientWidth, h: c.clientHeight };
+    };
+    return { map: ink(document.getElementById('map-road-bacc')), front: ink(document.getElementById('road-front')) };
+  });
+  for (const [k, d] of Object.entries(drawn)) {
+    assert.ok(d.w > 250 && d.h > 150 && d.n > 5000, `${k}: ${d.w} x ${d.h}, ${d.n} pixels of ink`);
+  }
+  assert.match(await page.textContent('#road-study-caption'), /Front: \d+ designs by STM/);
+  await page.evaluate(() => document.getElementById('road-study').scrollIntoView());
+  await page.screenshot({ path: path.join(OUT, 'road-study-1600.png') });
+
+  // A design move moves the markers only; the maps and front stay.
+  const key = study.key;
+  const timing = study.timing;
+  await page.fill('#ks-num', '30.5');
+  await page.press('#ks-num', 'Enter');
+  await judgedNow(page);
+  ({ study } = await studiedNow(page, 'hifi'));
+  assert.equal(study.key, key);
+  assert.deepEqual(study.timing, timing, 'not computed again for a design move');
+  assert.match(await page.textContent('#road-maps'), /design: [\d.]+ m\/s²/);
+
+  // The LoFi, then a new speed: computed again, still the CLI's.
+  await page.selectOption('#road-model', 'lofi');
+  await page.fill('#speed', '27');
+  await page.press('#speed', 'Enter');
+  ({ study, state } = await studiedNow(page, 'lofi'));
+  assert.equal(study.map.road.speed, 27);
+  studySameAsCli(study, state, SLAB, 'quarter');
   assertClean(log);
   await context.close();
 });

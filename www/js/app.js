@@ -584,7 +584,18 @@ async function main() {
   const classFront = new ClassFront(Object.fromEntries(Object.entries(ids).map(([k, id]) => [k, $(id)])), { store, controller, compute });
   ui.road = new RoadPanel({
     box: $('road-box'), file: $('road-file'), msg: $('msg-road'), summary: $('road-summary'), canvas: $('road-psd'), table: $('road-table'), notes: $('road-notes'),
-  }, { store, compute });
+    study: { box: $('road-study'), model: $('road-model'), crit: $('road-crit'), status: $('road-study-status'), maps: $('road-maps'), front: $('road-front'), caption: $('road-study-caption') },
+  }, {
+    store,
+    compute,
+    hooks: {
+      onPick: (ks, cs) => controller.changeDesign(Math.round(ks / 10) * 10, Math.round(cs / 5) * 5, 'ks'),
+      onKey: onMapKey,
+      contours: (field, nx, ny, levels) => compute.contours(field, nx, ny, levels),
+      objectives: store.objectives,
+    },
+    look: () => ({ palette: store.view.palette, tables: ui.tables }),
+  });
   $('tab-car').addEventListener('click', () => requestAnimationFrame(() => ui.road.redraw()));
   controller.onViewsChanged = () => {
     lessons.viewsChanged();

@@ -372,3 +372,43 @@ export function roadPsdSpec(d, { width = 640, height = 400, title = '' } = {}) {
     ],
   };
 }
+
+/**
+ * The Pareto front on a measured road (`f`: the core's `roadFront`, as `ridelab optimize
+ * --road FILE --json`) in the comfort-DTL plane, absolute: the front of `model` ('lofi' or
+ * 'hifi'), its pick and the pick re-checked on the full car, the datum on the full car and
+ * the current `design` (`{bacc, dtl}` on `model`, or null) on that road; `wk` when the
+ * comfort axis is the Wk-weighted BAcc.
+ */
+export function roadFrontSpec(f, { design = null, wk = false, model = 'hifi', width = 640, height = 400, title = '' } = {}) {
+  if (!f || !f.front.length) throw { message: 'no front on this road', field: 'road' };
+  const pts = f.front.map((p) => [p.bacc, p.dtl]);
+  const datum = [f.datum.bacc, f.datum.dtl];
+  const others = [datum, ...(design ? [[design.bacc, design.dtl]] : [])];
+  const [x0, x1] = extent([...pts, ...others].map((p) => p[0]));
+  const [y0, y1] = extent([...pts, ...others].map((p) => p[1]));
+  const pk = f.pick.criteria;
+  const rc = f.hifi_recheck.rechecked;
+  const rule = f.pick.rule === 'minmax' ? 'min-max' : f.pick.rule;
+  const who = model === 'hifi' ? 'HiFi' : 'LoFi';
+  const series = [
+    line(`front, STM on the ${who} (${pts.length} pts)`, COL.stm, pts, 2.5),
+    // On the HiFi the re-check is the pick itself.
+    ...(model === 'hifi' ? [] : [marker('pick re-checked (HiFi)', '#ffffff', COL.hifi, 'diamond', [[rc.bacc, rc.dtl]], 9)]),
+    marker(`${rule} pick`, COL.pick, '#000000', 'diamond', [[pk.bacc, pk.dtl]]),
+    marker('datum (HiFi)', '#ffffff', '#000000', 'square', [datum], 6),
+  ];
+  if (design) series.push(marker(`current design (${who})`, '#000000', '#ffffff', 'circle', [[design.bacc, design.dtl]], 4.5));
+  return {
+    title,
+    xLabel: wk ? 'Wk-weighted RMS body acceleration [m/s²]' : 'BAcc [m/s²]',
+    yLabel: 'DTL [N]',
+    // The front falls to the right: room below it on the left for the key.
+    xRange: widen([x0, x1]),
+    yRange: widen([y0 - 1.2 * (y1 - y0), y1]),
+    width,
+    height,
+    legend: 'lowerLeft',
+    series,
+  };
+}

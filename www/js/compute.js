@@ -20,6 +20,8 @@ export const CLOUD_GRID = { nx: 96, ny: 72 };
 export const VALIDATION_LEVELS = 20;
 /** The adaptive loop's uncertainty map (cells; heavy worker, about 5000 estimates). */
 export const UNCERTAINTY_GRID = { nx: 80, ny: 60 };
+/** The maps on a measured road (cells; heavy worker, 4 800 runs of the exact route with the road's filters). */
+export const ROAD_MAP_GRID = { nx: 80, ny: 60 };
 /** Frequencies of the FRF / PSD plots (log spaced, 0.1..100 Hz). */
 export const NFREQ = 240;
 /** The time panel's run: 10 s at 1 ms, every 10th sample kept (the seed and damper are the user's). */
@@ -290,6 +292,19 @@ export class Compute {
   /** The design of `s` and its datum on the road profile `bytes` (named `file`), both models (`ridelab eval --road FILE`; heavy worker). */
   designOnRoad(s, bytes, file) {
     return this.heavy.call('designOnRoad', s, bytes, file);
+  }
+
+  /**
+   * The maps of `model` ('lofi' or 'hifi') on the road profile `bytes` (named `file`) over
+   * ROAD_MAP_GRID cells of the design box of `s` (`ridelab map --road FILE`; heavy worker).
+   */
+  roadMap(s, bytes, file, model) {
+    return this.heavy.call('roadMap', s, bytes, file, model, ROAD_MAP_GRID.nx, ROAD_MAP_GRID.ny);
+  }
+
+  /** The Pareto front of `model` on the road profile `bytes` (named `file`) and its pick (`ridelab optimize --road FILE`; heavy worker). */
+  roadFront(s, bytes, file, model) {
+    return this.heavy.call('roadFront', s, bytes, file, model);
   }
 
   /** FRFs and PSDs of the design (heavy worker). */

@@ -13,6 +13,7 @@ import { GpuPath } from './gpupath.js';
 export const FUNCTIONS = [
   'version', 'defaultState', 'presets', 'roadClasses', 'parseCar', 'checkState', 'surrogates',
   'objectives', 'stateKeys', 'lineChartSvg', 'mapChartSvg', 'describeRoad', 'designOnRoad',
+  'roadMap', 'roadFront',
 ];
 
 /** The methods of the core's `Explorer` session: an engine call is `(method, state, ...args)`. */

@@ -384,7 +384,7 @@ export class Render {
     const on = this.store.view.projector;
     document.documentElement.classList.toggle('projector', on);
     const thick = on ? 1.8 : 1;
-    for (const v of [...this.ui.maps, this.ui.plane, this.ui.spectra, this.ui.time, this.ui.damper, this.ui.uncertainty]) v.setStyle({ thick });
+    for (const v of [...this.ui.maps, this.ui.plane, this.ui.spectra, this.ui.time, this.ui.damper, this.ui.uncertainty, ...(this.ui.road ? [this.ui.road] : [])]) v.setStyle({ thick });
     requestAnimationFrame(() => this.redrawAll());
   }
 

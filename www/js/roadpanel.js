@@ -3,9 +3,10 @@
 // core as `ridelab road FILE --json` does (Welch PSD, ISO 8608 class and waviness) and
 // drawn against ISO 8608's class boundaries; the design and its datum are judged on it by
 // both models (`designOnRoad`, each number as `ridelab eval --road FILE`) at the road's
-// speed, again whenever the design, the car, the speed or the tracks change. A refused
-// file names its column and row and leaves the last good road. The file is not kept in
-// the link or a saved session; the panel says so.
+// speed, again whenever the design, the car, the speed or the tracks change; the maps and
+// the front on it (js/roadstudy.js, as `ridelab map` and `ridelab optimize --road FILE`).
+// A refused file names its column and row and leaves the last good road. The file is not
+// kept in the link or a saved session; the panel says so.
 
 import { Plot } from './plot.js';
 import { roadPsdSpec } from './chartspecs.js';
@@ -36,14 +37,20 @@ const judgedOn = (s) => JSON.stringify([s.car, s.carJson ?? null, s.ks, s.cs, s.
 
 export class RoadPanel {
   /**
-   * `els`: `{box, file, msg, summary, canvas, table, notes}`; `store` (the state), and
-   * `compute` (js/compute.js: `describeRoad`, `designOnRoad` in the heavy worker).
+   * `els`: `{box, file, msg, summary, canvas, table, notes, study}` (`study`: RoadStudy's
+   * elements); `store` (the state), `compute` (js/compute.js: `describeRoad`,
+   * `designOnRoad`, `roadMap`, `roadFront` in the heavy worker), `hooks` (the maps'
+   * `{onPick, onKey, contours, objectives}`) and `look()` (the maps' `{palette, tables}`).
    */
-  constructor(els, { store, compute }) {
+  constructor(els, { store, compute, hooks, look }) {
     this.els = els;
     this.store = store;
     this.compute = compute;
     this.plot = new Plot(els.canvas, { aspect: 0.6 });
+    /** The maps and front on the road (js/roadstudy.js, loaded with the first road: not on the first screen's path). */
+    this.study = null;
+    this.studyArgs = [els.study, hooks, { compute, look }];
+    this.style = null;
     /** The road shown: `{name, bytes, desc}`; its judgement `{key, on}` (`on`: the core's DesignOnRoad). */
     this.road = null;
     this.judged = null;
@@ -70,6 +77,22 @@ export class RoadPanel {
     els.box.addEventListener('toggle', () => this.redraw());
   }
 
+  /** The maps and front on the road, made on first use (their module loaded then). */
+  async studyView() {
+    if (!this.study) {
+      const { RoadStudy } = await import('./roadstudy.js');
+      this.study ??= new RoadStudy(...this.studyArgs);
+      if (this.style) this.study.setStyle(this.style);
+    }
+    return this.study;
+  }
+
+  /** Line widths times `thick` (projector mode), for the maps on the road. */
+  setStyle(style) {
+    this.style = style;
+    if (this.study) this.study.setStyle(style);
+  }
+
   /** Reads, describes and judges `file` (a File or Blob with a `name`); a refused file keeps the last good road. */
   async load(file) {
     const name = file.name || 'road.csv';
@@ -92,6 +115,7 @@ export class RoadPanel {
       this.road = { name, bytes, desc };
       this.judged = { key: judgedOn(this.store.state), on };
       this.show();
+      (await this.studyView()).study(this.road, this.store.state);
     } catch (e) {
       if (n !== this.asked) return;
       this.els.msg.textContent = `${name}: ${plainWords(e.message || e)}; ${this.keeps()}`;
@@ -105,11 +129,22 @@ export class RoadPanel {
     return this.road ? `${this.road.name} stays.` : 'no road is loaded.';
   }
 
-  /** After the views changed: the road judged again at the new design, car, speed or tracks (once the sliders rest). */
+  /**
+   * After the views changed: the design marker moved; the road judged again at the new
+   * design, car, speed or tracks, and the maps and front computed again when what they
+   * depend on changed (once the sliders rest).
+   */
   viewsChanged() {
-    if (!this.road || (this.judged && this.judged.key === judgedOn(this.store.state))) return;
+    if (!this.road) return;
+    const s = this.store.state;
+    if (this.study) this.study.moveDesign({ ks: s.ks, cs: s.cs }, this.judged && this.judged.key === judgedOn(s) ? this.judged.on : null);
+    if (this.judged && this.judged.key === judgedOn(s) && this.study && this.study.isCurrent(s)) return;
     clearTimeout(this.timer);
-    this.timer = setTimeout(() => this.judge(), SETTLE_MS);
+    this.timer = setTimeout(() => {
+      const now = this.store.state;
+      if (!(this.judged && this.judged.key === judgedOn(now))) this.judge();
+      this.studyView().then((v) => v.study(this.road, this.store.state));
+    }, SETTLE_MS);
   }
 
   async judge() {
@@ -141,6 +176,8 @@ export class RoadPanel {
     this.els.box.dataset.roadClass = f.class;
     this.drawTable();
     this.redraw();
+    const st = this.store.state;
+    if (this.study) this.study.moveDesign({ ks: st.ks, cs: st.cs }, this.judged && this.judged.on);
   }
 
   drawTable() {
@@ -181,5 +218,6 @@ export class RoadPanel {
     this.els.canvas.hidden = !shown;
     if (!shown || !this.els.box.open || !this.els.canvas.clientWidth) return;
     this.plot.draw(roadPsdSpec(this.road.desc));
+    if (this.study) this.study.redraw();
   }
 }

@@ -39,6 +39,11 @@ export function installTestHooks({ store, controller, compute, ui, boot, lessons
       const r = ui.road && ui.road.road;
       return r ? { name: r.name, desc: r.desc, on: ui.road.judged && ui.road.judged.on, key: ui.road.judged && ui.road.judged.key, timing: ui.road.timing } : null;
     },
+    /** The maps and front on the measured road (js/roadstudy.js): `{key, model, name, map, front, timing}` (`map`, `front`: the core's `roadMap`, `roadFront`), or null. */
+    get roadStudy() {
+      const sh = ui.road && ui.road.study && ui.road.study.shown;
+      return sh ? { key: sh.key, model: sh.model, name: sh.name, map: sh.map, front: sh.front, status: document.getElementById('road-study-status').textContent, timing: ui.road.study.timing } : null;
+    },
     /** The class front (js/classfront.js): `{key, rows, problems}` or null. */
     get classFront() {
       return store.classFront;

@@ -3,15 +3,19 @@
 //! (the exact routes with its shaping filters, [`MeasuredModel`]) or a surrogate fitted to
 //! the full car's samples there (its LoFi the quarter car there), or with the adaptive
 //! loop's options that loop's final surrogate; the datum and the pick's re-check are the
-//! full car on the road.
+//! full car on the road. The maps on a measured road ([`measured_map`]) are here too.
 
 use super::adaptive::{run, AdaptiveOptions, AdaptiveReport, Decision};
+use super::map::{map_report_with, MapReport, MapSettings};
 use super::{optimize_on_models, EvaluatorSpec, OptimizeReport, OptimizeRequest};
 use crate::analysis::ModelKind;
+use crate::car::Car;
 use crate::comfort::Comfort;
 use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
-use crate::road_profile::MeasuredModel;
+use crate::gpu::ComputePath;
+use crate::road::Road;
+use crate::road_profile::{MeasuredModel, MeasuredRoad, ProfileTracks, RoadScenario, ShapedRoad};
 use crate::surrogate::{sample_plan, LmOptions, Setting};
 
 /// What an optimisation on a measured road refuses, naming the field: the adaptive loop
@@ -86,4 +90,26 @@ pub fn optimize_measured(
         *comfort,
     )?;
     Ok((out, looped))
+}
+
+/// The map of `kind`'s model of `car` on the shaped measured road `road` (shaped from the
+/// profile `file` with `tracks`), as `ridelab map --road FILE` prints it and the page's
+/// road panel draws it: each point by the exact routes of [`MeasuredModel`] (with
+/// `settings.comfort` in the comfort slot), the datum the car's own front design, the
+/// report's `road` the measured one and its compute path the CPU. The caller bounds the
+/// grid ([`crate::budget::check_measured`], naming its own option).
+pub fn measured_map(
+    kind: ModelKind,
+    car: &Car,
+    road: &ShapedRoad,
+    file: &str,
+    tracks: ProfileTracks,
+    settings: &MapSettings,
+) -> Result<MapReport> {
+    let model = MeasuredModel::new(kind, car, road.clone()).with_comfort(settings.comfort);
+    // The ISO road is only recorded by the report: it is replaced by the measured one.
+    let mut r = map_report_with(&model, car, &Road::default(), settings)?;
+    r.road = RoadScenario::Measured(MeasuredRoad::of(file, road, tracks));
+    r.compute = ComputePath::Cpu;
+    Ok(r)
 }

@@ -26,7 +26,7 @@ pub use gpu::GpuMaps;
 #[cfg(feature = "on-demand")]
 pub use on_demand::AdaptiveRun;
 #[cfg(feature = "on-demand")]
-pub use road::{describe_road, design_on_road};
+pub use road::{describe_road, design_on_road, road_front, road_map};
 pub use screen::{draw_line_chart_js, draw_map_frame_js};
 
 use crate::car::{Car, PRESETS};

@@ -1,12 +1,26 @@
-//! A dropped road profile (issue #31): `describeRoad(bytes)` as `ridelab road FILE --json`,
-//! and `designOnRoad(state, bytes, file)`, the state's design and datum on that road by
-//! both models, each number as `ridelab eval --road FILE`. Errors are JS `Error`s whose
-//! `field` is `road` (the message names the file's column and row) or `speed`.
+//! A dropped road profile (issue #31): `describeRoad(bytes)` as `ridelab road FILE --json`;
+//! `designOnRoad(state, bytes, file)`, the state's design and datum on that road by both
+//! models, each number as `ridelab eval --road FILE`; `roadMap` and `roadFront`, the maps
+//! and the Pareto front on that road as `ridelab map --road FILE` and `ridelab optimize
+//! --road FILE` compute them. Errors are JS `Error`s whose `field` is `road` (the message
+//! names the file's column and row), `speed`, or the state's or call's field at fault.
 
 use super::{js_error, parse_state, to_js};
-use crate::error::RideError;
-use crate::road::Tracks;
-use crate::road_profile::{describe, road_error, DesignOnRoad, Profile, ProfileTracks};
+use crate::analysis::ModelKind;
+use crate::error::{parse_choice, RideError};
+use crate::explorer::Scenario;
+use crate::maps::{Grid, Scale};
+use crate::optimize::{Method, PickRule, StmParams};
+use crate::road::{Road, Tracks};
+use crate::road_profile::{
+    describe, road_error, DesignOnRoad, MeasuredModel, MeasuredRoad, Profile, ProfileTracks,
+    ShapedRoad,
+};
+use crate::study::measured::{measured_map, optimize_measured};
+use crate::study::{EvaluatorSpec, MapSettings, OptimizeRequest};
+use js_sys::{Float64Array, Object, Reflect, Uint8Array};
+use std::cell::RefCell;
+use std::hash::{Hash, Hasher};
 use wasm_bindgen::prelude::*;
 
 /// `e` as a JS error whose `field` is `road` or `speed` (the page's two fields for it).
@@ -43,11 +57,7 @@ pub fn describe_road(bytes: &[u8]) -> Result<JsValue, JsValue> {
 pub fn design_on_road(state: JsValue, bytes: &[u8], file: &str) -> Result<JsValue, JsValue> {
     let scenario = parse_state(state)?.scenario().map_err(js_error)?;
     let p = profile(bytes)?;
-    let tracks = match (p.tracks(), scenario.road.tracks) {
-        (2, _) => ProfileTracks::Measured,
-        (_, Tracks::Correlated) => ProfileTracks::Correlated,
-        (_, Tracks::Independent) => ProfileTracks::Independent,
-    };
+    let tracks = tracks_of(&p, &scenario);
     let q = scenario.design.quarter();
     let on = DesignOnRoad::compute(
         &scenario.datum,
@@ -60,4 +70,198 @@ pub fn design_on_road(state: JsValue, bytes: &[u8], file: &str) -> Result<JsValu
     )
     .map_err(road_js_error)?;
     to_js(&on)
+}
+
+/// How the profile's tracks drive the car in `scenario`: two tracks keep their measured
+/// coherence (the CLI's default for them); one drives both wheels as the state's `tracks`
+/// says (as `ridelab ... --road FILE --tracks ...`).
+fn tracks_of(p: &Profile, scenario: &Scenario) -> ProfileTracks {
+    match (p.tracks(), scenario.road.tracks) {
+        (2, _) => ProfileTracks::Measured,
+        (_, Tracks::Correlated) => ProfileTracks::Correlated,
+        (_, Tracks::Independent) => ProfileTracks::Independent,
+    }
+}
+
+/// The shaped road last made on this thread, with its key ([`shaped_key`]).
+type ShapedCache = Option<(u64, ShapedRoad, ProfileTracks)>;
+
+thread_local! {
+    /// The last profile shaped at a speed: the panel's map, front and judgement ask for
+    /// the same road in a row, and shaping it (reading the file, Welch PSDs, fitting the
+    /// filters) costs more than a map's runs on a short profile.
+    static SHAPED: RefCell<ShapedCache> = const { RefCell::new(None) };
+}
+
+/// A key of the file's bytes, the speed and the state's tracks.
+fn shaped_key(bytes: &[u8], speed: f64, tracks: Tracks) -> u64 {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    bytes.hash(&mut h);
+    speed.to_bits().hash(&mut h);
+    matches!(tracks, Tracks::Independent).hash(&mut h);
+    h.finish()
+}
+
+/// The profile `bytes` shaped at the scenario's speed with its tracks (kept for the next
+/// call on the same file, speed and tracks); errors name `road` or `speed`.
+fn shaped(bytes: &[u8], scenario: &Scenario) -> Result<(ShapedRoad, ProfileTracks), JsValue> {
+    let key = shaped_key(bytes, scenario.road.speed, scenario.road.tracks);
+    if let Some((_, road, tracks)) = SHAPED.with_borrow(|c| c.clone().filter(|c| c.0 == key)) {
+        return Ok((road, tracks));
+    }
+    let p = profile(bytes)?;
+    let tracks = tracks_of(&p, scenario);
+    crate::domain::SPEED
+        .check("speed", scenario.road.speed)
+        .map_err(road_js_error)?;
+    let road = ShapedRoad::from_profile(&p, scenario.road.speed, tracks)
+        .map_err(|e| road_js_error(road_error(e)))?;
+    SHAPED.set(Some((key, road.clone(), tracks)));
+    Ok((road, tracks))
+}
+
+/// `"lofi"` or `"quarter"` (the quarter car), `"hifi"` or `"full"` (the full car); errors
+/// name `model`.
+fn model_kind(model: &str) -> Result<ModelKind, JsValue> {
+    parse_choice("model", model).map_err(js_error)
+}
+
+/// The maps of `model` ("lofi" or "hifi") on the profile (named `file`) at the state's
+/// speed and tracks over the `nx` x `ny` cell-centre grid of the state's design box, with
+/// the state's design objectives and comfort measure: `{nx, ny, values, feasible, broken,
+/// feasibleCount, datum, ksValues, csValues, road, designBox, datumKs, datumCs, swsLimit}` (the
+/// page's map data, the planes BAcc m/s^2 | DTL N | SWS m row-major with Cs rows, `datum`
+/// the datum design's criteria; `road` what the CLI's JSON says of it),
+/// each value as `ridelab map --road FILE` computes it on that grid. The grid is bounded
+/// by [`crate::budget::MAX_MEASURED_RUNS`] points (errors name `nx`).
+#[wasm_bindgen(js_name = roadMap)]
+pub fn road_map(
+    state: JsValue,
+    bytes: &[u8],
+    file: &str,
+    model: &str,
+    nx: usize,
+    ny: usize,
+) -> Result<JsValue, JsValue> {
+    let kind = model_kind(model)?;
+    let scenario = parse_state(state)?.scenario().map_err(js_error)?;
+    let grid = Grid::cells(&scenario.dbox, nx, ny).map_err(js_error)?;
+    crate::budget::check_measured(
+        (nx as u64) * (ny as u64),
+        "nx",
+        &format!("a {nx} x {ny} map"),
+        "the map's cells",
+    )
+    .map_err(js_error)?;
+    let (road, tracks) = shaped(bytes, &scenario)?;
+    let settings = MapSettings {
+        grid,
+        scale: Scale::Absolute,
+        objectives: scenario.objectives.clone(),
+        contour_levels: 0,
+        comfort: scenario.comfort,
+    };
+    let r = measured_map(kind, &scenario.datum, &road, file, tracks, &settings)
+        .map_err(road_js_error)?;
+    crate::finite::check(&r).map_err(js_error)?;
+    let planes: Vec<f64> = [&r.bacc, &r.dtl, &r.sws]
+        .into_iter()
+        .flatten()
+        .copied()
+        .collect();
+    let feasible: Vec<u8> = r
+        .feasibility
+        .mask
+        .iter()
+        .map(|&m| u8::from(m == 0))
+        .collect();
+    let out = Object::new();
+    let set = |k: &str, v: JsValue| Reflect::set(&out, &k.into(), &v);
+    set("nx", (nx as f64).into())?;
+    set("ny", (ny as f64).into())?;
+    set("values", Float64Array::from(planes.as_slice()).into())?;
+    set("feasible", Uint8Array::from(feasible.as_slice()).into())?;
+    set(
+        "broken",
+        Uint8Array::from(r.feasibility.mask.as_slice()).into(),
+    )?;
+    set(
+        "feasibleCount",
+        (r.feasibility.summary.feasible as f64).into(),
+    )?;
+    set("datum", to_js(&r.datum.criteria)?)?;
+    set(
+        "ksValues",
+        Float64Array::from(r.ks_values.as_slice()).into(),
+    )?;
+    set(
+        "csValues",
+        Float64Array::from(r.cs_values.as_slice()).into(),
+    )?;
+    set("road", to_js(&r.road)?)?;
+    set("designBox", to_js(&scenario.dbox)?)?;
+    set("datumKs", r.datum.ks.into())?;
+    set("datumCs", r.datum.cs.into())?;
+    set(
+        "swsLimit",
+        scenario
+            .objectives
+            .sws_limit
+            .map_or(JsValue::NULL, JsValue::from),
+    )?;
+    Ok(out.into())
+}
+
+/// The Pareto front of comfort (the state's measure) and DTL on `model` ("lofi" or
+/// "hifi") on the profile (named `file`) at the state's speed and tracks, by STM at
+/// `ridelab optimize`'s defaults over the state's design box with its objectives, the
+/// pick by the state's rule and re-checked on the full car there: the JSON of `ridelab
+/// optimize --road FILE --evaluator quarter|full` (its `road` included).
+#[wasm_bindgen(js_name = roadFront)]
+pub fn road_front(
+    state: JsValue,
+    bytes: &[u8],
+    file: &str,
+    model: &str,
+) -> Result<JsValue, JsValue> {
+    let kind = model_kind(model)?;
+    let scenario = parse_state(state)?.scenario().map_err(js_error)?;
+    let stm = StmParams::default();
+    crate::budget::check_measured(
+        crate::budget::stm_runs(stm.grid, stm.levels),
+        "grid",
+        "the front",
+        "the front's grid",
+    )
+    .map_err(js_error)?;
+    let (road, tracks) = shaped(bytes, &scenario)?;
+    let car = &scenario.datum;
+    let hifi =
+        MeasuredModel::new(ModelKind::Full, car, road.clone()).with_comfort(scenario.comfort);
+    // The request's ISO road is not used: the models are on the measured one.
+    let unused = Road::default();
+    let request = OptimizeRequest {
+        evaluator: EvaluatorSpec::Model(kind),
+        comfort: scenario.comfort,
+        ..OptimizeRequest::new(
+            car,
+            &unused,
+            scenario.dbox,
+            Method::Stm(stm),
+            scenario.objectives.clone(),
+        )
+    };
+    let (mut out, _) = optimize_measured(&request, &hifi, None).map_err(road_js_error)?;
+    if scenario.pick != PickRule::MinMax {
+        out.repick_on(scenario.pick, &hifi, &scenario.dbox)
+            .map_err(js_error)?;
+    }
+    crate::finite::check(&out).map_err(js_error)?;
+    let v = to_js(&out)?;
+    Reflect::set(
+        &v,
+        &"road".into(),
+        &to_js(&MeasuredRoad::of(file, &road, tracks))?,
+    )?;
+    Ok(v)
 }

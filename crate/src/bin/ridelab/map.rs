@@ -3,7 +3,7 @@
 use crate::args::{
     car_loads_road_of, count, json, svg_target, write_svg, CarRoad, CasesArgs, ObjectiveArgs,
 };
-use crate::road::{measured_model, one_scenario};
+use crate::road::{one_scenario, shaped_road};
 use clap::Args;
 use ridelab::analysis::ModelKind;
 use ridelab::car::Car;
@@ -11,14 +11,11 @@ use ridelab::chart::{map_chart_svg, map_report_charts};
 use ridelab::comfort::Comfort;
 use ridelab::error::{Result, RideError};
 use ridelab::gpu::Compute;
-use ridelab::gpu::ComputePath;
 use ridelab::maps::{Axis, Grid, Scale};
-use ridelab::road::Road;
-use ridelab::road_profile::RoadScenario;
 use ridelab::robust::LoadCase;
 use ridelab::robust::{CaseSet, Combine};
 use ridelab::study::{case_map_report, robust_map_report};
-use ridelab::study::{map_csv, map_report, map_report_with, MapReport, MapSettings};
+use ridelab::study::{map_csv, map_report, MapReport, MapSettings};
 use std::path::{Path, PathBuf};
 
 #[derive(Args)]
@@ -79,7 +76,7 @@ pub(crate) fn map_cmd(a: MapArgs) -> Result<String> {
         ..MapSettings::default()
     };
     if let Some(path) = a.car.road.as_deref() {
-        let r = measured_map(&a, &car, &road, &loads, &settings, path)?;
+        let r = measured_map(&a, &car, &loads, &settings, path)?;
         let text = if a.json { json(&r)? } else { String::new() };
         return map_output(&a, svg, r, text);
     }
@@ -122,7 +119,6 @@ pub(crate) fn map_cmd(a: MapArgs) -> Result<String> {
 fn measured_map(
     a: &MapArgs,
     car: &Car,
-    road: &Road,
     loads: &[LoadCase],
     settings: &MapSettings,
     path: &str,
@@ -138,11 +134,8 @@ fn measured_map(
         &format!("a {} x {} map", g.ks.n, g.cs.n),
         "the points of --ks-range or --cs-range",
     )?;
-    let (model, about) = measured_model(a.model, car, &a.car, path, a.comfort)?;
-    let mut r = map_report_with(&model, car, road, settings)?;
-    r.road = RoadScenario::Measured(about);
-    r.compute = ComputePath::Cpu;
-    Ok(r)
+    let (shaped, tracks) = shaped_road(&a.car, path)?;
+    ridelab::study::measured::measured_map(a.model, car, &shaped, path, tracks, settings)
 }
 
 /// Writes the SVGs (`--svg`) and returns the CSV, the JSON or the text of `r`.
