@@ -276,7 +276,7 @@ impl HiFi {
 
     /// The linear model at design `(ks, cs)`: the symmetric half on correlated tracks,
     /// the full car on independent tracks (the model of the exact fallback routes).
-    pub fn model_at(&self, ks: f64, cs: f64) -> LinearModel {
+    pub(crate) fn model_at(&self, ks: f64, cs: f64) -> LinearModel {
         let mut m = self.base.clone();
         m.k += ks * &self.dk;
         m.c += cs * &self.dc;
@@ -501,7 +501,7 @@ pub enum Half {
 /// The residue family of `half` of `car`'s full car over the front design, driven as one
 /// source at `road`'s speed and intensity (its tracks setting is not used), started from
 /// the car's own design.
-pub fn half_family(car: &Car, road: &Road, half: Half) -> Result<ResidueFamily> {
+pub(crate) fn half_family(car: &Car, road: &Road, half: Half) -> Result<ResidueFamily> {
     let one_source = Road {
         tracks: Tracks::Correlated,
         ..*road

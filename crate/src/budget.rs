@@ -11,7 +11,7 @@
 use crate::error::{Result, RideError};
 
 /// Most model runs one command may ask for.
-pub const MAX_RUNS: u64 = 4_000_000;
+pub(crate) const MAX_RUNS: u64 = 4_000_000;
 
 /// Most model runs one command may ask for on a measured road (`--road FILE`): there a
 /// HiFi run takes the residue route with the road's shaping filters, about 4 us
@@ -39,12 +39,12 @@ pub fn check_measured(runs: u64, field: &str, what: &str, options: &str) -> Resu
 }
 
 /// Counted runs at which an optimiser stops with an error, whatever the estimate.
-pub const HARD_RUNS: u64 = 2 * MAX_RUNS;
+pub(crate) const HARD_RUNS: u64 = 2 * MAX_RUNS;
 
 /// Longest side of STM's refined lattice, `(grid - 1) 2^levels` fine cells: its front
 /// has a few points per lattice step (measured: up to 4.2 per step), so this keeps a
 /// front under about 150 000 points and its JSON under about 25 MB.
-pub const MAX_LATTICE_SIDE: u64 = 32_768;
+pub(crate) const MAX_LATTICE_SIDE: u64 = 32_768;
 
 /// Upper estimate of STM's runs for `grid` points per variable and `levels` refinement
 /// levels: the grid, then about ten runs per fine lattice step for the patches and the
@@ -57,7 +57,7 @@ pub fn stm_runs(grid: usize, levels: usize) -> u64 {
 }
 
 /// STM's refined lattice side `(grid - 1) 2^levels`, fine cells.
-pub fn lattice_side(grid: usize, levels: usize) -> u64 {
+pub(crate) fn lattice_side(grid: usize, levels: usize) -> u64 {
     (grid.saturating_sub(1) as u64).saturating_mul(1u64 << levels.min(40))
 }
 
@@ -78,7 +78,7 @@ pub fn check(runs: u64, field: &str, what: &str, options: &str) -> Result<()> {
 }
 
 /// A count with thin spaces between thousands, as the README writes them.
-pub fn group(n: u64) -> String {
+pub(crate) fn group(n: u64) -> String {
     let s = n.to_string();
     let mut out = String::new();
     for (i, c) in s.chars().enumerate() {

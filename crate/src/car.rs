@@ -420,7 +420,7 @@ impl QuarterCar {
     }
 
     /// Body-bounce frequency `sqrt(Kw / ms) / (2 pi)`, Hz.
-    pub fn bounce_frequency(&self) -> f64 {
+    pub(crate) fn bounce_frequency(&self) -> f64 {
         bounce_frequency(self.ks, self.kt, self.ms)
     }
 
@@ -433,7 +433,7 @@ impl QuarterCar {
 /// Refuses text that is not one JSON object before serde reads it, so an empty file or
 /// an array is named as such (`what` says which file, `field` names it) rather than
 /// "EOF while parsing" or "invalid type: sequence".
-pub fn check_object(field: &str, what: &str, text: &str) -> Result<()> {
+pub(crate) fn check_object(field: &str, what: &str, text: &str) -> Result<()> {
     let kind = match text.trim_start().chars().next() {
         None => {
             return Err(RideError::field(
@@ -457,7 +457,7 @@ pub fn check_object(field: &str, what: &str, text: &str) -> Result<()> {
 /// file's front axle): `ks` in [`crate::domain::SPRING`]'s range, `cs` finite and > 0 (with
 /// no suspension damping the RMS is unbounded) and in [`crate::domain::DAMPER`]'s. Errors
 /// name `ks` or `cs`.
-pub fn check_design(ks: f64, cs: f64) -> Result<()> {
+pub(crate) fn check_design(ks: f64, cs: f64) -> Result<()> {
     check_positive("ks", ks)?;
     crate::domain::SPRING.check("ks", ks)?;
     check_damper("cs", cs)?;
@@ -466,7 +466,7 @@ pub fn check_design(ks: f64, cs: f64) -> Result<()> {
 
 /// True when `(ks, cs)` lies in the design domain: the few comparisons a map's cell
 /// needs before [`check_design`] formats a message.
-pub fn design_in_domain(ks: f64, cs: f64) -> bool {
+pub(crate) fn design_in_domain(ks: f64, cs: f64) -> bool {
     crate::domain::SPRING.contains(ks) && crate::domain::DAMPER.contains(cs)
 }
 
@@ -528,7 +528,7 @@ fn check_positive(field: &str, v: f64) -> Result<()> {
 
 /// Body-bounce frequency of the quarter car on its ride rate, Hz:
 /// `f = sqrt(Kw / ms) / (2 pi)`, `Kw = ks kt / (ks + kt)`.
-pub fn bounce_frequency(ks: f64, kt: f64, ms: f64) -> f64 {
+pub(crate) fn bounce_frequency(ks: f64, kt: f64, ms: f64) -> f64 {
     let kw = ks * kt / (ks + kt);
     (kw / ms).sqrt() / (2.0 * std::f64::consts::PI)
 }

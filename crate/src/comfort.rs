@@ -59,7 +59,7 @@ impl Comfort {
 
     /// Whether this is the default, unweighted BAcc (reports leave the field out then, so
     /// their output is what it was before the option existed).
-    pub fn is_bacc(&self) -> bool {
+    pub(crate) fn is_bacc(&self) -> bool {
         *self == Comfort::Bacc
     }
 
@@ -72,7 +72,7 @@ impl Comfort {
     }
 
     /// The long name of the measure.
-    pub fn long_name(&self) -> &'static str {
+    pub(crate) fn long_name(&self) -> &'static str {
         match self {
             Comfort::Bacc => "RMS body acceleration",
             Comfort::Wk => "ISO 2631-1 Wk-weighted RMS body acceleration",

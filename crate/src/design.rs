@@ -65,7 +65,7 @@ impl DesignBox {
     /// the body-bounce frequency and damping ratio in range, [`crate::car::DesignDomain`]);
     /// errors name `ks-range` (a bounce frequency) or `cs-range` (a damping ratio) and
     /// the corner.
-    pub fn check_on(&self, domain: &crate::car::DesignDomain) -> Result<()> {
+    pub(crate) fn check_on(&self, domain: &crate::car::DesignDomain) -> Result<()> {
         for (ks, cs) in [
             (self.ks_min, self.cs_min),
             (self.ks_min, self.cs_max),

@@ -23,7 +23,7 @@ use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
 
 /// Largest Audze-Eglais plan accepted, points.
-pub const MAX_POINTS: usize = 1000;
+pub(crate) const MAX_POINTS: usize = 1000;
 /// Largest full factorial grid accepted, levels per axis (`n^2` points).
 const MAX_GRID_LEVELS: usize = 100;
 /// Largest `N` that [`exhaustive`] accepts (its cost grows roughly factorially).
@@ -168,7 +168,7 @@ pub fn exhaustive(n: usize) -> Result<Plan> {
 /// The `n x n` full factorial grid on the unit square, `2 <= n <=` [`MAX_GRID_LEVELS`],
 /// ordered with the Ks level outer. Its energy uses the grid's own lattice (one grid step =
 /// `1 / (n - 1)` of the box side), as for Audze-Eglais plans of `n` points.
-pub fn full_factorial(n: usize) -> Result<Plan> {
+pub(crate) fn full_factorial(n: usize) -> Result<Plan> {
     check_points(n, MAX_GRID_LEVELS)?;
     let levels = (0..n).flat_map(|i| (0..n).map(move |j| [i, j])).collect();
     Ok(Plan::from_levels(
@@ -221,7 +221,7 @@ pub fn gaps(points: &[[f64; 2]]) -> Vec<f64> {
 /// Histogram of gaps in `bins` equal-width bins spanning `[min, max]` of the gaps, as
 /// `(lo, hi, count)`; a bin holds `lo <= L < hi`, the last one also `L = max`. Empty when
 /// there are no gaps or no bins; a single `(L, L, count)` bin when all gaps are equal.
-pub fn gap_histogram(gaps: &[f64], bins: usize) -> Vec<(f64, f64, usize)> {
+pub(crate) fn gap_histogram(gaps: &[f64], bins: usize) -> Vec<(f64, f64, usize)> {
     if gaps.is_empty() || bins == 0 {
         return Vec::new();
     }
@@ -289,7 +289,7 @@ impl PairEnergies {
 /// swaps over `ln 2`, so such a swap starts at 50 %) to `1e-4 T0`. The best plan over all
 /// restarts is kept; the ChaCha8 stream from `seed` makes the result deterministic.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub struct Annealing {
+pub(crate) struct Annealing {
     /// Independent restarts.
     pub restarts: usize,
     /// Swap moves tried per restart.

@@ -224,7 +224,7 @@ pub const TIRE_DAMPING: Limit = Limit {
 
 /// Body-bounce frequency of a corner on its ride rate, `sqrt(Kw / ms) / (2 pi)` with
 /// `Kw = k kt / (k + kt)` and `ms` the corner's share of the body, Hz.
-pub const BOUNCE: Limit = Limit {
+pub(crate) const BOUNCE: Limit = Limit {
     what: "body-bounce frequency",
     min: 0.2,
     max: 5.0,
@@ -233,7 +233,7 @@ pub const BOUNCE: Limit = Limit {
 };
 
 /// Body damping ratio of a corner, `c / (2 sqrt(k ms))` (Gillespie's ride definition), -.
-pub const DAMPING_RATIO: Limit = Limit {
+pub(crate) const DAMPING_RATIO: Limit = Limit {
     what: "body damping ratio",
     min: 0.002,
     max: 20.0,
@@ -242,7 +242,7 @@ pub const DAMPING_RATIO: Limit = Limit {
 };
 
 /// Unsprung mass of a corner over its share of the body, -.
-pub const MASS_RATIO: Limit = Limit {
+pub(crate) const MASS_RATIO: Limit = Limit {
     what: "unsprung to sprung mass ratio of a corner",
     min: 0.02,
     max: 1.0,
@@ -251,7 +251,7 @@ pub const MASS_RATIO: Limit = Limit {
 };
 
 /// Wheel-hop frequency of a corner, `sqrt((k + kt) / mu) / (2 pi)`, Hz.
-pub const WHEEL_HOP: Limit = Limit {
+pub(crate) const WHEEL_HOP: Limit = Limit {
     what: "wheel-hop frequency",
     min: 2.0,
     max: 60.0,
@@ -260,7 +260,7 @@ pub const WHEEL_HOP: Limit = Limit {
 };
 
 /// Knee velocity of a digressive damper, m/s.
-pub const KNEE_VELOCITY: Limit = Limit {
+pub(crate) const KNEE_VELOCITY: Limit = Limit {
     what: "damper knee velocity",
     min: 0.005,
     max: 10.0,
@@ -278,7 +278,7 @@ pub const SPEED: Limit = Limit {
 };
 
 /// RMS suspension working space limit, m.
-pub const SWS_LIMIT: Limit = Limit {
+pub(crate) const SWS_LIMIT: Limit = Limit {
     what: "RMS suspension working space limit",
     min: 1e-4,
     max: 1.0,
@@ -287,7 +287,7 @@ pub const SWS_LIMIT: Limit = Limit {
 };
 
 /// Tyre-load margin `k` (RMS DTL at most the static wheel load / k), -.
-pub const DTL_MARGIN: Limit = Limit {
+pub(crate) const DTL_MARGIN: Limit = Limit {
     what: "tyre-load margin",
     min: 0.5,
     max: 100.0,
@@ -296,7 +296,7 @@ pub const DTL_MARGIN: Limit = Limit {
 };
 
 /// Available bump travel of the travel budget, m.
-pub const TRAVEL: Limit = Limit {
+pub(crate) const TRAVEL: Limit = Limit {
     what: "available bump travel",
     min: 0.005,
     max: 0.5,
@@ -305,7 +305,7 @@ pub const TRAVEL: Limit = Limit {
 };
 
 /// Sigma factor of the travel budget (`n x RMS SWS` within the travel), -.
-pub const TRAVEL_SIGMAS: Limit = Limit {
+pub(crate) const TRAVEL_SIGMAS: Limit = Limit {
     what: "travel budget's sigma factor",
     min: 0.5,
     max: 10.0,
@@ -314,7 +314,7 @@ pub const TRAVEL_SIGMAS: Limit = Limit {
 };
 
 /// A body-bounce frequency band's ends, Hz.
-pub const BOUNCE_BAND: Limit = Limit {
+pub(crate) const BOUNCE_BAND: Limit = Limit {
     what: "body-bounce frequency",
     min: 0.0,
     max: 20.0,
@@ -323,7 +323,7 @@ pub const BOUNCE_BAND: Limit = Limit {
 };
 
 /// A damping-ratio band's ends, -.
-pub const DAMPING_BAND: Limit = Limit {
+pub(crate) const DAMPING_BAND: Limit = Limit {
     what: "body damping ratio",
     min: 0.0,
     max: 5.0,
@@ -332,7 +332,7 @@ pub const DAMPING_BAND: Limit = Limit {
 };
 
 /// Extra mass of a load case, kg (negative takes mass out).
-pub const LOAD_MASS: Limit = Limit {
+pub(crate) const LOAD_MASS: Limit = Limit {
     what: "load case's extra mass",
     min: -20_000.0,
     max: 20_000.0,
@@ -341,7 +341,7 @@ pub const LOAD_MASS: Limit = Limit {
 };
 
 /// A load's position ahead of (x) or above (z) the centre of gravity, m.
-pub const LOAD_POSITION: Limit = Limit {
+pub(crate) const LOAD_POSITION: Limit = Limit {
     what: "load position from the centre of gravity",
     min: -10.0,
     max: 10.0,
@@ -350,7 +350,7 @@ pub const LOAD_POSITION: Limit = Limit {
 };
 
 /// A load's lateral half-spacing, m.
-pub const LOAD_SPREAD: Limit = Limit {
+pub(crate) const LOAD_SPREAD: Limit = Limit {
     what: "load's lateral half-spacing",
     min: 0.0,
     max: 1.5,
@@ -359,7 +359,7 @@ pub const LOAD_SPREAD: Limit = Limit {
 };
 
 /// Weight of a case in a weighted mean, -.
-pub const CASE_WEIGHT: Limit = Limit {
+pub(crate) const CASE_WEIGHT: Limit = Limit {
     what: "case weight",
     min: 0.0,
     max: 1_000.0,

@@ -168,7 +168,7 @@ impl DesignObjectives {
 
     /// Signed constraint values `g <= 0` when met, one per active objective, in a
     /// fixed order; normalised so that 0.01 means "1 % beyond the bound".
-    pub fn constraints(
+    pub(crate) fn constraints(
         &self,
         ctx: &DosContext,
         ks: f64,
@@ -182,7 +182,7 @@ impl DesignObjectives {
 
     /// Calls `f(objective, g)` for each active objective in the order of
     /// [`Self::constraints`], without allocating (the maps judge every cell with it).
-    pub fn each_constraint(
+    pub(crate) fn each_constraint(
         &self,
         ctx: &DosContext,
         ks: f64,

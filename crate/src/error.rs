@@ -63,7 +63,7 @@ pub type Result<T> = std::result::Result<T, RideError>;
 /// names: `'x' is not 'a', 'b' or 'c'`. The names are strum's derives on `T`
 /// (`IntoStaticStr`, `VariantNames`), so what parses and what the message lists cannot
 /// drift apart from each other or from the enum.
-pub fn parse_choice<T>(field: &str, s: &str) -> Result<T>
+pub(crate) fn parse_choice<T>(field: &str, s: &str) -> Result<T>
 where
     T: strum::IntoEnumIterator + strum::VariantNames + strum::EnumProperty,
     for<'a> &'a T: Into<&'static str>,

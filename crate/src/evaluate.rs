@@ -32,7 +32,7 @@ impl Criteria {
 }
 
 /// Names of the criteria in the order of [`Criteria::to_array`].
-pub const CRITERIA_NAMES: [&str; 3] = ["bacc", "dtl", "sws"];
+pub(crate) const CRITERIA_NAMES: [&str; 3] = ["bacc", "dtl", "sws"];
 
 /// Anything that maps a front design (spring rate `ks`, N/m; damper rate `cs`, N s/m)
 /// to the three criteria.

@@ -22,7 +22,7 @@ use num_complex::Complex64 as C64;
 use std::f64::consts::PI;
 
 /// A planned forward DFT of one length (twiddles and chirp computed once).
-pub struct Dft {
+pub(crate) struct Dft {
     n: usize,
     plan: Plan,
 }
@@ -83,7 +83,7 @@ impl Dft {
 
     /// The unnormalised inverse of `x` in place: `x_j = sum_k X_k exp(2 pi i j k / n)`
     /// (the forward transform of the conjugate, conjugated).
-    pub fn inverse(&mut self, x: &mut [C64]) {
+    pub(crate) fn inverse(&mut self, x: &mut [C64]) {
         x.iter_mut().for_each(|v| *v = v.conj());
         self.forward(x);
         x.iter_mut().for_each(|v| *v = v.conj());

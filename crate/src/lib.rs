@@ -2,6 +2,11 @@
 //!
 //! Data flows one way: car + road -> model -> criteria -> maps / surrogate -> optimize.
 //! The core is plain Rust; `web` (wasm only) and the `ridelab` binary are thin shells.
+//!
+//! What the binary, the tests, the benchmarks and the examples do not use is `pub(crate)`
+//! (issue #28), so that the compiler sees dead code; the documentation still names those
+//! items where they explain a public one (`cargo doc --document-private-items` links them).
+#![allow(rustdoc::private_intra_doc_links)]
 
 pub mod analysis;
 pub mod budget;

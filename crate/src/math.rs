@@ -30,7 +30,7 @@ pub fn ln(x: f64) -> f64 {
 
 /// `ln(1 + x)`, accurate for small `x`.
 #[inline]
-pub fn ln_1p(x: f64) -> f64 {
+pub(crate) fn ln_1p(x: f64) -> f64 {
     libm::log1p(x)
 }
 
@@ -42,7 +42,7 @@ pub fn log10(x: f64) -> f64 {
 
 /// `x^y`.
 #[inline]
-pub fn powf(x: f64, y: f64) -> f64 {
+pub(crate) fn powf(x: f64, y: f64) -> f64 {
     libm::pow(x, y)
 }
 
@@ -54,25 +54,25 @@ pub fn sin(x: f64) -> f64 {
 
 /// `cos x`, `x` in radians.
 #[inline]
-pub fn cos(x: f64) -> f64 {
+pub(crate) fn cos(x: f64) -> f64 {
     libm::cos(x)
 }
 
 /// `(sin x, cos x)`, `x` in radians.
 #[inline]
-pub fn sin_cos(x: f64) -> (f64, f64) {
+pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
     libm::sincos(x)
 }
 
 /// `tan x`, `x` in radians.
 #[inline]
-pub fn tan(x: f64) -> f64 {
+pub(crate) fn tan(x: f64) -> f64 {
     libm::tan(x)
 }
 
 /// `atan x`, radians.
 #[inline]
-pub fn atan(x: f64) -> f64 {
+pub(crate) fn atan(x: f64) -> f64 {
     libm::atan(x)
 }
 
@@ -84,26 +84,26 @@ pub fn hypot(x: f64, y: f64) -> f64 {
 
 /// `e^z = e^re (cos im + i sin im)`.
 #[inline]
-pub fn cexp(z: C64) -> C64 {
+pub(crate) fn cexp(z: C64) -> C64 {
     cpolar(exp(z.re), z.im)
 }
 
 /// `r (cos theta + i sin theta)`.
 #[inline]
-pub fn cpolar(r: f64, theta: f64) -> C64 {
+pub(crate) fn cpolar(r: f64, theta: f64) -> C64 {
     let (s, c) = sin_cos(theta);
     C64::new(r * c, r * s)
 }
 
 /// `|z|`.
 #[inline]
-pub fn cabs(z: C64) -> f64 {
+pub(crate) fn cabs(z: C64) -> f64 {
     hypot(z.re, z.im)
 }
 
 /// The principal square root of `z` (real part >= 0; the branch cut along the negative
 /// real axis, the sign of `im` kept there), by `t = sqrt((|re| + |z|) / 2)`.
-pub fn csqrt(z: C64) -> C64 {
+pub(crate) fn csqrt(z: C64) -> C64 {
     if z.re == 0.0 && z.im == 0.0 {
         return C64::new(0.0, z.im);
     }

@@ -10,9 +10,9 @@ use std::f64::consts::PI;
 use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
 
 /// Reference spatial frequency of ISO 8608, cycle/m.
-pub const N0: f64 = 0.1;
+pub(crate) const N0: f64 = 0.1;
 /// Lowest spatial frequency of ISO 8608's classification band, cycle/m.
-pub const N_MIN: f64 = 0.011;
+pub(crate) const N_MIN: f64 = 0.011;
 
 /// ISO 8608 road class.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -160,7 +160,7 @@ impl Road {
     }
 
     /// ISO 8608's lowest temporal frequency `N_MIN v`, Hz.
-    pub fn lowest_frequency(&self) -> f64 {
+    pub(crate) fn lowest_frequency(&self) -> f64 {
         N_MIN * self.speed
     }
 }

@@ -105,7 +105,7 @@ impl Scale {
     /// At most `max` ticks inside the range: round numbers (multiples of 1, 2, 2.5 or 5
     /// times a power of ten) on a linear axis; decades on a log axis (with 2 and 5 times
     /// the decades when fewer than two decades fit; linear ticks when still fewer).
-    pub fn ticks(&self, max: usize) -> Vec<f64> {
+    pub(crate) fn ticks(&self, max: usize) -> Vec<f64> {
         if max == 0 {
             return Vec::new();
         }
@@ -200,7 +200,7 @@ fn fixed(v: f64, d: usize) -> String {
 /// At most `max` round ticks in `[lo, hi]` (both included when round) and their step:
 /// the multiples of the smallest step `m 10^e`, `m` in {1, 2, 2.5, 5}, that gives no more
 /// than `max` of them.
-pub fn linear_ticks(lo: f64, hi: f64, max: usize) -> (Vec<f64>, f64) {
+pub(crate) fn linear_ticks(lo: f64, hi: f64, max: usize) -> (Vec<f64>, f64) {
     if max == 0 || !(lo.is_finite() && hi.is_finite()) || hi <= lo {
         return (Vec::new(), 0.0);
     }

@@ -31,12 +31,13 @@ impl Rgb {
     }
 
     /// `#RRGGBB`, upper case (the form the SVG backend writes).
-    pub fn hex(self) -> String {
+    #[cfg(test)]
+    pub(crate) fn hex(self) -> String {
         format!("#{:02X}{:02X}{:02X}", self.0, self.1, self.2)
     }
 
     /// `(1 - a) self + a other`, each channel rounded.
-    pub fn mix(self, other: Rgb, a: f64) -> Rgb {
+    pub(crate) fn mix(self, other: Rgb, a: f64) -> Rgb {
         let m = |x: u8, y: u8| ((1.0 - a) * f64::from(x) + a * f64::from(y)).round() as u8;
         Rgb(m(self.0, other.0), m(self.1, other.1), m(self.2, other.2))
     }

@@ -5,14 +5,14 @@ use std::collections::HashMap;
 
 /// One element: tag name, attributes, and its text (for `<text>`).
 #[derive(Debug, Clone)]
-pub struct Element {
+pub(crate) struct Element {
     pub name: String,
     pub attrs: HashMap<String, String>,
     pub text: String,
 }
 
 impl Element {
-    pub fn attr(&self, key: &str) -> &str {
+    pub(crate) fn attr(&self, key: &str) -> &str {
         self.attrs.get(key).map(String::as_str).unwrap_or("")
     }
 
@@ -112,12 +112,12 @@ pub fn all<'a>(els: &'a [Element], name: &str) -> Vec<&'a Element> {
 }
 
 /// The texts of the `<text>` elements.
-pub fn texts(els: &[Element]) -> Vec<String> {
+pub(crate) fn texts(els: &[Element]) -> Vec<String> {
     all(els, "text").iter().map(|e| e.text.clone()).collect()
 }
 
 /// The largest distance, px, from a point of `points` to the polyline `line`.
-pub fn farthest_from(points: &[(f64, f64)], line: &[(f64, f64)]) -> f64 {
+pub(crate) fn farthest_from(points: &[(f64, f64)], line: &[(f64, f64)]) -> f64 {
     let to_segment = |r: (f64, f64), p: (f64, f64), q: (f64, f64)| {
         let (dx, dy) = (q.0 - p.0, q.1 - p.1);
         let l2 = dx * dx + dy * dy;

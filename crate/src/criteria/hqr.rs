@@ -21,7 +21,12 @@ pub fn eigenvalues(a: &mut [f64], n: usize) -> Option<Vec<C64>> {
 /// parts into `wr[..n]` and imaginary parts into `wi[..n]`, without allocating; a complex
 /// pair is returned as two consecutive entries with `wi` of opposite signs, exactly
 /// conjugate. Returns false if the QR iteration does not converge.
-pub fn hessenberg_eigenvalues(a: &mut [f64], n: usize, wr: &mut [f64], wi: &mut [f64]) -> bool {
+pub(crate) fn hessenberg_eigenvalues(
+    a: &mut [f64],
+    n: usize,
+    wr: &mut [f64],
+    wi: &mut [f64],
+) -> bool {
     balance(a, n);
     hqr(a, n, wr, wi)
 }

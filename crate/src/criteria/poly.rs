@@ -39,7 +39,7 @@ impl Poly {
     }
 
     /// Coefficient of `s^i` (0 beyond the polynomial).
-    pub fn coef(&self, i: usize) -> f64 {
+    pub(crate) fn coef(&self, i: usize) -> f64 {
         if i < self.len {
             self.c[i]
         } else {

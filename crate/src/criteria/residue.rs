@@ -462,7 +462,7 @@ impl ResidueFamily {
     /// The variances at front spring rate `ks` (N/m) and damper rate `cs` (N s/m), with
     /// their error bound, or the reason the route declines. Errors only on a road warp
     /// (non-stationary response), as the exact routes do.
-    pub fn variances(&self, ks: f64, cs: f64) -> Result<Residue> {
+    pub(crate) fn variances(&self, ks: f64, cs: f64) -> Result<Residue> {
         /// This family's own road.
         struct Own;
         impl OnPoint for Own {

@@ -158,7 +158,7 @@ impl<'a> Spectrum<'a> {
 
     /// One-sided output PSDs `[P_bacc, P_dtl, P_sws]` at `f` Hz, summed over sources:
     /// units (m/s^2)^2/Hz, N^2/Hz, m^2/Hz.
-    pub fn psd(&self, f: f64) -> [f64; N_OUT] {
+    pub(crate) fn psd(&self, f: f64) -> [f64; N_OUT] {
         let omega = 2.0 * PI * f;
         let mut p = [0.0; N_OUT];
         for s in 0..self.sources() {
@@ -211,7 +211,7 @@ impl<'a> Spectrum<'a> {
     /// tolerance `rtol`: the variance of output `output` (0 BAcc, 1 DTL, 2 SWS) through
     /// a frequency weighting of gain `weight(f)`, and the error estimate reached relative
     /// to it (above `rtol` only when the splits ran out).
-    pub fn weighted_variance(
+    pub(crate) fn weighted_variance(
         &self,
         output: usize,
         weight: impl Fn(f64) -> f64,

@@ -137,7 +137,7 @@ pub fn hifi_front(
 /// objectives in every case (to [`HIFI_FEASIBILITY_TOLERANCE`]). HiFi runs: the HiFi
 /// front's `evaluations` (designs x cases) and its cases' datums; the plane's, its cases'
 /// HiFi datums (its normalisation) and its pick's re-check in every case.
-pub fn robust_hifi_front(
+pub(crate) fn robust_hifi_front(
     s: &Scenario,
     set: &CaseSet,
     plane: &FrontResult,

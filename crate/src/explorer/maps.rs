@@ -84,7 +84,7 @@ impl ModelMap {
 }
 
 /// The error map's fields, `100 (surrogate / HiFi - 1)` %, on the HiFi map's grid.
-pub fn error_values(surrogate: &Dcs, hifi: &Dcs) -> Dcs {
+pub(crate) fn error_values(surrogate: &Dcs, hifi: &Dcs) -> Dcs {
     let pct = |p: &[f64], h: &[f64]| -> Vec<f64> {
         p.iter().zip(h).map(|(p, h)| 100.0 * (p - h) / h).collect()
     };

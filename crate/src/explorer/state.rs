@@ -380,7 +380,7 @@ impl State {
     /// The scenario of this state, re-using the parts of `previous` (a state and its
     /// scenario) whose fields did not change: a slider move re-parses neither a custom
     /// car's file nor the surrogate's name. The first error names its field.
-    pub fn scenario_after(&self, previous: Option<(&State, &Scenario)>) -> Result<Scenario> {
+    pub(crate) fn scenario_after(&self, previous: Option<(&State, &Scenario)>) -> Result<Scenario> {
         let datum = match previous {
             Some((p, s)) if p.car == self.car && p.car_json == self.car_json => s.datum.clone(),
             _ => self.datum_car()?,

@@ -26,9 +26,9 @@ use serde::Serialize;
 use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
 
 /// STM grid of the page's LoFi front (a few ms).
-pub const STM_GRID: usize = 61;
+pub(crate) const STM_GRID: usize = 61;
 /// STM refinement levels of the page's LoFi front.
-pub const STM_LEVELS: usize = 2;
+pub(crate) const STM_LEVELS: usize = 2;
 
 /// The page's front method: "stm" (space transformation) or "nsga2" (seeded NSGA-II).
 pub fn method(name: &str) -> Result<Method> {
@@ -116,7 +116,7 @@ pub struct RobustFront {
 /// comfort measure and pick rule: exactly [`robust_optimize_report`]'s front, pick and
 /// per-case re-checks (`ridelab optimize --cases --evaluator quarter|full`), the datum
 /// its robust (HiFi, case 0's) datum.
-pub fn robust_front(
+pub(crate) fn robust_front(
     s: &Scenario,
     set: &CaseSet,
     method_name: &str,

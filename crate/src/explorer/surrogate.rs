@@ -131,7 +131,7 @@ impl FitRecord {
 
     /// The fit again, if it was made from scenario `s`'s inputs (else `None`): the same
     /// samples and a model with the same predictions, bit for bit.
-    pub fn adopt(&self, s: &Scenario) -> Option<FittedSurrogate> {
+    pub(crate) fn adopt(&self, s: &Scenario) -> Option<FittedSurrogate> {
         let same = FitInputs::bytes(s).is_ok_and(|b| b == self.inputs);
         same.then(|| FittedSurrogate {
             model: self.model.clone().into_surrogate(s.dbox),

@@ -113,7 +113,7 @@ impl HiFiGrid {
         not(all(feature = "gpu", not(target_arch = "wasm32"))),
         allow(unused_variables)
     )]
-    pub fn on_gpu(hifi: &HiFi, grid: &Grid, compute: Compute) -> Result<Option<HiFiGrid>> {
+    pub(crate) fn on_gpu(hifi: &HiFi, grid: &Grid, compute: Compute) -> Result<Option<HiFiGrid>> {
         grid.validate()?;
         #[cfg(all(feature = "gpu", not(target_arch = "wasm32")))]
         if let Some(m) = gpu_mapper(compute)? {
@@ -146,7 +146,7 @@ impl HiFiGrid {
     }
 
     /// Wraps values already computed on `grid` (row-major, Cs rows) by `path`.
-    pub fn from_values(
+    pub(crate) fn from_values(
         hifi: HiFi,
         grid: Grid,
         values: Vec<Criteria>,

@@ -176,7 +176,7 @@ impl GpuMapper {
     }
 
     /// True for a CPU implementation (lavapipe, SwiftShader, WARP): correct, not fast.
-    pub fn is_software(&self) -> bool {
+    pub(crate) fn is_software(&self) -> bool {
         self.info.device_type == wgpu::DeviceType::Cpu
     }
 

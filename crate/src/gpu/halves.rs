@@ -26,10 +26,10 @@ use crate::road::Tracks;
 use nalgebra::DMatrix;
 
 /// Coordinates of a half: two body, two unsprung (front, rear).
-pub const N_COORD: usize = 4;
+pub(crate) const N_COORD: usize = 4;
 /// The nine distinct entries of a half's symmetric matrices: body `(0,0)`, `(0,1)`,
 /// `(1,1)`, coupling `(0,2)`, `(0,3)`, `(1,2)`, `(1,3)`, unsprung `(2,2)`, `(3,3)`.
-pub const SLOTS: [(usize, usize); 9] = [
+pub(crate) const SLOTS: [(usize, usize); 9] = [
     (0, 0),
     (0, 1),
     (1, 1),
@@ -72,7 +72,7 @@ pub struct Half {
 }
 
 /// The halves of `car` (front spring and damper free) for `tracks`.
-pub fn halves(car: &Car, tracks: Tracks) -> Result<Vec<Half>> {
+pub(crate) fn halves(car: &Car, tracks: Tracks) -> Result<Vec<Half>> {
     car.validate()?;
     let mut base_car = car.clone();
     base_car.front.spring = 0.0;

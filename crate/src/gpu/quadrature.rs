@@ -36,7 +36,7 @@ use num_complex::Complex64 as C64;
 use std::f64::consts::PI;
 
 /// Gauss-Legendre nodes per panel.
-pub const NODES_PER_PANEL: usize = 8;
+pub(crate) const NODES_PER_PANEL: usize = 8;
 /// Largest panel width over the distance to the nearest pole, -.
 const BETA: f64 = 0.5;
 /// Largest phase swing `pi tau (b - a)` of a combined panel, rad; wider panels are split.

@@ -128,7 +128,7 @@ impl Dcs {
 
     /// The map in `scale`: absolute to relative divides each value by the datum's,
     /// relative to absolute multiplies back (exact up to one rounding).
-    pub fn to_scale(&self, scale: Scale) -> Dcs {
+    pub(crate) fn to_scale(&self, scale: Scale) -> Dcs {
         let d = self.datum.criteria.to_array();
         let convert = |v: &[f64], dk: f64| -> Vec<f64> {
             match (self.scale, scale) {

@@ -179,7 +179,7 @@ impl DosMap {
 
     /// A mask made elsewhere (the robust DOS of issue #16: the OR of every case's
     /// mask) with its counts; `feasible_set` lists the points where `mask` is 0.
-    pub fn from_mask(
+    pub(crate) fn from_mask(
         grid: Grid,
         objectives: &DesignObjectives,
         active: Vec<Objective>,

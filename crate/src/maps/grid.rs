@@ -22,7 +22,7 @@ pub struct Axis {
 
 impl Axis {
     /// Most points one axis may have (a 1001 x 1001 map is a million evaluations).
-    pub const MAX_POINTS: usize = 1001;
+    pub(crate) const MAX_POINTS: usize = 1001;
 
     /// A checked axis; errors name `field` (`ks-range` or `cs-range`).
     pub fn new(field: &str, min: f64, max: f64, n: usize) -> Result<Axis> {

@@ -26,7 +26,7 @@ use crate::road::{Road, Tracks};
 use nalgebra::{DMatrix, DVector};
 
 /// Number of outputs: BAcc, DTL, SWS.
-pub const N_OUT: usize = 3;
+pub(crate) const N_OUT: usize = 3;
 
 /// One output as a linear form of `q`, `q'`, `q''` and `r`.
 #[derive(Debug, Clone, PartialEq)]
@@ -78,7 +78,7 @@ pub struct LinearModel {
 
 /// One independent white road-velocity source and the wheels it drives.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Source {
+pub(crate) struct Source {
     /// `(wheel index, delay s)` pairs.
     pub channels: Vec<(usize, f64)>,
 }
@@ -86,7 +86,7 @@ pub struct Source {
 /// How the road drives a model: independent white velocity sources of intensity
 /// `W` (m^2/s, `E[w(t) w(s)] = W delta(t-s)`), each feeding some wheels with delays.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Excitation {
+pub(crate) struct Excitation {
     /// The sources (one for correlated tracks, one per track otherwise).
     pub sources: Vec<Source>,
     /// Two-sided intensity of each source's velocity, m^2/s.
@@ -101,7 +101,7 @@ impl LinearModel {
 
     /// The road excitation of this model on `road`: wheels on the same track share a
     /// source (all wheels share one when the tracks are correlated), delayed by `behind / v`.
-    pub fn excitation(&self, road: &Road) -> Excitation {
+    pub(crate) fn excitation(&self, road: &Road) -> Excitation {
         let n_src = match road.tracks {
             Tracks::Correlated => 1,
             Tracks::Independent => 2,
@@ -125,7 +125,7 @@ impl LinearModel {
 
     /// First-order form with `x = [q; q']`:
     /// `x' = A x + Bd r + Bv r'`, `y = Cy x + Dr r + Dw r'`.
-    pub fn state_space(&self) -> Result<StateSpace> {
+    pub(crate) fn state_space(&self) -> Result<StateSpace> {
         let n = self.n();
         let minv = self
             .m
@@ -178,7 +178,7 @@ impl LinearModel {
 
 /// State-space matrices of a [`LinearModel`] (see [`LinearModel::state_space`]).
 #[derive(Debug, Clone, PartialEq)]
-pub struct StateSpace {
+pub(crate) struct StateSpace {
     /// State matrix (2n x 2n).
     pub a: DMatrix<f64>,
     /// Road displacement input (2n x wheels).

@@ -32,7 +32,7 @@ pub fn hypervolume(points: &[[f64; 2]], reference: [f64; 2]) -> f64 {
 }
 
 /// Ideal (component-wise minimum) and nadir (component-wise maximum) of a non-empty front.
-pub fn ideal_nadir(front: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
+pub(crate) fn ideal_nadir(front: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
     let mut ideal = [f64::INFINITY; 2];
     let mut nadir = [f64::NEG_INFINITY; 2];
     for p in front {

@@ -97,7 +97,7 @@ impl Nsga2Params {
 impl Nsga2Params {
     /// Refuses a run over `cases` cases whose `population (generations + 1)` runs each
     /// exceed the command's bound ([`crate::budget::MAX_RUNS`]); errors name `generations`.
-    pub fn check_runs(&self, cases: usize) -> Result<()> {
+    pub(crate) fn check_runs(&self, cases: usize) -> Result<()> {
         let runs = (self.population as u64)
             .saturating_mul(self.generations as u64 + 1)
             .saturating_mul(cases as u64);

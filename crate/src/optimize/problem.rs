@@ -99,7 +99,7 @@ pub(crate) fn lexical(a: [f64; 2], b: [f64; 2]) -> Ordering {
 }
 
 /// The feasible, non-dominated members of `pool`, sorted by increasing `f1`.
-pub fn feasible_front<I: Clone>(pool: &[Solution<I>]) -> Vec<Solution<I>> {
+pub(crate) fn feasible_front<I: Clone>(pool: &[Solution<I>]) -> Vec<Solution<I>> {
     let feasible: Vec<&Solution<I>> = pool.iter().filter(|s| s.eval.feasible()).collect();
     let f: Vec<[f64; 2]> = feasible.iter().map(|s| s.eval.f).collect();
     non_dominated(&f)

@@ -70,7 +70,7 @@ impl StmParams {
 
     /// Refuses STM over `cases` cases whose estimated runs ([`budget::stm_runs`] each)
     /// exceed the command's bound; errors name `grid`.
-    pub fn check_runs(&self, cases: usize) -> Result<()> {
+    pub(crate) fn check_runs(&self, cases: usize) -> Result<()> {
         let runs = budget::stm_runs(self.grid, self.levels).saturating_mul(cases as u64);
         let what = if cases > 1 {
             format!(

@@ -11,7 +11,7 @@ use crate::evaluate::Evaluator;
 use serde::{Deserialize, Serialize};
 
 /// Margin of the default hypervolume reference point: `nadir + 0.1 (nadir - ideal)`.
-pub const REFERENCE_MARGIN: f64 = 0.1;
+pub(crate) const REFERENCE_MARGIN: f64 = 0.1;
 
 /// How the front is found.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

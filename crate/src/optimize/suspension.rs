@@ -28,7 +28,7 @@ impl<E: Evaluator> Counted<E> {
 
     /// Wraps `inner` with the count at `made`: runs made before it (a kept fit's samples,
     /// which a report counts with its validation grid's).
-    pub fn with_count(inner: E, made: usize) -> Self {
+    pub(crate) fn with_count(inner: E, made: usize) -> Self {
         Counted {
             inner,
             count: Cell::new(made),
@@ -80,7 +80,7 @@ pub struct FrontPoint {
 
 impl FrontPoint {
     /// Converts an optimiser's solutions (`x = [ks, cs]`) into front points.
-    pub fn from_solutions(front: &[Solution<Criteria>]) -> Vec<FrontPoint> {
+    pub(crate) fn from_solutions(front: &[Solution<Criteria>]) -> Vec<FrontPoint> {
         front
             .iter()
             .map(|s| FrontPoint {
@@ -191,7 +191,7 @@ impl<E: Evaluator> SuspensionProblem<E> {
     }
 
     /// The evaluator's name.
-    pub fn evaluator_name(&self) -> String {
+    pub(crate) fn evaluator_name(&self) -> String {
         self.evaluator.name()
     }
 

@@ -6,14 +6,14 @@ use crate::evaluate::{Criteria, Evaluator};
 
 /// ZDT1 (Zitzler, Deb, Thiele 2000): `f1 = x1`, `g = 1 + 9 sum_{i>=2} x_i / (n - 1)`,
 /// `f2 = g (1 - sqrt(f1 / g))`, `x` in `[0, 1]^n`; front `f2 = 1 - sqrt(f1)`.
-pub struct Zdt1 {
+pub(crate) struct Zdt1 {
     /// Number of variables.
     pub n: usize,
 }
 
 impl Zdt1 {
     /// `k` points of the analytic front, evenly spaced in `f1`.
-    pub fn true_front(k: usize) -> Vec<[f64; 2]> {
+    pub(crate) fn true_front(k: usize) -> Vec<[f64; 2]> {
         (0..k)
             .map(|i| {
                 let f1 = i as f64 / (k - 1) as f64;
@@ -43,7 +43,7 @@ impl Problem for Zdt1 {
 /// `x1` in `[0, 5]`, `x2` in `[0, 3]`, subject to `(x1 - 5)^2 + x2^2 <= 25` and
 /// `(x1 - 8)^2 + (x2 + 3)^2 >= 7.7`. Pareto set: `x1 = x2` in `[0, 3]`, then `x2 = 3`
 /// for `x1` in `[3, 5]`.
-pub struct Bnh;
+pub(crate) struct Bnh;
 
 impl Bnh {
     fn f(x1: f64, x2: f64) -> [f64; 2] {
@@ -55,7 +55,7 @@ impl Bnh {
 
     /// `k` points of the analytic Pareto set mapped to the objectives, evenly
     /// spaced along the set's length (3 sqrt 2 on the diagonal, then 2).
-    pub fn true_front(k: usize) -> Vec<[f64; 2]> {
+    pub(crate) fn true_front(k: usize) -> Vec<[f64; 2]> {
         let diag = 3.0 * 2f64.sqrt();
         let total = diag + 2.0;
         (0..k)
@@ -97,11 +97,11 @@ pub struct QuarterCar;
 
 impl QuarterCar {
     /// Sprung mass, kg.
-    pub const MS: f64 = 467.7;
+    pub(crate) const MS: f64 = 467.7;
     /// Unsprung mass, kg.
-    pub const MU: f64 = 40.0;
+    pub(crate) const MU: f64 = 40.0;
     /// Tyre rate, N/m.
-    pub const KT: f64 = 175_500.0;
+    pub(crate) const KT: f64 = 175_500.0;
 
     /// Road input intensity `W = 2 pi^2 Gd n0^2 v`, m^2/s^3.
     pub fn w() -> f64 {

@@ -19,7 +19,7 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 
 /// ISO 8608's highest spatial frequency of classification, cycle/m.
-pub const N_MAX_ISO: f64 = 2.83;
+pub(crate) const N_MAX_ISO: f64 = 2.83;
 /// Band means per octave of the fit and of [`RoadDescription::psd_bands`].
 const BANDS_PER_OCTAVE: f64 = 12.0;
 

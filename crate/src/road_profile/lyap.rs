@@ -52,7 +52,7 @@ impl Lyapunov {
     }
 
     /// `X` with `A X + X A^T + M = 0`.
-    pub fn solve(&self, m: &DMatrix<f64>) -> Result<DMatrix<f64>> {
+    pub(crate) fn solve(&self, m: &DMatrix<f64>) -> Result<DMatrix<f64>> {
         let n = self.t.nrows();
         let f = -(self.q.transpose() * m * &self.q);
         let mut y = DMatrix::<f64>::zeros(n, n);

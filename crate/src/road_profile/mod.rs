@@ -69,24 +69,24 @@ pub use synth::{shipped_examples, synthesize, Slabs, Synthesis, EXAMPLE_DECIMALS
 /// to past the wheel hop (about 10 Hz) and far enough into the tyre-deflection tail that
 /// the white extension above it carries only a few per cent of var(DTL) (2.7 % above
 /// 100 Hz for the datum car, METHOD.md).
-pub const BAND_HZ: [f64; 2] = [0.3, 100.0];
+pub(crate) const BAND_HZ: [f64; 2] = [0.3, 100.0];
 
 /// [`describe`]'s Welch segments are about `1 / SEGMENT_DIVISOR` of the profile (about 15
 /// averaged segments at 50 % overlap), for the resolution ISO 8608's band needs.
-pub const SEGMENT_DIVISOR: usize = 8;
+pub(crate) const SEGMENT_DIVISOR: usize = 8;
 
 /// A [`ShapedRoad`]'s Welch segments are as long as its band needs at its speed (the
 /// lowest frequency [`LOWEST_BIN`] bins up), and a profile must hold at least this many of
 /// them (50 % overlap).
-pub const MIN_SEGMENTS: usize = 8;
+pub(crate) const MIN_SEGMENTS: usize = 8;
 
 /// The lowest Welch bin trusted, in units of the bin spacing `dn` (the first bins carry
 /// the linear detrend's and the Hann window's leakage).
-pub const LOWEST_BIN: f64 = 3.0;
+pub(crate) const LOWEST_BIN: f64 = 3.0;
 
 /// The highest spatial frequency trusted, as a fraction of the Nyquist frequency
 /// `1 / (2 dx)` (measured profiles are anti-alias filtered below Nyquist).
-pub const NYQUIST_FRACTION: f64 = 0.5;
+pub(crate) const NYQUIST_FRACTION: f64 = 0.5;
 
 #[cfg(test)]
 mod tests;

@@ -361,7 +361,7 @@ impl Profile {
 
     /// Spatial frequency band [`super::describe`] resolves, cycle/m: from [`LOWEST_BIN`]
     /// Welch bins to [`NYQUIST_FRACTION`] of the Nyquist frequency.
-    pub fn resolved_band(&self) -> [f64; 2] {
+    pub(crate) fn resolved_band(&self) -> [f64; 2] {
         let dn = 1.0 / (self.segment_samples() as f64 * self.spacing);
         [LOWEST_BIN * dn, NYQUIST_FRACTION * 0.5 / self.spacing]
     }
@@ -369,7 +369,7 @@ impl Profile {
     /// Welch segment length of the road at `speed` (m/s), samples: as long as the band
     /// [`BAND_HZ`] needs down to its lower edge, `LOWEST_BIN v / (f_lo dx)` rounded up to a
     /// fast FFT length.
-    pub fn segment_at(&self, speed: f64) -> usize {
+    pub(crate) fn segment_at(&self, speed: f64) -> usize {
         segment_for_speed(speed, self.spacing)
     }
 
@@ -383,7 +383,7 @@ impl Profile {
 
     /// Refuses a profile too short for the band [`BAND_HZ`] at `speed` (m/s), saying how
     /// long it must be ([`Profile::required_length`]).
-    pub fn check_length(&self, speed: f64) -> Result<()> {
+    pub(crate) fn check_length(&self, speed: f64) -> Result<()> {
         if !(speed.is_finite() && speed > 0.0 && speed <= 100.0) {
             return Err(RideError::field("speed", "must be in (0, 100] m/s"));
         }

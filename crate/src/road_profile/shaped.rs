@@ -20,6 +20,7 @@ use super::shaping::{ShapingFilter, VelocityPsd};
 use super::welch::welch;
 use super::{BAND_HZ, LOWEST_BIN, NYQUIST_FRACTION};
 use crate::error::{parse_choice, Result, RideError};
+#[cfg(test)]
 use crate::road::{Road, Tracks};
 use serde::{Deserialize, Serialize};
 use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
@@ -194,7 +195,8 @@ impl ShapedRoad {
 
     /// The ISO 8608 road `road` with waviness `w` over [`BAND_HZ`] (white outside): with
     /// `w = 2` exactly the road of [`crate::criteria::criteria_exact`] (constant filters).
-    pub fn iso(road: &Road, waviness: f64) -> Result<ShapedRoad> {
+    #[cfg(test)]
+    pub(crate) fn iso(road: &Road, waviness: f64) -> Result<ShapedRoad> {
         road.validate()?;
         if !(waviness.is_finite() && (0.5..=5.0).contains(&waviness)) {
             return Err(RideError::field("waviness", "must be in [0.5, 5]"));

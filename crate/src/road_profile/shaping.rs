@@ -41,6 +41,7 @@ use super::welch::{band_means, band_ranges};
 use crate::criteria::PoleZeroFilter;
 use crate::error::{Result, RideError};
 use crate::math;
+#[cfg(test)]
 use crate::road::N0;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra::{storage::Owned, DMatrix, DVector, Dyn};
@@ -60,6 +61,7 @@ const CHECK_MIN_BINS: usize = 8;
 /// Octaves of extension fitted either side of the band.
 const EXTENSION_OCTAVES: f64 = 4.0;
 /// Log-spaced breakpoints per decade of an analytic (ISO) velocity PSD.
+#[cfg(test)]
 const ISO_PER_DECADE: f64 = 50.0;
 /// Octaves over which a velocity PSD keeps its end slope beyond the band before it turns
 /// white.
@@ -88,6 +90,7 @@ pub struct Extension {
 }
 
 impl Extension {
+    #[cfg(test)]
     fn white(gv: f64) -> Extension {
         Extension {
             anchor_hz: 1.0,
@@ -141,7 +144,8 @@ pub struct VelocityPsd {
 
 impl VelocityPsd {
     /// A white velocity PSD `gv` (m^2/s^2 per Hz) everywhere.
-    pub fn white(gv: f64, band: [f64; 2]) -> VelocityPsd {
+    #[cfg(test)]
+    pub(crate) fn white(gv: f64, band: [f64; 2]) -> VelocityPsd {
         VelocityPsd {
             f: Vec::new(),
             gv: Vec::new(),
@@ -156,7 +160,8 @@ impl VelocityPsd {
     /// ISO 8608 with waviness `w` at speed `v`: `Gv(f) = (2 pi n0)^2 Gd(n0) v (f / (n0 v))^(2 - w)`
     /// over `band` and [`EXTENSION_SLOPE_OCTAVES`] octaves beyond it, white further out;
     /// exactly white for `w = 2`.
-    pub fn iso(gd_n0: f64, waviness: f64, speed: f64, band: [f64; 2]) -> VelocityPsd {
+    #[cfg(test)]
+    pub(crate) fn iso(gd_n0: f64, waviness: f64, speed: f64, band: [f64; 2]) -> VelocityPsd {
         let gv = |f: f64| {
             (2.0 * PI * N0).powi(2) * gd_n0 * speed * math::powf(f / (N0 * speed), 2.0 - waviness)
         };
@@ -195,7 +200,12 @@ impl VelocityPsd {
     /// (cycle/m), measured over `band` (Hz; within the bins' range). The extensions start
     /// from the first and last smoothed points with the slope of the band's first and last
     /// octave of smoothed points (clamped to [-2, 2]: waviness 0..4).
-    pub fn from_spatial(n: &[f64], gd: &[f64], speed: f64, band: [f64; 2]) -> Result<VelocityPsd> {
+    pub(crate) fn from_spatial(
+        n: &[f64],
+        gd: &[f64],
+        speed: f64,
+        band: [f64; 2],
+    ) -> Result<VelocityPsd> {
         let floor = gd.iter().copied().fold(0.0, f64::max) * 1e-15;
         let (f, g): (Vec<f64>, Vec<f64>) = n
             .iter()
@@ -409,13 +419,13 @@ impl ShapingFilter {
 
     /// The filter with its partial fractions, for the modal and residue routes; `None`
     /// when its partial fractions cancel ([`PoleZeroFilter::new`]).
-    pub fn pole_zero(&self) -> Option<PoleZeroFilter> {
+    pub(crate) fn pole_zero(&self) -> Option<PoleZeroFilter> {
         PoleZeroFilter::new(self.gain, &self.zeros, &self.poles)
     }
 
     /// The velocity PSD the filter gives, `2 |F(i 2 pi f)|^2`, m^2/s^2 per Hz (`f` may be
     /// infinite).
-    pub fn psd(&self, f: f64) -> f64 {
+    pub(crate) fn psd(&self, f: f64) -> f64 {
         let w2 = (2.0 * PI * f).powi(2);
         let mut g = 2.0 * self.gain * self.gain;
         if f.is_infinite() {
@@ -427,19 +437,11 @@ impl ShapingFilter {
         g
     }
 
-    /// `F(0) = K prod z_i / p_i`, m/s^0.5.
-    pub fn dc_gain(&self) -> f64 {
-        self.zeros
-            .iter()
-            .zip(&self.poles)
-            .fold(self.gain, |g, (z, p)| g * z / p)
-    }
-
     /// A state-space realisation `(A_f, B_f, C_f, D_f)` (cascade of first-order sections
     /// `(s + z) / (s + p) = 1 + (z - p) / (s + p)`, well conditioned for poles spread over
     /// decades): `x' = A_f x + B_f w`, `u = C_f x + D_f w`, with
     /// `A_f[i][i] = -p_i`, `A_f[i][k] = z_k - p_k` (k < i), `B_f = K`, `C_f[k] = z_k - p_k`, `D_f = K`.
-    pub fn state_space(&self) -> (DMatrix<f64>, DVector<f64>, DVector<f64>, f64) {
+    pub(crate) fn state_space(&self) -> (DMatrix<f64>, DVector<f64>, DVector<f64>, f64) {
         let m = self.order();
         let mut a = DMatrix::zeros(m, m);
         for i in 0..m {

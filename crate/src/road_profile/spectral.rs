@@ -182,7 +182,7 @@ impl<'a> ShapedSpectrum<'a> {
 
     /// One-sided output PSDs `[P_bacc, P_dtl, P_sws]` at `f` Hz on the measured PSD:
     /// (m/s^2)^2/Hz, N^2/Hz, m^2/Hz.
-    pub fn psd(&self, f: f64) -> [f64; N_OUT] {
+    pub(crate) fn psd(&self, f: f64) -> [f64; N_OUT] {
         self.psd_with(f, |s, f| self.road.sources[s].psd.at(f))
     }
 

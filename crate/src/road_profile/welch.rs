@@ -38,7 +38,7 @@ fn smooth(mut m: usize) -> bool {
 
 /// Welch segment length of [`super::describe`] for `n` samples (`n - 1` slopes): the
 /// largest fast FFT length at most `(n - 1) / SEGMENT_DIVISOR`, and at least 16.
-pub fn segment_length(n: usize) -> usize {
+pub(crate) fn segment_length(n: usize) -> usize {
     let target = (n.saturating_sub(1) / SEGMENT_DIVISOR).max(16);
     (16..=target).rev().find(|&m| smooth(m)).unwrap_or(16)
 }
@@ -47,7 +47,7 @@ pub fn segment_length(n: usize) -> usize {
 /// `dx` (m): the smallest fast FFT length whose [`LOWEST_BIN`]th bin is at most
 /// `BAND_HZ[0] / speed` (as long as the band needs, so as many segments as possible
 /// average).
-pub fn segment_for_speed(speed: f64, dx: f64) -> usize {
+pub(crate) fn segment_for_speed(speed: f64, dx: f64) -> usize {
     let need = (LOWEST_BIN * speed / (BAND_HZ[0] * dx)).ceil().max(16.0);
     let start = if need.is_finite() && need < 1e9 {
         need as usize
@@ -87,7 +87,7 @@ pub struct Spectra {
 
 /// Welch spectra of `x` (and `y`, same length) sampled every `dx` m, segments of
 /// `seg` slopes (`seg < x.len()`; see the module doc).
-pub fn welch(x: &[f64], y: Option<&[f64]>, dx: f64, seg: usize) -> Spectra {
+pub(crate) fn welch(x: &[f64], y: Option<&[f64]>, dx: f64, seg: usize) -> Spectra {
     let slope = |z: &[f64]| -> Vec<f64> { z.windows(2).map(|w| (w[1] - w[0]) / dx).collect() };
     let xs = slope(x);
     let ys = y.map(slope);
@@ -205,7 +205,7 @@ fn prepare(x: &[f64], window: &[f64], buf: &mut [C64], imag: bool) {
 /// Log-spaced bands of `1 / per_octave` octave over the samples of the sorted `x` in
 /// `[lo, hi]`, each widened until it holds at least `min_bins` samples (a short remainder
 /// joins the last band): index ranges `start..end` into `x`.
-pub fn band_ranges(
+pub(crate) fn band_ranges(
     x: &[f64],
     lo: f64,
     hi: f64,
@@ -240,7 +240,7 @@ pub fn band_ranges(
 /// Band means of `p(x)` over [`band_ranges`]: `(centre, mean)` pairs, the centre the
 /// geometric mean of the band's `x`, the mean the arithmetic mean of its `p` (power is
 /// additive).
-pub fn band_means(
+pub(crate) fn band_means(
     x: &[f64],
     p: &[f64],
     lo: f64,

@@ -209,7 +209,7 @@ impl CaseSet {
     /// The runs of consecutive cases on one loaded car (equal [`Case::car`]), in case
     /// order: one run per load case of a load-case-major set (two load cases that load
     /// the car alike make one run).
-    pub fn car_runs(&self) -> Vec<std::ops::Range<usize>> {
+    pub(crate) fn car_runs(&self) -> Vec<std::ops::Range<usize>> {
         let mut runs: Vec<std::ops::Range<usize>> = Vec::new();
         for (k, c) in self.cases.iter().enumerate() {
             match runs.last_mut() {
@@ -221,7 +221,7 @@ impl CaseSet {
     }
 
     /// Weights normalised to sum to 1, `p_k = w_k / sum w` (one case: exactly 1).
-    pub fn probabilities(&self) -> Vec<f64> {
+    pub(crate) fn probabilities(&self) -> Vec<f64> {
         let total: f64 = self.cases.iter().map(|c| c.weight).sum();
         self.cases.iter().map(|c| c.weight / total).collect()
     }

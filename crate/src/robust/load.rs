@@ -144,7 +144,7 @@ impl LoadCase {
 
 /// Checks a list of load cases on `car` (each applies; 1 to [`MAX_LOAD_CASES`] of them,
 /// names distinct); errors name `field[i].x` (`field` is `load_cases`).
-pub fn check_load_cases(cases: &[LoadCase], car: &Car, field: &str) -> Result<Vec<Car>> {
+pub(crate) fn check_load_cases(cases: &[LoadCase], car: &Car, field: &str) -> Result<Vec<Car>> {
     if cases.is_empty() {
         return Err(RideError::field(
             field,

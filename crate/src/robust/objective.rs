@@ -159,7 +159,7 @@ pub struct RobustEvaluator<E> {
 
 impl<E: CaseRun> RobustEvaluator<E> {
     /// Every case's criteria at `(ks, cs)`, in case order.
-    pub fn evaluate_cases(&self, ks: f64, cs: f64) -> Result<Vec<Criteria>> {
+    pub(crate) fn evaluate_cases(&self, ks: f64, cs: f64) -> Result<Vec<Criteria>> {
         let mut out = Vec::with_capacity(self.case_count());
         for e in &self.cases {
             e.evaluate_into(ks, cs, &mut out)?;
@@ -168,7 +168,7 @@ impl<E: CaseRun> RobustEvaluator<E> {
     }
 
     /// Number of cases.
-    pub fn case_count(&self) -> usize {
+    pub(crate) fn case_count(&self) -> usize {
         self.cases.iter().map(CaseRun::cases).sum()
     }
 }

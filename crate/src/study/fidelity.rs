@@ -297,7 +297,7 @@ pub struct StudyReport {
 /// The surrogates of the study: every RBA variant, VBA and the PBA options of METHOD.md
 /// (SMTS, UMTS, both, both plus tyre rate), each in every scheme it offers, then the
 /// quadratic and RBF data fits.
-pub fn study_specs() -> Vec<SurrogateSpec> {
+pub(crate) fn study_specs() -> Vec<SurrogateSpec> {
     SurrogateSpec::all()
         .into_iter()
         .filter(|s| match s.approach {

@@ -204,7 +204,7 @@ impl<T: Tuning> LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_, T> {
 
 /// The tuning of one fit and how it went.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Fitted {
+pub(crate) struct Fitted {
     /// Tuning parameters `a`.
     pub params: Vec<f64>,
     /// How the fit went.
@@ -288,7 +288,7 @@ fn least_squares<T: Tuning>(
 }
 
 /// Fits `tuning` in `scheme`: one fit over all criteria, or one per criterion.
-pub fn fit_scheme<T: Tuning>(
+pub(crate) fn fit_scheme<T: Tuning>(
     tuning: &T,
     lofi: &SurrogateLoFi,
     samples: &[Sample],
@@ -308,7 +308,7 @@ pub fn fit_scheme<T: Tuning>(
 /// Checks that `samples` can determine `p` tuning parameters per fit in `scheme`: at least
 /// as many residuals per fit as parameters, and at least `levels` distinct Ks and Cs values.
 /// Errors name `plan`; `what` names the surrogate in the message.
-pub fn check_tuning(
+pub(crate) fn check_tuning(
     p: usize,
     levels: [usize; 2],
     samples: &[Sample],

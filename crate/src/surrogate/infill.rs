@@ -126,7 +126,7 @@ fn shortfall(c: f64, mu: f64, s: f64) -> f64 {
 /// An incumbent front prepared for the expected hypervolume improvement: its
 /// non-dominated points inside the reference point, by increasing `f1` (module doc).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Staircase {
+pub(crate) struct Staircase {
     points: Vec<[f64; 2]>,
     reference: [f64; 2],
 }
@@ -243,7 +243,7 @@ pub struct Candidate {
 }
 
 /// What the criterion needs besides the fitted surrogate.
-pub struct InfillSetting<'a> {
+pub(crate) struct InfillSetting<'a> {
     /// The design objectives.
     pub objectives: &'a DesignObjectives,
     /// The car context of the objectives.
@@ -262,7 +262,11 @@ pub struct InfillSetting<'a> {
 
 /// The incumbent front of `criterion`: `[BAcc, DTL]` of the feasible HiFi samples or of
 /// the predicted front.
-pub fn incumbent(criterion: Infill, set: &InfillSetting, samples: &[Sample]) -> Vec<[f64; 2]> {
+pub(crate) fn incumbent(
+    criterion: Infill,
+    set: &InfillSetting,
+    samples: &[Sample],
+) -> Vec<[f64; 2]> {
     match criterion {
         Infill::Ehvi => samples
             .iter()
@@ -275,7 +279,7 @@ pub fn incumbent(criterion: Infill, set: &InfillSetting, samples: &[Sample]) -> 
 
 /// The best candidate by `criterion` (module doc) and, when none scores above 0, the
 /// farthest from every sample; `None` only when every candidate is too close to a sample.
-pub fn choose(
+pub(crate) fn choose(
     criterion: Infill,
     est: &Uncertain,
     set: &InfillSetting,

@@ -38,7 +38,7 @@ use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
 use serde::{Deserialize, Serialize};
 
 /// Nugget `nu` added to the diagonal of the correlation matrix (relative to `sigma^2`).
-pub const NUGGET: f64 = 1e-10;
+pub(crate) const NUGGET: f64 = 1e-10;
 
 /// Range of `log10 theta` searched by maximum likelihood, per axis.
 const LOG10_THETA: (f64, f64) = (-2.0, 3.0);
@@ -53,13 +53,13 @@ const COMPASS_STEPS: (f64, f64) = (0.25, 0.005);
 const SIGMA2_FLOOR: f64 = 1e-300;
 
 /// The correlation `exp(-theta_u (a_u - b_u)^2 - theta_v (a_v - b_v)^2)`.
-pub fn correlation(theta: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+pub(crate) fn correlation(theta: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
     let (du, dv) = (a[0] - b[0], a[1] - b[1]);
     math::exp(-theta[0] * du * du - theta[1] * dv * dv)
 }
 
 /// The correlation matrix `R_ij = R(x_i, x_j) + nu delta_ij` of the points `x`.
-pub fn correlation_matrix(theta: [f64; 2], x: &[[f64; 2]]) -> DMatrix<f64> {
+pub(crate) fn correlation_matrix(theta: [f64; 2], x: &[[f64; 2]]) -> DMatrix<f64> {
     let n = x.len();
     DMatrix::from_fn(n, n, |i, j| {
         correlation(theta, x[i], x[j]) + if i == j { NUGGET } else { 0.0 }
@@ -68,7 +68,7 @@ pub fn correlation_matrix(theta: [f64; 2], x: &[[f64; 2]]) -> DMatrix<f64> {
 
 /// A fitted ordinary Kriging model.
 #[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct Kriging {
+pub(crate) struct Kriging {
     x: Vec<[f64; 2]>,
     theta: [f64; 2],
     mu: f64,
@@ -199,7 +199,7 @@ impl Kriging {
     }
 
     /// The correlation parameters `[theta_u, theta_v]`, per squared normalised unit.
-    pub fn theta(&self) -> [f64; 2] {
+    pub(crate) fn theta(&self) -> [f64; 2] {
         self.theta
     }
 
@@ -209,12 +209,12 @@ impl Kriging {
     }
 
     /// The estimated process variance `sigma^2`.
-    pub fn sigma2(&self) -> f64 {
+    pub(crate) fn sigma2(&self) -> f64 {
         self.sigma2
     }
 
     /// The concentrated log-likelihood `-(n/2) ln sigma^2 - (1/2) ln det R`.
-    pub fn ln_likelihood(&self) -> f64 {
+    pub(crate) fn ln_likelihood(&self) -> f64 {
         self.ln_likelihood
     }
 }

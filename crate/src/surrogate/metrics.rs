@@ -103,7 +103,7 @@ pub fn metrics(y: &[f64], p: &[f64]) -> Result<Metrics> {
 }
 
 /// The measures of each criterion of `predicted` against `truth`.
-pub fn metrics_by_criterion(
+pub(crate) fn metrics_by_criterion(
     truth: &[Criteria],
     predicted: &[Criteria],
 ) -> Result<ByCriterion<Metrics>> {
@@ -149,7 +149,7 @@ impl ErrorMap {
 /// Pearson's correlation `sum (x_i - mean x)(y_i - mean y) / sqrt(sum (x_i - mean x)^2 sum (y_i - mean y)^2)`
 /// of two equally long sets; `None` when they differ in length, hold fewer than 2 values,
 /// a non-finite value, or one of them has no spread.
-pub fn pearson(x: &[f64], y: &[f64]) -> Option<f64> {
+pub(crate) fn pearson(x: &[f64], y: &[f64]) -> Option<f64> {
     if x.len() != y.len() || x.len() < 2 || !x.iter().chain(y).all(|v| v.is_finite()) {
         return None;
     }
@@ -166,7 +166,7 @@ pub fn pearson(x: &[f64], y: &[f64]) -> Option<f64> {
 
 /// Spearman's rank correlation: Pearson's correlation of the ranks, tied values sharing
 /// their mean rank; `None` as for [`pearson`].
-pub fn spearman(x: &[f64], y: &[f64]) -> Option<f64> {
+pub(crate) fn spearman(x: &[f64], y: &[f64]) -> Option<f64> {
     if x.len() != y.len() || !x.iter().chain(y).all(|v| v.is_finite()) {
         return None;
     }

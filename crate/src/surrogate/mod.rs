@@ -216,7 +216,7 @@ pub trait Surrogate: Evaluator + Send + Sync {
 }
 
 /// A parameter set that is checked, then fitted into a [`Surrogate`].
-pub trait SurrogateParams {
+pub(crate) trait SurrogateParams {
     /// The fitted model.
     type Model: Surrogate + 'static;
 

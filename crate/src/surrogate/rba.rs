@@ -43,7 +43,7 @@ impl Form {
     }
 
     /// Whether this form with `response` can be shared by all criteria.
-    pub fn shareable(self, response: ResponseKind) -> bool {
+    pub(crate) fn shareable(self, response: ResponseKind) -> bool {
         self == Form::Multiplicative && matches!(response, ResponseKind::Poly(_))
     }
 

@@ -35,7 +35,7 @@ pub enum ModelRecord {
 impl ModelRecord {
     /// The surrogate again, its predictions checked against `fitted` (the design box it
     /// was fitted over) as [`super::SurrogateSpec::fit`] checks them.
-    pub fn into_surrogate(self, fitted: DesignBox) -> Box<dyn Surrogate> {
+    pub(crate) fn into_surrogate(self, fitted: DesignBox) -> Box<dyn Surrogate> {
         let inner: Box<dyn Surrogate> = match self {
             ModelRecord::Vba(m) => Box::new(m),
             ModelRecord::Pba(m) => Box::new(m),

@@ -47,7 +47,7 @@ impl Kernel {
     ];
 
     /// Name suffix: "gauss", "mq" or "tps".
-    pub fn suffix(self) -> &'static str {
+    pub(crate) fn suffix(self) -> &'static str {
         Kernel::ALL
             .iter()
             .find(|(k, _)| *k == self)
@@ -105,7 +105,7 @@ impl ResponseKind {
 
     /// Fewest samples that determine the model: the number of polynomial coefficients, or
     /// one more than the RBF tail has (so that leave-one-out leaves a well-posed problem).
-    pub fn min_samples(self) -> usize {
+    pub(crate) fn min_samples(self) -> usize {
         match self {
             ResponseKind::Poly(d) => terms(d),
             ResponseKind::Rbf(k) => terms(k.tail_degree()) + 1,
@@ -136,7 +136,7 @@ const MONOMIAL_NAMES: [&str; 6] = ["1", "u", "v", "uu", "uv", "vv"];
 
 /// A fitted response model over `(u, v)`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub enum Response {
+pub(crate) enum Response {
     /// `p(u, v) = c^T m(u, v)`.
     Poly {
         /// Coefficients of `[1, u, v, u^2, u v, v^2]` (first `terms(degree)`).
@@ -220,7 +220,7 @@ impl Response {
 
 /// One least-squares row `g c^T m(u, v) ~ t` of a polynomial fit.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Row {
+pub(crate) struct Row {
     /// Normalised Ks.
     pub u: f64,
     /// Normalised Cs.
@@ -349,7 +349,7 @@ fn rbf_model(kernel: Kernel, shape: Option<f64>, x: &[[f64; 2]], sol: &DVector<f
 /// One sample of a model `S_k = a_k + b_k c(u, v)`: the normalised design, offsets `a`,
 /// gains `b` and HiFi values `F` of the three criteria.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct AffineSample {
+pub(crate) struct AffineSample {
     /// Normalised Ks.
     pub u: f64,
     /// Normalised Cs.
@@ -367,7 +367,7 @@ pub struct AffineSample {
 /// rows `(b_k / F_k) c(u, v) ~ (F_k - a_k) / F_k` over the samples and the group's criteria;
 /// an RBF model interpolates `c_i = (F_k - a_k) / b_k` (one criterion per group). Returns each
 /// response with its fit note.
-pub fn fit_affine(
+pub(crate) fn fit_affine(
     kind: ResponseKind,
     groups: &[&[usize]],
     samples: &[AffineSample],

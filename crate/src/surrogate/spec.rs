@@ -73,7 +73,7 @@ impl Approach {
     }
 
     /// Whether one tuning can serve all three criteria.
-    pub fn shareable(self) -> bool {
+    pub(crate) fn shareable(self) -> bool {
         match self {
             Approach::Rba { form, response } => form.shareable(response),
             Approach::Vba(_) | Approach::Pba(_) => true,

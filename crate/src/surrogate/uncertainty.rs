@@ -123,7 +123,7 @@ impl UncertaintyMethod {
 /// The relative leave-one-out errors `e_ik = S^(-i)_k(x_i) / F_ik - 1` of `spec` on
 /// `samples`: refits without each sample in turn (`n` fits). Errors (naming `plan`) when
 /// the surrogate cannot be fitted to `n - 1` of the samples.
-pub fn loo_errors(
+pub(crate) fn loo_errors(
     spec: &SurrogateSpec,
     setting: &Setting,
     samples: &[Sample],
@@ -157,7 +157,7 @@ pub fn loo_errors(
 
 /// The leave-one-out uncertainty field (module doc) of one set of samples.
 #[derive(Debug, Clone)]
-pub struct LooField {
+pub(crate) struct LooField {
     design_box: DesignBox,
     /// Normalised sample positions.
     x: Vec<[f64; 2]>,
@@ -261,11 +261,6 @@ impl LooField {
         })
     }
 
-    /// The correlation parameter `theta` of the shape, per squared normalised unit.
-    pub fn theta(&self) -> f64 {
-        self.theta
-    }
-
     /// The shape `s(x)` at normalised `(u, v)`: the unit-variance simple-Kriging deviation.
     pub fn shape(&self, u: f64, v: f64) -> f64 {
         let r = DVector::from_iterator(
@@ -367,11 +362,6 @@ impl Uncertain {
     pub fn predict(&self, ks: f64, cs: f64) -> Result<(Criteria, [f64; 3])> {
         Ok((self.model.evaluate(ks, cs)?, self.relative_std(ks, cs)?))
     }
-
-    /// The leave-one-out errors at the samples (LOO method only).
-    pub fn loo_errors(&self) -> Option<&[[f64; 3]]> {
-        self.loo.as_ref().map(|(e, _)| e.as_slice())
-    }
 }
 
 /// How well an uncertainty estimate predicts the true error on a validation grid.
@@ -396,7 +386,7 @@ pub struct UncertaintyCheck {
 
 /// How well an estimate predicts the size of the true error at the same points.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct ErrorCorrelation {
+pub(crate) struct ErrorCorrelation {
     /// Pearson's `r` of `sigma_i` against `|e_i|` (`None`: fewer than 2 points, a
     /// non-finite value, or no spread in one of them).
     pub pearson: Option<f64>,
@@ -464,7 +454,7 @@ pub enum UncertaintyOutcome {
 
 /// Every estimate `spec` offers on `samples` (LOO, and the model's own where it has one),
 /// each checked on `validation`; an estimate that cannot be made is a skipped entry.
-pub fn estimates(
+pub(crate) fn estimates(
     spec: &SurrogateSpec,
     setting: &Setting,
     samples: &[Sample],

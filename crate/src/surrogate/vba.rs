@@ -117,7 +117,7 @@ impl VariableTuning {
     }
 
     /// Transformed physical design `(ks', cs')` of `(ks, cs)`.
-    pub fn transformed(&self, a: &[f64], ks: f64, cs: f64) -> (f64, f64) {
+    pub(crate) fn transformed(&self, a: &[f64], ks: f64, cs: f64) -> (f64, f64) {
         let (ck, cc) = self.split(a);
         let (u, v) = self.design_box.normalize(ks, cs);
         self.design_box

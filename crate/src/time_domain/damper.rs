@@ -65,7 +65,7 @@ impl Damper {
 
     /// The equivalent linear rate the frequency-domain analysis uses, N s/m:
     /// the mean of the low-speed slopes, `(Csb + Csr) / 2`.
-    pub fn linear_rate(&self) -> f64 {
+    pub(crate) fn linear_rate(&self) -> f64 {
         0.5 * (self.bump + self.rebound)
     }
 

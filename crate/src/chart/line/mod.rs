@@ -84,19 +84,19 @@ impl Series {
     }
 
     /// The same series drawn in `style`.
-    pub fn with_style(mut self, style: SeriesStyle) -> Series {
+    pub(crate) fn with_style(mut self, style: SeriesStyle) -> Series {
         self.style = style;
         self
     }
 
     /// The same series with `size` (px).
-    pub fn with_size(mut self, size: f64) -> Series {
+    pub(crate) fn with_size(mut self, size: f64) -> Series {
         self.size = Some(size);
         self
     }
 
     /// The same series with a marker outline.
-    pub fn with_stroke(mut self, colour: &str) -> Series {
+    pub(crate) fn with_stroke(mut self, colour: &str) -> Series {
         self.stroke = Some(colour.into());
         self
     }
@@ -184,7 +184,7 @@ impl LineChart {
 
     /// Checks the spec and places it: the frame follows from the size and the title,
     /// the axes from the ranges or the data.
-    pub fn layout(&self) -> Result<Layout> {
+    pub(crate) fn layout(&self) -> Result<Layout> {
         check_size(self.width, self.height, (240, 200))?;
         if self.series.is_empty() && (self.x_range.is_none() || self.y_range.is_none()) {
             return Err(RideError::field(

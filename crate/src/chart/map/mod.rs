@@ -177,13 +177,13 @@ const KILO: f64 = 1e-3;
 
 impl MapLayout {
     /// The most ticks the colour bar takes: one per 36 px of bar, 2..=8.
-    pub fn bar_tick_count(&self) -> usize {
+    pub(crate) fn bar_tick_count(&self) -> usize {
         ((self.bar.bottom - self.bar.top) / 36).clamp(2, 8) as usize
     }
 
     /// The colour bar's ticks, in the values' unit (the page draws its contour lines at
     /// these levels).
-    pub fn bar_ticks(&self) -> Vec<f64> {
+    pub(crate) fn bar_ticks(&self) -> Vec<f64> {
         linear_ticks(self.colours.lo, self.colours.hi, self.bar_tick_count()).0
     }
 }
@@ -217,7 +217,7 @@ impl MapChart {
     pub const BOX_FIELDS: [&'static str; 4] = ["ks_min", "ks_max", "cs_min", "cs_max"];
 
     /// Checks the spec and places it.
-    pub fn layout(&self) -> Result<MapLayout> {
+    pub(crate) fn layout(&self) -> Result<MapLayout> {
         check_size(self.width, self.height, (360, 240))?;
         for (field, n) in [("nx", self.nx), ("ny", self.ny)] {
             if !(2..=Axis::MAX_POINTS).contains(&n) {

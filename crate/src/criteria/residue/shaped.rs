@@ -109,7 +109,7 @@ impl PoleZeroFilter {
 
     /// `F(s)` as [`PoleZeroFilter::at`], the numerator's and denominator's products apart
     /// and one division (what a map point takes; the two agree to rounding).
-    pub fn at_once(&self, s: C64) -> C64 {
+    pub(crate) fn at_once(&self, s: C64) -> C64 {
         let (mut num, mut den) = (C64::new(self.gain, 0.0), C64::new(1.0, 0.0));
         for (z, p) in self.zeros.iter().zip(&self.poles) {
             num *= s + z;
@@ -119,7 +119,7 @@ impl PoleZeroFilter {
     }
 
     /// `F(0) = K prod z_i / p_i`.
-    pub fn dc_gain(&self) -> f64 {
+    pub(crate) fn dc_gain(&self) -> f64 {
         self.zeros
             .iter()
             .zip(&self.poles)
@@ -127,7 +127,7 @@ impl PoleZeroFilter {
     }
 
     /// The partial fractions `(mu_i, c_i)`.
-    pub fn fractions(&self) -> &[(f64, f64)] {
+    pub(crate) fn fractions(&self) -> &[(f64, f64)] {
         &self.fractions
     }
 }

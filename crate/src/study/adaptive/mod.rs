@@ -177,7 +177,7 @@ impl Decision {
     /// The decision an optimisation by `method` judges by: `objectives`, the datum's
     /// criteria on `hifi` (one run), and `method`'s STM settings (STM's defaults for
     /// NSGA-II), so that the loop's fronts are the optimisation's.
-    pub fn for_method<E: Evaluator + ?Sized>(
+    pub(crate) fn for_method<E: Evaluator + ?Sized>(
         car: &Car,
         hifi: &E,
         method: &Method,
@@ -477,7 +477,7 @@ impl AdaptiveLoop {
     }
 
     /// The fitted surrogate, the loop ended.
-    pub fn into_model(self) -> Box<dyn Surrogate> {
+    pub(crate) fn into_model(self) -> Box<dyn Surrogate> {
         self.fitted.model
     }
 }

@@ -84,7 +84,7 @@ pub struct RobustInfo {
 }
 
 /// The normalisation sentence of robust reports.
-pub const NORMALISATION: &str = "each case scaled to case 0's datum: worst R = max_k (d_0 / d_k) c_k, mean R = sum_k p_k (d_0 / d_k) c_k; feasible only where every case meets every objective against its own datum";
+pub(crate) const NORMALISATION: &str = "each case scaled to case 0's datum: worst R = max_k (d_0 / d_k) c_k, mean R = sum_k p_k (d_0 / d_k) c_k; feasible only where every case meets every objective against its own datum";
 
 /// A robust map: the map report (robust fields and mask) and the cases.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -133,7 +133,7 @@ pub fn case_map_report(
 /// One case's absolute criteria on the map's grid and its feasibility mask (judged
 /// against that case's own datum), as [`robust_fields`] combines them.
 #[derive(Debug, Clone, Copy)]
-pub struct CaseField<'a> {
+pub(crate) struct CaseField<'a> {
     /// The evaluator's name.
     pub evaluator: &'a str,
     /// The datum design and its criteria in this case.
@@ -154,7 +154,7 @@ pub struct CaseField<'a> {
 /// cases' masks (feasible only where every case is). `active` are the objectives of the
 /// masks' bits. Returns the absolute fields (datum: case 0's datum design with the
 /// robust datum) and the mask with its feasible set.
-pub fn robust_fields(
+pub(crate) fn robust_fields(
     set: &CaseSet,
     grid: Grid,
     objectives: &DesignObjectives,

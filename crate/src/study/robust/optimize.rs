@@ -157,7 +157,10 @@ pub struct RobustOptimizeReport {
 
 /// Every case's datum criteria: the datum design (the loaded car's own front spring and
 /// damper) on that case's evaluator `evaluators[k]`.
-pub fn datums_on(set: &CaseSet, evaluators: &[Box<dyn Evaluator + Sync>]) -> Result<Vec<Criteria>> {
+pub(crate) fn datums_on(
+    set: &CaseSet,
+    evaluators: &[Box<dyn Evaluator + Sync>],
+) -> Result<Vec<Criteria>> {
     set.cases
         .iter()
         .zip(evaluators)
@@ -167,7 +170,10 @@ pub fn datums_on(set: &CaseSet, evaluators: &[Box<dyn Evaluator + Sync>]) -> Res
 
 /// Every case's HiFi (the full car of its loaded car on its road) with the `comfort`
 /// measure, in case order.
-pub fn case_hifis(set: &CaseSet, comfort: Comfort) -> Result<Vec<Box<dyn Evaluator + Sync>>> {
+pub(crate) fn case_hifis(
+    set: &CaseSet,
+    comfort: Comfort,
+) -> Result<Vec<Box<dyn Evaluator + Sync>>> {
     set.cases
         .iter()
         .map(|c| comfort.evaluator(ModelKind::Full, &c.car, &c.road))
@@ -175,7 +181,7 @@ pub fn case_hifis(set: &CaseSet, comfort: Comfort) -> Result<Vec<Box<dyn Evaluat
 }
 
 /// Every case's DOS context: its loaded car against its datum criteria `datums[k]`.
-pub fn case_contexts(set: &CaseSet, datums: &[Criteria]) -> Vec<DosContext> {
+pub(crate) fn case_contexts(set: &CaseSet, datums: &[Criteria]) -> Vec<DosContext> {
     set.cases
         .iter()
         .zip(datums)
@@ -187,7 +193,10 @@ pub fn case_contexts(set: &CaseSet, datums: &[Criteria]) -> Vec<DosContext> {
 /// criteria scaled to their HiFi datums (with the `comfort` measure), the set's rule
 /// and probabilities; also the HiFi datums. What the front's robust objective of a
 /// design is, `combination.apply(per-case criteria)`.
-pub fn hifi_combination(set: &CaseSet, comfort: Comfort) -> Result<(Combination, Vec<Criteria>)> {
+pub(crate) fn hifi_combination(
+    set: &CaseSet,
+    comfort: Comfort,
+) -> Result<(Combination, Vec<Criteria>)> {
     let datums = datums_on(set, &case_hifis(set, comfort)?)?;
     Ok((
         Combination::new(set.combine, &datums, &set.probabilities())?,
