@@ -9,7 +9,7 @@
 import { extent } from './planezoom.js';
 
 /** The chart colours, #rrggbb. */
-export const COL = {
+const COL = {
   cloud: '#78a0d2',
   stm: '#c2410c',
   nsga: '#15803d',
@@ -91,17 +91,6 @@ export function cloudPoints(cloud, front, ratio, step) {
 export function adaptivePlane(a) {
   return a && a.report.history.length ? { front: a.front, pick: a.report.history[a.report.history.length - 1].pick, was: a.was } : null;
 }
-
-/** The legend entries of the objective plane (the page draws them as a key above it). */
-export const PLANE_KEY = [
-  { key: 'cloud', label: 'feasible designs (surrogate)' },
-  { key: 'stm', label: 'Pareto front (STM)' },
-  { key: 'nsga', label: 'NSGA-II front' },
-  { key: 'pick', label: 'min-max pick' },
-  { key: 'recheck', label: 'pick re-checked (HiFi)' },
-  { key: 'datum', label: 'datum' },
-  { key: 'design', label: 'current design' },
-];
 
 /**
  * The objective plane (BAcc against DTL, on the surrogate; with Wk comfort, `front.comfort`
@@ -324,7 +313,7 @@ export function adaptiveSpec(a, { width = 420, height = 220, title = '', legend 
 const ISO_N0 = 0.1;
 const ISO_BAND = [0.011, 2.83];
 /** ISO 8608's class boundaries Gd(n0), m³: the geometric means of the class centres 16e-6 4^k (A|B .. G|H). */
-export const ISO_BOUNDARIES = [1, 2, 3, 4, 5, 6, 7].map((k) => 16e-6 * 2 * 4 ** (k - 1));
+const ISO_BOUNDARIES = [1, 2, 3, 4, 5, 6, 7].map((k) => 16e-6 * 2 * 4 ** (k - 1));
 
 /**
  * A measured road's displacement PSD (`d`: the core's `describeRoad`, as `ridelab road

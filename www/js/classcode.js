@@ -21,7 +21,7 @@
 // `RL<n>-...` on the line is read. Pure functions, no DOM: the tests import this module.
 
 /** The version this page writes and reads. */
-export const CODE_VERSION = 1;
+const CODE_VERSION = 1;
 
 /** The most codes one Apply reads; the rest are refused, each named. */
 export const MAX_CODES = 60;
@@ -30,7 +30,7 @@ export const MAX_CODES = 60;
 const RATE_RANGE = [1, 9_999_999];
 
 /** FNV-1a (32 bit) of the UTF-16 code units of `text`, an unsigned integer. */
-export function fnv1a(text) {
+function fnv1a(text) {
   let h = 0x811c9dc5;
   for (let i = 0; i < text.length; i++) {
     h ^= text.charCodeAt(i);

@@ -27,7 +27,7 @@ import { fmt, fmtInput } from './format.js';
  * study `fr` (js/compute.js `scenario().front`): `{distance: [d_bacc, d_dtl], score}`,
  * or null when `fr` has no front or a number is not finite.
  */
-export function minMaxScore(fr, c) {
+function minMaxScore(fr, c) {
   if (!fr || fr.error || !fr.study || !fr.study.front.length) return null;
   const datum = fr.datum;
   const ratio = (p) => [p.bacc / datum.bacc, p.dtl / datum.dtl];
@@ -53,7 +53,7 @@ const finite = (c) => !!c && ['bacc', 'dtl', 'sws'].every((k) => Number.isFinite
  * ranked with a warning, `{line, text, reason, ranked}` (`ranked`: true for a design
  * ranked with a note). Never throws.
  */
-export async function evaluateClass(compute, s, desc, fr, { codes, problems: unread }) {
+async function evaluateClass(compute, s, desc, fr, { codes, problems: unread }) {
   const here = scenarioHash(scenarioKey(s));
   const problems = [...unread];
   const rows = [];
@@ -136,7 +136,7 @@ const COLUMNS = [
  * (m, or null) is what "feasible" checks. A row with a note has it in a row of its own
  * beneath. Numeric cells carry SI in `data-value`; the criteria are the HiFi full car's.
  */
-export function renderClassTable(table, rows, pick, swsLimit) {
+function renderClassTable(table, rows, pick, swsLimit) {
   table.replaceChildren();
   table.hidden = rows.length === 0;
   if (!rows.length) return;

@@ -3,7 +3,7 @@
 // colour bar and of the exported charts.
 
 /** The colour maps the page uses: absolute values (two palettes) and % changes. */
-export const TABLES = ['viridis', 'cividis', 'diverging'];
+const TABLES = ['viridis', 'cividis', 'diverging'];
 
 /** `{viridis, cividis, diverging}`: each a Uint8Array of 768 bytes, from `colourTable(name)`. */
 export function loadTables(colourTable) {

@@ -15,17 +15,17 @@ export const GRID = { nx: 160, ny: 120 };
  * residue route makes a 160 x 120 HiFi map cost about 0.1 s in the worker. */
 export const HIFI_GRID = GRID;
 /** The surrogate's feasible set on the objective plane (about 7000 designs). */
-export const CLOUD_GRID = { nx: 96, ny: 72 };
+const CLOUD_GRID = { nx: 96, ny: 72 };
 /** Side of the HiFi grid the surrogate panel validates the fit on. */
 export const VALIDATION_LEVELS = 20;
 /** The adaptive loop's uncertainty map (cells; heavy worker, about 5000 estimates). */
-export const UNCERTAINTY_GRID = { nx: 80, ny: 60 };
+const UNCERTAINTY_GRID = { nx: 80, ny: 60 };
 /** The maps on a measured road (cells; heavy worker, 4 800 runs of the exact route with the road's filters). */
-export const ROAD_MAP_GRID = { nx: 80, ny: 60 };
+const ROAD_MAP_GRID = { nx: 80, ny: 60 };
 /** Frequencies of the FRF / PSD plots (log spaced, 0.1..100 Hz). */
-export const NFREQ = 240;
+const NFREQ = 240;
 /** The time panel's run: 10 s at 1 ms, every 10th sample kept (the seed and damper are the user's). */
-export const TIME_RUN = { duration: 10, dt: 0.001, f_min: 0.1, f_max: 200, decimate: 10 };
+const TIME_RUN = { duration: 10, dt: 0.001, f_min: 0.1, f_max: 200, decimate: 10 };
 
 /**
  * The model of the objective plane (its feasible set, front, pick and design marker) for

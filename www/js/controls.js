@@ -227,7 +227,7 @@ function setAttr(el, name, value) {
  * The state's pick rule as the Objectives tab shows it: `{rule: 'minmax' | 'knee' | 'asf',
  * weight}` (`weight`: the comfort weight W of `asf:W`, else null).
  */
-export function pickParts(pick) {
+function pickParts(pick) {
   const m = /^asf:(.*)$/.exec(pick || '');
   if (m) return { rule: 'asf', weight: Number(m[1]) };
   return { rule: pick === 'knee' ? 'knee' : 'minmax', weight: null };

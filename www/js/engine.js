@@ -17,7 +17,7 @@ export const FUNCTIONS = [
 ];
 
 /** The methods of the core's `Explorer` session: an engine call is `(method, state, ...args)`. */
-export const SESSION_METHODS = [
+const SESSION_METHODS = [
   'describe', 'analyse', 'readout', 'designStep', 'criteria', 'mapCriteria', 'maps', 'front', 'spectra', 'timeResponse', 'surrogateFit',
   'studyReport', 'fitRecord', 'robustFront',
 ];
@@ -27,7 +27,7 @@ export const SESSION_METHODS = [
  * thread's session adopts for a scenario with the same fit inputs instead of fitting again
  * (one fit per scenario change, issue #28). Resolves to null; the workers' module has it.
  */
-export const FIT_METHODS = ['offerFit'];
+const FIT_METHODS = ['offerFit'];
 
 /**
  * The adaptive HiFi loop's calls (issue #15), on the thread's one `AdaptiveRun` of the core
@@ -35,7 +35,7 @@ export const FIT_METHODS = ['offerFit'];
  * `adaptiveReport(state)`, `adaptiveUncertainty(state, nx, ny, levels)`. A step or report
  * for another scenario than the run's is refused.
  */
-export const ADAPTIVE_METHODS = ['adaptiveStart', 'adaptiveStep', 'adaptiveReport', 'adaptiveUncertainty'];
+const ADAPTIVE_METHODS = ['adaptiveStart', 'adaptiveStep', 'adaptiveReport', 'adaptiveUncertainty'];
 
 /**
  * The GPU path's calls (issue #13), on a host made with `{gpu: mode}` (the heavy worker):
@@ -44,7 +44,7 @@ export const ADAPTIVE_METHODS = ['adaptiveStart', 'adaptiveStep', 'adaptiveRepor
  * map with the GPU's HiFi values when there is an adapter, else the CPU's; either way
  * with `compute` ("gpu" or "cpu") and `gpu` (the status) set.
  */
-export const GPU_METHODS = ['gpuStatus'];
+const GPU_METHODS = ['gpuStatus'];
 
 /**
  * `hifiFront(state)`: the HiFi's own front and the plane's front judged on it
@@ -52,7 +52,7 @@ export const GPU_METHODS = ['gpuStatus'];
  * with the GPU path open and the unweighted BAcc, STM's starting grid comes from the GPU
  * (`compute: "gpu"`, and `gpu` the status); a GPU failure leaves it to the CPU.
  */
-export const FRONT_METHODS = ['hifiFront'];
+const FRONT_METHODS = ['hifiFront'];
 
 /** The largest |`100 (predicted / hifi - 1)`| of BAcc, DTL and SWS, %: a pick's HiFi re-check error. */
 function recheckError(predicted, hifi) {

@@ -56,12 +56,12 @@ export function frontCsv(front, nsga, adaptive = null) {
 }
 
 /** The PNG of a canvas. */
-export function pngOf(canvas) {
+function pngOf(canvas) {
   return new Promise((resolve, reject) => canvas.toBlob((b) => (b ? resolve(b) : reject(new Error('the canvas made no PNG'))), 'image/png'));
 }
 
 /** Slide size: charts are laid out at this many logical px wide and drawn at `SLIDE_SCALE` px each. */
-export const SLIDE = { width: 800, height: 500, scale: 2 };
+const SLIDE = { width: 800, height: 500, scale: 2 };
 
 /**
  * A chart of `exportCharts` (js/svgexport.js) as a slide-size PNG (1600 px wide): line

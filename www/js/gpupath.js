@@ -7,9 +7,9 @@
 // request and each map have a time limit, past which the CPU path takes over.
 
 /** ms the adapter and device request may take before the page stays on the CPU. */
-export const GPU_REQUEST_MS = 15_000;
+const GPU_REQUEST_MS = 15_000;
 /** ms one GPU map may take before the CPU draws it instead (a software adapter is slow). */
-export const GPU_MAP_MS = 120_000;
+const GPU_MAP_MS = 120_000;
 
 /** `promise`, or a rejection naming `what` after `ms`. */
 function within(promise, ms, what) {

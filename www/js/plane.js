@@ -21,7 +21,7 @@ import { paintClass } from './classmarks.js';
 const CLOUD_FILL = `rgba(120, 160, 210, ${CLOUD_OPACITY})`;
 
 /** How long the adaptive loop's front and pick take to move to their new place, ms. */
-export const MOVE_MS = 400;
+const MOVE_MS = 400;
 
 /** True when the reader asked for less motion (the plane then jumps). */
 function reducedMotion() {
@@ -33,7 +33,7 @@ function reducedMotion() {
  * of its length, the length measured in units of `scale` = `[BAcc, DTL]` so both axes
  * count alike: `[[bacc, dtl]]`, first and last points kept.
  */
-export function resampleFront(front, m, scale) {
+function resampleFront(front, m, scale) {
   const pts = front.map((p) => [p.bacc, p.dtl]);
   const s = [0];
   for (let i = 1; i < pts.length; i++) {
@@ -393,7 +393,7 @@ export function ruleLabel(rule) {
 }
 
 /** The comfort axis of a front (`fr.comfort`): its short name. */
-export function comfortName(fr) {
+function comfortName(fr) {
   return fr.comfort === 'wk' ? 'BAcc (Wk)' : 'BAcc';
 }
 
@@ -410,7 +410,7 @@ export function frontPointText(fr, k) {
 }
 
 /** The pick of `fr` in words: its rule, design and pseudo-weights. */
-export function pickText(fr) {
+function pickText(fr) {
   const p = fr.study.pick;
   return `${ruleLabel(p.rule)}: Ks ${fmt(p.ks / 1000, 4)} kN/m, Cs ${fmt(p.cs / 1000, 4)} kNs/m; ${weightsText(p.pseudo_weights)}.`;
 }

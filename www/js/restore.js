@@ -45,7 +45,7 @@ async function unreadable(check, s, defaults) {
  * Resolves `{state, reset}` (`reset`: the keys put back); rejects with the core's failure
  * when a refusal names no field of the state.
  */
-export async function usableState(check, s, defaults, problems, label = (k) => k) {
+async function usableState(check, s, defaults, problems, label = (k) => k) {
   const state = { ...s };
   const reset = new Set();
   for (let tries = 0; tries < MAX_TRIES; tries++) {

@@ -16,7 +16,7 @@ import { plainWords } from './controls.js';
 /** The road classes an operating point may take (ISO 8608). */
 const CLASSES = ['A', 'B', 'C', 'D', 'E', 'F', 'G', 'H'];
 /** Most cases (load cases x operating points), as the core's `robust::MAX_CASES`. */
-export const MAX_CASES = 16;
+const MAX_CASES = 16;
 
 /** "worst of 6 cases" / "weighted mean of 6 cases" (`desc`: the core's `describe`). */
 function ruleText(desc) {
@@ -73,7 +73,7 @@ function cellOf(message) {
 }
 
 /** The cases file's text (compact JSON) of the tables' `{load, operating, combine}`. */
-export function casesText({ load, operating, combine }) {
+function casesText({ load, operating, combine }) {
   const out = {};
   if (load.length) out.load_cases = load;
   if (operating.length) out.operating = operating;

@@ -12,7 +12,7 @@ export const STEPS = {
  * `value` moved by `n` steps of `step` on the grid through `datum` (an off-grid value
  * goes to the next grid point that way first), within `[lo, hi]`.
  */
-export function stepValue(value, datum, step, n, lo, hi) {
+function stepValue(value, datum, step, n, lo, hi) {
   const u = (value - datum) / step;
   const eps = 1e-9;
   const k = n > 0 ? Math.floor(u + eps) + n : Math.ceil(u - eps) + n;

@@ -5,7 +5,7 @@
 import { fmt } from './format.js';
 
 /** Plans offered in the picker: Audze-Eglais and full-factorial grids. */
-export const PLANS = ['ae:3', 'ae:4', 'ae:5', 'ae:6', 'ae:8', 'ae:10', 'ae:12', 'ae:15', 'ae:20',
+const PLANS = ['ae:3', 'ae:4', 'ae:5', 'ae:6', 'ae:8', 'ae:10', 'ae:12', 'ae:15', 'ae:20',
   'grid:2', 'grid:3', 'grid:4', 'grid:5', 'grid:7', 'grid:10'];
 
 const PLAN_WORDS = (p) => {
@@ -30,7 +30,7 @@ const WORDS = {
 };
 
 /** A plain-language label of a surrogate name (`rba-mul-rbf-mq-per-criterion`, ...), its code name after it. */
-export function surrogateLabel(name) {
+function surrogateLabel(name) {
   const per = name.endsWith('-per-criterion');
   const base = per ? name.slice(0, -'-per-criterion'.length) : name;
   const [kind, ...rest] = base.split('-');

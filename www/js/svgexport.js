@@ -12,7 +12,7 @@ const MAP_MODELS = { lofi: 'LoFi', hifi: 'HiFi', surrogate: 'surrogate', error: 
 /**
  * The car's name for titles: a custom car's own `name` (its JSON), else the preset's id (`sedan`).
  */
-export function carName(state) {
+function carName(state) {
   if (state.car === 'custom' && state.carJson) {
     try {
       const n = JSON.parse(state.carJson).name;
@@ -42,13 +42,13 @@ export function objectiveChart({ state, front, nsga, cloud, design, ratio, adapt
 }
 
 /** One FRF (`which` = 'frf') or PSD ('psd') chart of output `key`, with a title. */
-export function spectraChart({ state, spectra }, which = 'frf', key = 'bacc', { width = 640, height = 440 } = {}) {
+function spectraChart({ state, spectra }, which = 'frf', key = 'bacc', { width = 640, height = 440 } = {}) {
   const title = `${output(key).name} ${which === 'frf' ? 'frequency response per metre of road displacement' : 'PSD'}: ${designText(state)}`;
   return spectraSpec(spectra, which, key, { width, height, title });
 }
 
 /** One output (`key`) of the time response, once it has been run, with a title. */
-export function timeChart({ state, time, timeLinear }, key = 'bacc', { width = 720, height = 340 } = {}) {
+function timeChart({ state, time, timeLinear }, key = 'bacc', { width = 720, height = 340 } = {}) {
   return timeSpec(time, key, { width, height, linear: timeLinear, title: `${output(key).name} time response: ${designText(state)}` });
 }
 
@@ -57,7 +57,7 @@ export function timeChart({ state, time, timeLinear }, key = 'bacc', { width = 7
  * the datum), colour range, contour levels (the screen's colour bar ticks), the
  * infeasible area, the markers with a legend, and a title naming the map's `model`.
  */
-export function mapChart(view, model, { width = 640, height = 480 } = {}) {
+function mapChart(view, model, { width = 640, height = 480 } = {}) {
   const d = view && view.data;
   if (!d) throw { message: 'no map to draw yet', field: 'map' };
   const markers = [];

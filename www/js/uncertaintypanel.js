@@ -94,7 +94,7 @@ export class UncertaintyPanel {
  * Spearman correlation with the true |error| on the HiFi grid, each number in an element
  * (`data-stat`) with its exact value in `data-value`.
  */
-export function captionParts(a, crit) {
+function captionParts(a, crit) {
   const u = a.uncertainty;
   const c = u.check;
   const k = crit.key;

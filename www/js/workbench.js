@@ -7,14 +7,11 @@
 
 const $ = (id) => document.getElementById(id);
 
-/** Is the drawer a column of the grid (the first set keeps its room) rather than over it? */
-export const WIDE = '(min-width: 1600px) and (min-height: 1000px)';
-
 /** What takes the focus in a panel: its controls, in document order. */
 const CONTROLS = 'input:not([type="hidden"]), select, textarea, button, a[href], summary, [tabindex]:not([tabindex="-1"])';
 
 /** The first enabled, visible control inside `el`, or null. */
-export function firstControl(el) {
+function firstControl(el) {
   return [...el.querySelectorAll(CONTROLS)].find((c) => !c.disabled && !c.closest('[hidden], [inert]') && c.getClientRects().length > 0) ?? null;
 }
 
