@@ -501,7 +501,8 @@ fn parse_header(header: &str, line: usize) -> Result<usize> {
 
 /// One cell as a finite number, or a refusal naming the column and row.
 fn number(cell: &str, column: &str, at: At) -> Result<f64> {
-    let shown: String = cell.chars().take(24).collect();
+    // The cell as the message shows it, made only for a message (a file has 10^5 cells).
+    let shown = || cell.chars().take(24).collect::<String>();
     if cell.is_empty() {
         return Err(RideError::field(column, format!("{at}: empty")));
     }
@@ -509,11 +510,11 @@ fn number(cell: &str, column: &str, at: At) -> Result<f64> {
         Ok(v) if v.is_finite() => Ok(v),
         Ok(_) => Err(RideError::field(
             column,
-            format!("{at}: '{shown}' is not a finite number"),
+            format!("{at}: '{}' is not a finite number", shown()),
         )),
         Err(_) => Err(RideError::field(
             column,
-            format!("{at}: '{shown}' is not a number"),
+            format!("{at}: '{}' is not a number", shown()),
         )),
     }
 }
