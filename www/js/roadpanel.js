@@ -115,7 +115,10 @@ export class RoadPanel {
       this.road = { name, bytes, desc };
       this.judged = { key: judgedOn(this.store.state), on };
       this.show();
-      (await this.studyView()).study(this.road, this.store.state);
+      const view = await this.studyView();
+      const st = this.store.state;
+      view.moveDesign({ ks: st.ks, cs: st.cs }, this.judged.key === judgedOn(st) ? this.judged.on : null);
+      view.study(this.road, st);
     } catch (e) {
       if (n !== this.asked) return;
       this.els.msg.textContent = `${name}: ${plainWords(e.message || e)}; ${this.keeps()}`;

@@ -113,10 +113,13 @@ export class RoadStudy {
 
   /** Moves the design marker: `design` `{ks, cs}`, `on` its judgement on the road (or null while it is computed). */
   moveDesign(design, on) {
+    const was = this.design && this.design.on;
     this.design = { ...design, on };
     if (!this.shown || this.els.box.hidden) return;
     this.markers();
-    this.drawFront();
+    // The front shows the design's judgement: redrawn when that changes, not on every
+    // slider step (the judgement comes once the slider rests).
+    if (on !== was) this.drawFront();
   }
 
   /** The shown map and front at their size (after the panel opened, a resize). */
