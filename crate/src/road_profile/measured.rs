@@ -323,6 +323,20 @@ impl DesignOnRoad {
     ) -> Result<DesignOnRoad> {
         crate::domain::SPEED.check("speed", speed)?;
         let shaped = ShapedRoad::from_profile(profile, speed, tracks).map_err(road_error)?;
+        DesignOnRoad::on_shaped(datum, ks, cs, &shaped, file, tracks)
+    }
+
+    /// [`DesignOnRoad::compute`] on the profile already shaped at its speed (`shaped`,
+    /// from the profile `file` with `tracks`): what the page asks again after a design
+    /// move, with the road it keeps; errors name `ks` or `cs`.
+    pub fn on_shaped(
+        datum: &Car,
+        ks: f64,
+        cs: f64,
+        shaped: &ShapedRoad,
+        file: &str,
+        tracks: ProfileTracks,
+    ) -> Result<DesignOnRoad> {
         datum.with_front(ks, cs)?;
         let (quarter, full) = (
             MeasuredModel::new(ModelKind::Quarter, datum, shaped.clone()),
@@ -342,7 +356,7 @@ impl DesignOnRoad {
             full_wk.evaluate(k0, c0)?.bacc,
         );
         Ok(DesignOnRoad {
-            road: MeasuredRoad::of(file, &shaped, tracks),
+            road: MeasuredRoad::of(file, shaped, tracks),
             quarter: on[0],
             full: on[1],
             datum_quarter: at_datum[0],

@@ -56,19 +56,10 @@ pub fn describe_road(bytes: &[u8]) -> Result<JsValue, JsValue> {
 #[wasm_bindgen(js_name = designOnRoad)]
 pub fn design_on_road(state: JsValue, bytes: &[u8], file: &str) -> Result<JsValue, JsValue> {
     let scenario = parse_state(state)?.scenario().map_err(js_error)?;
-    let p = profile(bytes)?;
-    let tracks = tracks_of(&p, &scenario);
+    let (road, tracks) = shaped(bytes, &scenario)?;
     let q = scenario.design.quarter();
-    let on = DesignOnRoad::compute(
-        &scenario.datum,
-        q.ks,
-        q.cs,
-        &p,
-        file,
-        scenario.road.speed,
-        tracks,
-    )
-    .map_err(road_js_error)?;
+    let on = DesignOnRoad::on_shaped(&scenario.datum, q.ks, q.cs, &road, file, tracks)
+        .map_err(road_js_error)?;
     to_js(&on)
 }
 
