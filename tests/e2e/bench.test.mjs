@@ -389,7 +389,7 @@ test('benchmark: a dropped road profile described, the design judged on it, its 
   figures.roadHifiMapMs = stats(map);
   figures.roadHifiFrontMs = stats(front);
   t.diagnostic(`road profile (3 km at 5 cm, one track): described p50 ${median(describe).toFixed(0)} ms, design and datum judged by both models p50 ${median(judge).toFixed(0)} ms, ` +
-    `the HiFi's 80 x 60 maps p50 ${median(map).toFixed(0)} ms and its STM front (48 517 runs) p50 ${median(front).toFixed(0)} ms (heavy worker)`);
+    `the HiFi's 80 x 60 maps p50 ${median(map).toFixed(0)} ms and its STM front (the plane's settings, 61 x 61 refined twice) p50 ${median(front).toFixed(0)} ms (heavy worker)`);
   assertClean(log);
   await context.close();
 });

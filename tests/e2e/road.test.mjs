@@ -200,7 +200,7 @@ async function studiedNow(page, model) {
   });
 }
 
-/** The page's maps and front on `file` equal `ridelab map` and `ridelab optimize --road FILE` (`model` 'quarter' or 'full') at the page's state `s`. */
+/** The page's maps and front on `file` equal `ridelab map` and `ridelab optimize --road FILE --grid 61 --levels 2` (`model` 'quarter' or 'full') at the page's state `s`. */
 function studySameAsCli({ map, front }, s, file, model) {
   const { nx, ny, ksValues: ks, csValues: cs } = map;
   const road = ['--car', s.car, '--road', file, '--speed', String(s.speed), '--tracks', s.tracks];
@@ -212,7 +212,8 @@ function studySameAsCli({ map, front }, s, file, model) {
   });
   assert.deepEqual(map.broken, want.feasibility.mask, 'the objectives\' mask');
   for (const c of ['bacc', 'dtl', 'sws']) close(map.datum[c], want.datum.criteria[c], `${model} map's datum ${c}`);
-  const opt = cli(['optimize', '--evaluator', model, ...road]);
+  // The objective plane's STM settings, as the page's road front uses them.
+  const opt = cli(['optimize', '--evaluator', model, ...road, '--grid', '61', '--levels', '2']);
   assert.equal(front.front.length, opt.front.length, 'front points');
   front.front.forEach((p, i) => {
     for (const c of ['ks', 'cs', 'bacc', 'dtl']) close(p[c], opt.front[i][c], `${model} front point ${i} ${c}`);

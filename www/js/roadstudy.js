@@ -3,7 +3,8 @@
 // profile (one shown at a time, the maps' own view, js/mapview.js, with the design
 // objectives' hatching against the datum on that road), computed as `ridelab map --road
 // FILE` computes them, and the front of comfort and road holding on that road with its
-// pick as `ridelab optimize --road FILE` finds it (the core's `roadMap` and `roadFront`,
+// pick as `ridelab optimize --road FILE --grid 61 --levels 2` finds it (the objective
+// plane's STM settings; the core's `roadMap` and `roadFront`,
 // heavy worker). They are computed again when the car, the speed, the tracks, the design
 // box, the objectives, the comfort measure or the pick rule change; a design move only
 // moves the markers. A click on the map moves the workbench's design.
@@ -199,7 +200,7 @@ export class RoadStudy {
     if (front) {
       const p = front.pick;
       const ch = p.change_percent;
-      text += ` Front: ${front.front.length} designs by STM (${front.evaluations} runs, as ridelab optimize --road); ` +
+      text += ` Front: ${front.front.length} designs by STM with the objective plane's settings (${front.evaluations} runs, as ridelab optimize --road --grid 61 --levels 2); ` +
         `${p.rule === 'minmax' ? 'min-max' : p.rule} pick Ks ${fmt(p.ks / 1000, 4)} kN/m, Cs ${fmt(p.cs / 1000, 4)} kNs/m: ` +
         `${sh.s.comfort === 'wk' ? 'BAcc Wk' : 'BAcc'} ${ch[0] >= 0 ? '+' : '−'}${Math.abs(ch[0]).toFixed(1)} %, DTL ${ch[1] >= 0 ? '+' : '−'}${Math.abs(ch[1]).toFixed(1)} % against the datum on the HiFi.`;
     }
