@@ -175,6 +175,28 @@ fn the_shipped_examples_are_the_stated_synthetic_roads() {
     }
 }
 
+/// A 3 km synthesised profile of ISO class C with ISO's waviness 2 (one track, seed 11):
+/// the dropped road whose judgement and maps are checked against the ISO class.
+fn class_c_profile() -> Profile {
+    synthesize(&Synthesis {
+        gd_n0: RoadClass::C.gd_n0(),
+        waviness: 2.0,
+        length: 3000.0,
+        seed: 11,
+        ..Synthesis::default()
+    })
+    .unwrap()
+}
+
+/// ISO class C at 20 m/s, correlated tracks: the road [`class_c_profile`] realises.
+fn class_c_at_20() -> crate::road::Road {
+    crate::road::Road {
+        class: RoadClass::C,
+        speed: 20.0,
+        tracks: crate::road::Tracks::Correlated,
+    }
+}
+
 /// The page's judgement of a design on a dropped profile: on a synthesised class C road of
 /// ISO's waviness 2 (3 km, one track, correlated), both models at a design and at the
 /// datum are within 10 % of the same car on the ISO class C road (the exact ISO route: an
@@ -187,15 +209,7 @@ fn a_design_on_a_dropped_road_agrees_with_its_iso_class() {
     use crate::analysis::{HiFi, LoFi};
     use crate::comfort::Comfort;
     use crate::evaluate::{Criteria, Evaluator};
-    use crate::road::{Road, Tracks};
-    let profile = synthesize(&Synthesis {
-        gd_n0: RoadClass::C.gd_n0(),
-        waviness: 2.0,
-        length: 3000.0,
-        seed: 11,
-        ..Synthesis::default()
-    })
-    .unwrap();
+    let profile = class_c_profile();
     let car = Car::datum();
     let (ks, cs) = (30e3, 2.5e3);
     let on = DesignOnRoad::compute(
@@ -208,11 +222,7 @@ fn a_design_on_a_dropped_road_agrees_with_its_iso_class() {
         ProfileTracks::Correlated,
     )
     .unwrap();
-    let road = Road {
-        class: RoadClass::C,
-        speed: 20.0,
-        tracks: Tracks::Correlated,
-    };
+    let road = class_c_at_20();
     let lofi = LoFi::new(&car, &road);
     let hifi = HiFi::new(&car, &road).unwrap();
     let close = |what: &str, got: &Criteria, want: Criteria| {
@@ -473,17 +483,9 @@ fn a_map_on_a_dropped_road_agrees_with_its_iso_class() {
     use crate::analysis::ModelKind;
     use crate::gpu::Compute;
     use crate::maps::{Axis, Grid};
-    use crate::road::{Road, Tracks};
     use crate::study::measured::measured_map;
     use crate::study::{map_report, MapSettings};
-    let profile = synthesize(&Synthesis {
-        gd_n0: RoadClass::C.gd_n0(),
-        waviness: 2.0,
-        length: 3000.0,
-        seed: 11,
-        ..Synthesis::default()
-    })
-    .unwrap();
+    let profile = class_c_profile();
     let car = Car::datum();
     let shaped = ShapedRoad::from_profile(&profile, 20.0, ProfileTracks::Correlated).unwrap();
     let settings = MapSettings {
@@ -494,11 +496,7 @@ fn a_map_on_a_dropped_road_agrees_with_its_iso_class() {
         .unwrap(),
         ..MapSettings::default()
     };
-    let road = Road {
-        class: RoadClass::C,
-        speed: 20.0,
-        tracks: Tracks::Correlated,
-    };
+    let road = class_c_at_20();
     let got = measured_map(
         ModelKind::Full,
         &car,
