@@ -10,7 +10,7 @@ use crate::error::{parse_choice, Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::model::Mode;
 use crate::model::{antisymmetric_half, full_car, quarter_car, symmetric_half, LinearModel};
-use crate::road::{Road, Tracks};
+use crate::road::{Road, RoadScenario, Tracks};
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicU64, Ordering};
 use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
@@ -537,8 +537,8 @@ pub struct Report {
     pub model: ModelKind,
     /// Car name.
     pub car: String,
-    /// Road scenario.
-    pub road: Road,
+    /// The road: an ISO 8608 class (JSON as [`Road`]) or a measured profile.
+    pub road: RoadScenario,
     /// Front spring rate, N/m.
     pub ks: f64,
     /// Front damper rate, N s/m.
@@ -559,16 +559,20 @@ pub struct Report {
     pub dtl_relative: f64,
     /// Which route gave `bacc`, `dtl`, `sws`: "exact" or "spectral".
     pub route: &'static str,
-    /// The frequency route's values, for comparison.
-    pub spectral: Criteria,
+    /// The frequency route's values, for comparison (always on an ISO road; left out of
+    /// the JSON where the check was not made: a slider step on a measured road).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spectral: Option<Criteria>,
     /// Largest relative difference between the exact and the frequency route; `None`
     /// (left out of the JSON) when the frequency route is the only one (road warp), so
     /// that nothing reads as a check that was not made.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub route_difference: Option<f64>,
     /// The frequency route's own error estimate relative to the variance (at most its
-    /// tolerance 1e-8 unless its panel splits ran out, as for some road warps).
-    pub spectral_error_estimate: f64,
+    /// tolerance 1e-8 unless its panel splits ran out, as for some road warps); left out
+    /// with `spectral`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spectral_error_estimate: Option<f64>,
     /// Lower band limit, Hz, when the response needs ISO 8608's low cutoff (road warp).
     pub low_cutoff_hz: Option<f64>,
     /// Natural frequencies and damping ratios.
@@ -609,7 +613,7 @@ pub fn report(kind: ModelKind, car: &Car, road: &Road) -> Result<Report> {
     Ok(Report {
         model: kind,
         car: car.name.clone(),
-        road: *road,
+        road: RoadScenario::Iso(*road),
         ks: q.ks,
         cs: q.cs,
         bacc: values.bacc,
@@ -619,9 +623,9 @@ pub fn report(kind: ModelKind, car: &Car, road: &Road) -> Result<Report> {
         comfort: comfort_label(bacc_wk),
         dtl_relative: values.dtl / car.front_wheel_load(),
         route,
-        spectral: spectral.criteria,
+        spectral: Some(spectral.criteria),
         route_difference: (route == "exact").then_some(diff),
-        spectral_error_estimate: spectral.relative_error,
+        spectral_error_estimate: Some(spectral.relative_error),
         low_cutoff_hz: spectral.low_cutoff_hz,
         modes: model.modes()?,
         body_bounce_hz: q.bounce_frequency(),

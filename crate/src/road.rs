@@ -165,6 +165,75 @@ impl Road {
     }
 }
 
+/// How a profile's tracks drive the wheels (see `crate::road_profile::ShapedRoad`): one track, or both with their coherence.
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Serialize,
+    Deserialize,
+    EnumIter,
+    EnumProperty,
+    IntoStaticStr,
+    VariantNames,
+)]
+#[serde(rename_all = "lowercase")]
+#[strum(serialize_all = "lowercase")]
+#[strum()]
+pub enum ProfileTracks {
+    /// Both tracks see the same profile.
+    Correlated,
+    /// The tracks are independent.
+    Independent,
+    /// Two measured tracks, their coherence kept (sum and difference sources).
+    Measured,
+}
+
+impl std::str::FromStr for ProfileTracks {
+    type Err = RideError;
+    fn from_str(s: &str) -> Result<ProfileTracks> {
+        parse_choice("tracks", s)
+    }
+}
+
+/// What a report says of the measured road it was computed on (JSON `road`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MeasuredRoad {
+    /// The profile file as given.
+    pub file: String,
+    /// Speed, m/s.
+    pub speed: f64,
+    /// How its tracks drive the wheels.
+    pub tracks: ProfileTracks,
+    /// Temporal band where the measured PSD is used, Hz.
+    pub band_hz: [f64; 2],
+    /// The shaping filters' largest relative PSD error over the band, -.
+    pub fit_error: f64,
+}
+
+/// The road of a report: an ISO 8608 class (JSON as [`Road`], unchanged) or a measured
+/// profile.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum RoadScenario {
+    /// An ISO 8608 class at a speed.
+    Iso(Road),
+    /// A measured profile at a speed.
+    Measured(MeasuredRoad),
+}
+
+impl RoadScenario {
+    /// In words: "class B at 20 m/s" or "road.csv at 20 m/s".
+    pub fn words(&self) -> String {
+        match self {
+            RoadScenario::Iso(r) => format!("class {:?} at {} m/s", r.class, r.speed),
+            RoadScenario::Measured(m) => format!("{} at {} m/s", m.file, m.speed),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

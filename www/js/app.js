@@ -81,7 +81,7 @@ function numberField(controls, store, id, field, toState) {
 
 /** "sedan-B-20ms" ("my-van-B-20ms" for a custom car named "My van"): the stem of export file names. */
 function stamp(state) {
-  return `${carSlug(state)}-${state.class}-${state.speed}ms`;
+  return `${carSlug(state)}-${state.roadProfile ? 'measured' : state.class}-${state.speed}ms`;
 }
 
 function buildSelects(store) {
@@ -129,7 +129,41 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
   numberField(controls, st, 'speed', 'speed', (v) => ctl.changeScenario({ speed: v }, 'speed'));
   numberField(controls, st, 'sws-limit', 'swsLimit', (v) => ctl.changeScenario({ swsLimit: v / 1000 }, 'swsLimit'));
   $('sws-range').addEventListener('input', (ev) => ctl.dragSwsLimit(Number(ev.target.value)));
-  $('class').addEventListener('change', (ev) => ctl.changeScenario({ class: ev.target.value }, 'class'));
+  $('class').addEventListener('change', (ev) => {
+    const v = ev.target.value;
+    if (v === 'measured') measuredRoad(ui.road.road);
+    else ctl.changeScenario({ class: v, roadProfile: null }, 'class');
+  });
+  /**
+   * The road menu on the road panel's `road` (`{name, bytes}`): registered on every thread,
+   * then the workbench's state on it; a road the threads refuse keeps the last good state.
+   */
+  const measuredRoad = async (road) => {
+    let key;
+    try {
+      key = await compute.useRoad(road.bytes, road.name);
+    } catch (e) {
+      controls.setMsg('class', `${road.name}: ${plainWords(e.message || e)}`);
+      controls.sync(st.state, st.desc, st.view);
+      return;
+    }
+    await ctl.changeScenario({ roadProfile: key, cases: null, case: null }, 'class', {
+      note: `The workbench is on the measured road ${road.name} at ${fmt(st.state.speed, 3)} m/s: its maps, surrogate, objective plane, HiFi front and readout; the spectra, time response, adaptive loop, study report and load cases need an ISO class.`,
+    });
+  };
+  /** A road read by the road panel: the road menu's last entry; the workbench follows a new file when it is on the last one. */
+  ui.onRoad = (road) => {
+    const cls = $('class');
+    let opt = cls.querySelector('option[value="measured"]');
+    if (!opt) {
+      opt = document.createElement('option');
+      opt.value = 'measured';
+      cls.append(opt);
+    }
+    opt.textContent = `Measured: ${road.name}`;
+    opt.title = `The road profile ${road.name} (Car & road tab), shaped at the road speed`;
+    if (st.state.roadProfile) measuredRoad(road);
+  };
   $('tracks').addEventListener('change', (ev) => ctl.changeScenario({ tracks: ev.target.value }, 'tracks'));
   const moved = (label, ks, cs) => `The design moved to ${label}'s own front (its datum): Ks ${fmt(ks / 1000, 4)} kN/m, Cs ${fmt(cs / 1000, 4)} kNs/m.`;
   $('car').addEventListener('change', (ev) => {
@@ -595,6 +629,7 @@ async function main() {
       objectives: store.objectives,
     },
     look: () => ({ palette: store.view.palette, tables: ui.tables }),
+    onRoad: (road) => ui.onRoad(road),
   });
   $('tab-car').addEventListener('click', () => requestAnimationFrame(() => ui.road.redraw()));
   controller.onViewsChanged = () => {

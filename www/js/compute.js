@@ -284,6 +284,17 @@ export class Compute {
     return this.heavy.call('adaptiveUncertainty', s, UNCERTAINTY_GRID.nx, UNCERTAINTY_GRID.ny, VALIDATION_LEVELS);
   }
 
+  /**
+   * Registers the road profile `bytes` (named `file`) on every thread for the road menu;
+   * resolves to its key, the state's `roadProfile` that puts the workbench on it (the
+   * core shapes it at the state's speed and tracks). Rejects with `{message, field: 'road'}`.
+   */
+  async useRoad(bytes, file) {
+    const engines = [...new Set([this.main, this.hifi, this.heavy])];
+    const keys = await Promise.all(engines.map((e) => e.call('useRoad', bytes, file)));
+    return keys[0];
+  }
+
   /** A road profile file's bytes described (`ridelab road FILE --json`; heavy worker). */
   describeRoad(bytes) {
     return this.heavy.call('describeRoad', bytes);

@@ -141,7 +141,8 @@ export class Controller {
       const t0 = performance.now();
       const st = this.store;
       const patch = typeof patchOrFn === 'function' ? patchOrFn() : patchOrFn;
-      const s = { ...st.state, ...patch };
+      // A class chosen (the road menu, a lesson step, a class code) leaves the measured road.
+      const s = { ...st.state, ...('class' in patch && !('roadProfile' in patch) ? { roadProfile: null } : {}), ...patch };
       let r;
       try {
         r = await this.compute.scenario(s);
@@ -560,6 +561,8 @@ export class Controller {
         })
         .catch((e) => {
           st.spectraKey = '';
+          st.spectra = null;
+          this.render.spectra(s);
           this.render.spectraStatus(`Spectra failed: ${e.message || e}`);
         })
         .finally(() => this.pending--);

@@ -157,7 +157,8 @@ export class Controls {
     this.syncDesign(s, desc);
     put('speed', 'speed', fmtInput(s.speed, 3));
     $('speed-kmh').textContent = `(${fmt(s.speed * 3.6, 3)} km/h)`;
-    setValue($('class'), s.class);
+    // A measured road (the road panel's, `roadProfile`) is the road menu's last entry.
+    setValue($('class'), s.roadProfile ? 'measured' : s.class);
     setValue($('tracks'), s.tracks);
     put('swsLimit', 'sws-limit', s.swsLimit == null ? '' : fmtInput(s.swsLimit * 1000, 4));
     // The SWS slider spans 1 to 20 mm (and the limit, if outside); no limit: its top.

@@ -13,8 +13,11 @@ import { GpuPath } from './gpupath.js';
 export const FUNCTIONS = [
   'version', 'defaultState', 'presets', 'roadClasses', 'parseCar', 'checkState', 'surrogates',
   'objectives', 'stateKeys', 'lineChartSvg', 'mapChartSvg', 'describeRoad', 'designOnRoad',
-  'roadMap', 'roadFront',
+  'roadMap', 'roadFront', 'useRoad',
 ];
+
+/** Calls a restarted worker is given again before the requests it held: the profiles registered for the road menu. */
+const STICKY = ['useRoad'];
 
 /** The methods of the core's `Explorer` session: an engine call is `(method, state, ...args)`. */
 const SESSION_METHODS = [
@@ -123,7 +126,8 @@ export class Host {
     this.wasmCalls++;
     if (FUNCTIONS.includes(method)) return this.api[method](...args);
     // The robust maps' cases are evaluated on the CPU (as `ridelab map --cases`).
-    if (this.gpu && method === 'maps' && ['hifi', 'error'].includes(args[1]) && !args[0].cases) return this.gpuMaps(...args);
+    // So is a measured road's (the GPU kernel is the ISO road's).
+    if (this.gpu && method === 'maps' && ['hifi', 'error'].includes(args[1]) && !args[0].cases && !args[0].roadProfile) return this.gpuMaps(...args);
     if (this.gpu && method === 'gpuStatus') return this.gpu.open().then(() => this.gpu.status());
     // The session's surrogate fits so far (tests read it; 0 before the first state).
     if (method === 'fitCount') return this.explorer ? this.explorer.fitCount() : 0;
@@ -167,8 +171,9 @@ export class Host {
     const t0 = performance.now();
     let values;
     const key = `${scenarioKey(state)}|stm`;
-    // The GPU grid is one case's unweighted BAcc: Wk comfort and robust cases run on the CPU.
-    if (this.gpu && (state.comfort || 'bacc') === 'bacc' && !state.cases && this.gpuFailedKey !== key) {
+    // The GPU grid is one case's unweighted BAcc on an ISO road: Wk comfort, robust cases
+    // and a measured road run on the CPU.
+    if (this.gpu && (state.comfort || 'bacc') === 'bacc' && !state.cases && !state.roadProfile && this.gpuFailedKey !== key) {
       const maps = await this.gpu.open();
       if (maps) {
         try {
@@ -319,7 +324,10 @@ class MainEngine {
       this.host.offerFit(args[0]);
       return this.onDemand ? this.onDemand.then((host) => host.run(method, args)) : Promise.resolve(null);
     }
-    if (!answers(this.host.api, method) && this.loadOnDemand) {
+    // A state on a measured road (`roadProfile`): the first-screen module has no shaped
+    // routes, so the on-demand host answers it (with the profiles registered there).
+    const measured = args[0] !== null && typeof args[0] === 'object' && Boolean(args[0].roadProfile);
+    if ((measured || !answers(this.host.api, method)) && this.loadOnDemand) {
       return this.full().then((host) => host.run(method, args)).catch((e) => Promise.reject(toFailure(e)));
     }
     try {
@@ -353,6 +361,8 @@ class WorkerEngine {
     this.restarts = 0;
     /** Why the worker is given up (after MAX_RESTARTS), or null. */
     this.dead = null;
+    /** The STICKY calls sent so far (their messages), by their arguments' identity. */
+    this.sticky = [];
     this.attach(make());
   }
 
@@ -391,6 +401,8 @@ class WorkerEngine {
     }
     this.restarts++;
     this.attach(this.make());
+    // Its fresh core has no profiles: they are registered again first (answers ignored).
+    for (const msg of this.sticky) this.worker.postMessage({ ...msg, id: 0 });
     let retried = 0;
     let failed = 0;
     for (const [id, p] of [...this.pending]) {
@@ -411,6 +423,7 @@ class WorkerEngine {
     if (this.dead) return Promise.reject({ message: this.dead, field: '' });
     const id = this.next++;
     const msg = { id, method, args };
+    if (STICKY.includes(method)) this.sticky = [...this.sticky.filter((m) => m.args[1] !== args[1]), msg].slice(-4);
     return new Promise((resolve, reject) => {
       this.pending.set(id, { resolve, reject, msg, sends: 1 });
       this.worker.postMessage(msg);

@@ -12,6 +12,15 @@ export function fmt(v, sig = 4) {
 }
 
 /** A value for an input box: up to `dec` decimals, trailing zeros dropped. */
+/**
+ * The road of state `s` in words: "class B at 20 m/s, correlated tracks", or on a measured
+ * road (the road menu's, `roadProfile` "<file>#<hash>") "the measured road slab.csv at 20 m/s".
+ */
+export function roadWords(s) {
+  if (s.roadProfile) return `the measured road ${s.roadProfile.replace(/#[0-9a-f]+$/, '')} at ${fmtInput(s.speed, 3)} m/s`;
+  return `class ${s.class} at ${fmtInput(s.speed, 3)} m/s, ${s.tracks} tracks`;
+}
+
 export function fmtInput(v, dec = 3) {
   if (!Number.isFinite(v)) return '';
   return String(Number(v.toFixed(dec)));

@@ -10,7 +10,7 @@ import { renderMetrics, tuningText, renderAdaptive, proposalText } from './surro
 import { adaptivePlane, adaptiveSpec } from './chartspecs.js';
 import { MODEL_NAMES, datumStateOf, fitKeyOf, keyOf } from './store.js';
 import { GRID } from './compute.js';
-import { fmt, fmtInput, fmtPct, inPageUnits } from './format.js';
+import { fmt, fmtInput, fmtPct, inPageUnits, roadWords } from './format.js';
 import { pathText } from './gpupath.js';
 import { currentHifiFront, hifiFrontLine, hifiFrontTitle, renderHifiFront } from './hififront.js';
 import { renderCasePicks, robustMapLabel, robustPlaneLabel } from './robustpanel.js';
@@ -227,7 +227,7 @@ export class Render {
     const { state } = st;
     const model = st.view.model;
     const rl = robustMapLabel(state, st.desc, model);
-    const road = rl ? (rl.startsWith('case ') ? rl : `every case, ${rl}`) : `class ${state.class} at ${fmtInput(state.speed, 3)} m/s, ${state.tracks} tracks`;
+    const road = rl ? (rl.startsWith('case ') ? rl : `every case, ${rl}`) : roadWords(state);
     const maps = shown.maps;
     const n = maps.nx * maps.ny;
     const who = `(${MODEL_NAMES[model === 'error' ? 'hifi' : model]}${maps.nx !== GRID.nx ? `, ${maps.nx} × ${maps.ny} grid` : ''})`;

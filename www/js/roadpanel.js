@@ -40,10 +40,13 @@ export class RoadPanel {
    * `els`: `{box, file, msg, summary, canvas, table, notes, study}` (`study`: RoadStudy's
    * elements); `store` (the state), `compute` (js/compute.js: `describeRoad`,
    * `designOnRoad`, `roadMap`, `roadFront` in the heavy worker), `hooks` (the maps'
-   * `{onPick, onKey, contours, objectives}`) and `look()` (the maps' `{palette, tables}`).
+   * `{onPick, onKey, contours, objectives}`), `look()` (the maps' `{palette, tables}`) and
+   * `onRoad(road)`, told of each road read (`{name, bytes, desc}`).
    */
-  constructor(els, { store, compute, hooks, look }) {
+  constructor(els, { store, compute, hooks, look, onRoad = () => {} }) {
     this.els = els;
+    /** Called with the road after each file read well (the road menu offers it). */
+    this.onRoad = onRoad;
     this.store = store;
     this.compute = compute;
     this.plot = new Plot(els.canvas, { aspect: 0.6 });
@@ -115,6 +118,7 @@ export class RoadPanel {
       this.road = { name, bytes, desc };
       this.judged = { key: judgedOn(this.store.state), on };
       this.show();
+      this.onRoad(this.road);
       const view = await this.studyView();
       const st = this.store.state;
       view.moveDesign({ ks: st.ks, cs: st.cs }, this.judged.key === judgedOn(st) ? this.judged.on : null);

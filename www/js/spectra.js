@@ -41,7 +41,12 @@ export class SpectraPanel {
   draw(sp) {
     this.data = sp;
     this.dirty = false;
-    if (!sp) return;
+    if (!sp) {
+      // None for this design and road (the status says why): no earlier spectra stay drawn.
+      for (const { plot } of this.plots) plot.canvas.getContext('2d').clearRect(0, 0, plot.canvas.width, plot.canvas.height);
+      this.keyRoute.textContent = '';
+      return;
+    }
     this.keyRoute.textContent = sp.surrogateRoute;
     for (const { which, key, plot } of this.plots) {
       const spec = spectraSpec(sp, which, key, { legend: 'none' });

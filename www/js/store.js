@@ -200,6 +200,7 @@ export class Store {
 
   /** The session file's object: `{ridelab: "session", version, state, view, kept}`. */
   session() {
-    return { ridelab: 'session', version: 1, state: this.state, view: { ...this.view }, kept: this.keptDesigns() };
+    // A measured road's file is not kept (the road panel says so): the session keeps its class.
+    return { ridelab: 'session', version: 1, state: { ...this.state, roadProfile: null }, view: { ...this.view }, kept: this.keptDesigns() };
   }
 }

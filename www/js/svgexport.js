@@ -5,6 +5,7 @@
 // plain data; a failure rejects with `{message, field}` like every engine call.
 
 import { OUTPUTS, designText, objectiveSpec, output, spectraSpec, timeSpec } from './chartspecs.js';
+import { roadWords } from './format.js';
 
 /** The map models' names in titles. */
 const MAP_MODELS = { lofi: 'LoFi', hifi: 'HiFi', surrogate: 'surrogate', error: 'surrogate error vs HiFi' };
@@ -36,7 +37,7 @@ export function carSlug(state) {
  */
 export function objectiveChart({ state, front, nsga, cloud, design, ratio, adaptive = null, hifi = null }, { width = 720, height = 460 } = {}) {
   const title = front && !front.error
-    ? `Objective plane (surrogate ${front.study.evaluator}): ${carName(state)}, class ${state.class} at ${state.speed} m/s`
+    ? `Objective plane (surrogate ${front.study.evaluator}): ${carName(state)}, ${roadWords(state)}`
     : '';
   return objectiveSpec({ front, nsga, cloud, design, adaptive, hifi }, { ratio, width, height, title });
 }

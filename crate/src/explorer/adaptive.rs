@@ -66,6 +66,7 @@ impl PageLoop {
     /// `options.runs` is only recorded in the report (the page steps); the rest are
     /// checked, naming the field.
     pub fn new(s: &Scenario, options: AdaptiveOptions) -> Result<PageLoop> {
+        s.iso_only("The adaptive loop here")?;
         let setting = Setting::new(&s.datum, &s.road, &s.dbox)?;
         let hifi = s.hifi()?;
         let decision = Decision {

@@ -19,6 +19,8 @@ mod tests_criteria;
 #[cfg(test)]
 mod tests_hifi_front;
 #[cfg(test)]
+mod tests_measured;
+#[cfg(test)]
 mod tests_robust;
 
 pub use adaptive::{PageLoop, PageStep, PageUncertainty, MAX_CHECK_LEVELS};
@@ -26,6 +28,6 @@ pub use fields::ui_field;
 pub use hifi_front::{HifiFrontView, PlaneCheck};
 pub use maps::{MapModel, ModelMap};
 pub use session::{DesignStep, EvaluatorKind, Session};
-pub use state::{Scenario, State, FIT_FIELDS, REPORT_FIELDS, STATE_FIELDS};
+pub use state::{Measured, RoadResolver, Scenario, State, FIT_FIELDS, REPORT_FIELDS, STATE_FIELDS};
 pub use studies::{FrontModel, FrontResult, Spectra, TimeResult};
 pub use surrogate::{fit, fit_report, FitKey, FitRecord, FittedSurrogate};

@@ -17,7 +17,7 @@
 
 use super::hifi_front::{self, HifiFrontView};
 use super::maps::{error_values, MapModel, ModelMap};
-use super::state::{Scenario, State};
+use super::state::{RoadResolver, Scenario, State};
 use super::studies::{self, FrontModel, FrontResult, Spectra, TimeResult};
 use super::surrogate::{fit, fit_report, FitKey, FitRecord, FittedSurrogate};
 use crate::analysis::{readout, report, ModelKind, Readout, Report};
@@ -56,6 +56,9 @@ pub struct Session {
     /// ([`hifi_combination`]), once per [`FitKey`]: a slider move then costs one LoFi
     /// run per case.
     robust: Option<Rc<(Combination, Vec<Criteria>)>>,
+    /// What turns a state's `roadProfile` into its measured road (`None`: such a state
+    /// is refused naming `road`).
+    roads: Option<RoadResolver>,
 }
 
 /// One model's map values on one grid with one comfort measure, and the path that
@@ -73,7 +76,13 @@ struct Kept {
 impl Session {
     /// A session on `state`; errors name the field at fault.
     pub fn new(state: State) -> Result<Session> {
-        let scenario = state.scenario()?;
+        Session::with_roads(state, None)
+    }
+
+    /// A session on `state` whose `roadProfile`s `roads` resolves (the page's workers:
+    /// the profiles dropped on the page); errors name the field at fault.
+    pub fn with_roads(state: State, roads: Option<RoadResolver>) -> Result<Session> {
+        let scenario = state.scenario_after(None, roads.as_ref())?;
         Ok(Session {
             state,
             scenario,
@@ -82,6 +91,7 @@ impl Session {
             offered: None,
             kept: Vec::new(),
             robust: None,
+            roads,
         })
     }
 
@@ -101,7 +111,8 @@ impl Session {
         if state == self.state {
             return Ok(());
         }
-        let scenario = state.scenario_after(Some((&self.state, &self.scenario)))?;
+        let scenario =
+            state.scenario_after(Some((&self.state, &self.scenario)), self.roads.as_ref())?;
         if FitKey::of(&scenario) != FitKey::of(&self.scenario) {
             self.fit = None;
             self.kept.clear();
@@ -243,13 +254,23 @@ impl Session {
 
     /// The full analysis report of the design by one model (as `ridelab eval`).
     pub fn report(&self, kind: ModelKind) -> Result<Report> {
-        report(kind, &self.scenario.design, &self.scenario.road)
+        match &self.scenario.measured {
+            Some(m) => {
+                m.0.report(kind, &self.scenario.datum, &self.scenario.design, true)
+            }
+            None => report(kind, &self.scenario.design, &self.scenario.road),
+        }
     }
 
     /// The design's readout by one model: the report without its second route (see
     /// [`Readout`]), what the page shows while a slider moves.
     pub fn readout(&self, kind: ModelKind) -> Result<Readout> {
-        readout(kind, &self.scenario.design, &self.scenario.road)
+        match &self.scenario.measured {
+            Some(m) => {
+                m.0.readout(kind, &self.scenario.datum, &self.scenario.design)
+            }
+            None => readout(kind, &self.scenario.design, &self.scenario.road),
+        }
     }
 
     /// What the page shows of a new design on a slider step, in one call: its LoFi
@@ -257,8 +278,15 @@ impl Session {
     /// `plane` (`None` when that is the surrogate) and with `with_hifi` its HiFi readout
     /// (`None` when that fails or is not finite: the HiFi worker's full report says why).
     /// Errors as the first of [`Self::report`] and [`Self::criteria`] to fail.
+    /// On a measured road the LoFi report leaves out its frequency-route check (its
+    /// adaptive quadrature on the raw PSD costs ten times the rest); the page's full
+    /// reports at a scenario change and the HiFi worker's make it.
     pub fn design_step(&mut self, plane: EvaluatorKind, with_hifi: bool) -> Result<DesignStep> {
-        let lofi = self.report(ModelKind::Quarter)?;
+        let s = &self.scenario;
+        let lofi = match &s.measured {
+            Some(m) => m.0.report(ModelKind::Quarter, &s.datum, &s.design, false)?,
+            None => self.report(ModelKind::Quarter)?,
+        };
         let surrogate = self.criteria(EvaluatorKind::Surrogate)?;
         let plane = match plane {
             EvaluatorKind::Surrogate => None,
@@ -418,21 +446,24 @@ impl Session {
             return Ok(Rc::clone(&k.values));
         }
         let s = &self.scenario;
-        let (car, road) = match case {
-            Some(k) => {
-                let c = &self.cases("map")?.cases[k];
-                (&c.car, &c.road)
-            }
-            None => (&s.datum, &s.road),
+        let loaded = match case {
+            Some(k) => Some(&self.cases("map")?.cases[k]),
+            None => None,
         };
+        let car = loaded.map_or(&s.datum, |c| &c.car);
         let at = (car.front.spring, car.front.damper);
+        // The scenario's car on its road (measured or not), or a case's loaded car and road.
+        let model_on = |kind: ModelKind| match loaded {
+            Some(c) => comfort.evaluator(kind, &c.car, &c.road),
+            None => s.evaluator_with(kind, comfort),
+        };
         let v = Rc::new(match model {
             MapModel::LoFi | MapModel::Robust => {
-                let e = comfort.evaluator(ModelKind::Quarter, car, road)?;
+                let e = model_on(ModelKind::Quarter)?;
                 Dcs::compute(&*e, grid, at, Scale::Absolute)?
             }
             MapModel::HiFi => {
-                let e = comfort.evaluator(ModelKind::Full, car, road)?;
+                let e = model_on(ModelKind::Full)?;
                 Dcs::compute(&*e, grid, at, Scale::Absolute)?
             }
             MapModel::Surrogate | MapModel::SurrogateError => {
@@ -478,6 +509,7 @@ impl Session {
     /// on that grid then show them (the datum's criteria stay the CPU HiFi's) until the
     /// car, road, box or surrogate change.
     pub fn keep_hifi_planes(&mut self, nx: usize, ny: usize, planes: &[f64]) -> Result<()> {
+        self.scenario.iso_only("the GPU path")?;
         let grid = Grid::cells(&self.scenario.dbox, nx, ny)?;
         let values = criteria_of_planes(planes, grid.len(), &format!("3 x {nx} x {ny}"))?;
         let given = HiFiGrid::from_values(self.scenario.hifi()?, grid, values, ComputePath::Gpu);
@@ -589,7 +621,10 @@ impl Session {
         }
         let n = studies::STM_GRID * studies::STM_GRID;
         let given = match grid_planes {
-            Some(p) => Some(criteria_of_planes(p, n, &format!("3 x {n}"))?),
+            Some(p) => {
+                self.scenario.iso_only("The GPU path")?;
+                Some(criteria_of_planes(p, n, &format!("3 x {n}"))?)
+            }
             None => None,
         };
         let (model, name, runs) = match self.scenario.comfort {
@@ -607,12 +642,14 @@ impl Session {
 
     /// FRFs and PSDs of the design by the LoFi, the HiFi and the surrogate.
     pub fn spectra(&mut self, nfreq: usize) -> Result<Spectra> {
+        self.scenario.iso_only("The FRF and PSD plot")?;
         let fit = self.surrogate()?;
         studies::spectra(&self.scenario, &fit, nfreq)
     }
 
     /// Seeded time responses of the design by both models (as `ridelab simulate`).
     pub fn time_response(&self, opt: &TimeOptions) -> Result<TimeResult> {
+        self.scenario.iso_only("The time response here")?;
         studies::time_response(&self.scenario, opt)
     }
 
@@ -634,6 +671,7 @@ impl Session {
     /// design box, objectives, surrogate and plan, seed 1; it takes seconds, so the page
     /// runs it in a worker).
     pub fn study_report(&self) -> Result<MethodReport> {
+        self.scenario.iso_only("The study report here")?;
         let s = &self.scenario;
         build_report(
             &ReportInputs {

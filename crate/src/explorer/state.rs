@@ -14,18 +14,22 @@ use crate::evaluate::Evaluator;
 use crate::optimize::PickRule;
 use crate::road::{Road, RoadClass, Tracks};
 use crate::robust::{CarFile, CaseSet};
+use crate::study::RoadSource;
 use crate::surrogate::{PlanSpec, SurrogateSpec};
 use crate::LoFi;
 use serde::{Deserialize, Serialize};
+use std::rc::Rc;
+use std::sync::Arc;
 
 /// The state fields a surrogate's fit and every map's values depend on (those of
 /// [`super::FitKey`]; the objectives only judge a map; the comfort measure fills the
 /// LoFi and HiFi maps' BAcc plane): two states equal in these fields have the same fit
 /// and maps (tested). The page keys its fits and maps by them.
-pub const FIT_FIELDS: [&str; 13] = [
+pub const FIT_FIELDS: [&str; 14] = [
     "car",
     "carJson",
     "class",
+    "roadProfile",
     "speed",
     "tracks",
     "ksMin",
@@ -40,15 +44,25 @@ pub const FIT_FIELDS: [&str; 13] = [
 
 /// The state fields a design's LoFi and HiFi reports depend on: the car, the design and
 /// the road. The page keys its HiFi readout by them.
-pub const REPORT_FIELDS: [&str; 7] = ["car", "carJson", "ks", "cs", "class", "speed", "tracks"];
-
-/// The JS names of the [`State`] fields.
-pub const STATE_FIELDS: [&str; 23] = [
+pub const REPORT_FIELDS: [&str; 8] = [
     "car",
     "carJson",
     "ks",
     "cs",
     "class",
+    "roadProfile",
+    "speed",
+    "tracks",
+];
+
+/// The JS names of the [`State`] fields.
+pub const STATE_FIELDS: [&str; 24] = [
+    "car",
+    "carJson",
+    "ks",
+    "cs",
+    "class",
+    "roadProfile",
     "speed",
     "tracks",
     "ksMin",
@@ -96,6 +110,11 @@ pub struct State {
     pub cs: f64,
     /// ISO 8608 class "A".."H".
     pub class: String,
+    /// A measured road in place of the class (#31): the key under which the caller
+    /// registered the profile (the page's `useRoad`), which the session's
+    /// [`RoadResolver`] shapes at the state's speed with its tracks. Absent: the class.
+    #[serde(default)]
+    pub road_profile: Option<String>,
     /// Vehicle speed, m/s.
     pub speed: f64,
     /// "correlated" or "independent".
@@ -172,6 +191,7 @@ impl Default for State {
             ks: car.front.spring,
             cs: car.front.damper,
             class: format!("{:?}", road.class),
+            road_profile: None,
             speed: road.speed,
             tracks: "correlated".into(),
             ks_min: Some(b.ks_min),
@@ -201,8 +221,10 @@ pub struct Scenario {
     pub datum: Car,
     /// The datum car with the front set to the state's design.
     pub design: Car,
-    /// The road.
+    /// The road: the ISO class, or with [`Scenario::measured`] its speed and tracks only.
     pub road: Road,
+    /// The measured road in place of the class (`None`: the class).
+    pub measured: Option<Measured>,
     /// The design box.
     pub dbox: DesignBox,
     /// The design objectives.
@@ -219,6 +241,21 @@ pub struct Scenario {
     pub cases: Option<CaseSet>,
     /// The case the LoFi and HiFi maps show (`None`: the robust maps).
     pub case: Option<usize>,
+}
+
+/// Turns a state's `roadProfile` key into the road at a speed (m/s) with the state's
+/// tracks, or an error naming `road` (the page's: the profiles `useRoad` registered).
+pub type RoadResolver = Rc<dyn Fn(&str, f64, Tracks) -> Result<Arc<dyn RoadSource>>>;
+
+/// A scenario's measured road; two are equal when their keys are (the same profile at
+/// the same speed with the same tracks).
+#[derive(Debug, Clone)]
+pub struct Measured(pub Arc<dyn RoadSource>);
+
+impl PartialEq for Measured {
+    fn eq(&self, other: &Measured) -> bool {
+        self.0.key() == other.0.key()
+    }
 }
 
 impl State {
@@ -372,15 +409,57 @@ impl State {
         }
     }
 
-    /// Everything at once; the first error names its field.
+    /// Everything at once; the first error names its field. A state with `roadProfile`
+    /// needs a resolver ([`State::scenario_on`]).
     pub fn scenario(&self) -> Result<Scenario> {
-        self.scenario_after(None)
+        self.scenario_after(None, None)
+    }
+
+    /// [`State::scenario`] with `roads` to resolve a `roadProfile`.
+    pub fn scenario_on(&self, roads: &RoadResolver) -> Result<Scenario> {
+        self.scenario_after(None, Some(roads))
+    }
+
+    /// The measured road of `roadProfile` at the road's speed and tracks (`None` without
+    /// one), re-using `previous`'s when those did not change; errors name `road` or
+    /// `cases` (a measured road is one scenario: the robust cases take ISO classes).
+    fn measured(
+        &self,
+        road: &Road,
+        previous: Option<(&State, &Scenario)>,
+        roads: Option<&RoadResolver>,
+    ) -> Result<Option<Measured>> {
+        let Some(key) = self.road_profile.as_deref() else {
+            return Ok(None);
+        };
+        if self.cases.is_some() {
+            return Err(RideError::field(
+                "cases",
+                "a measured road is one scenario: the robust cases take ISO classes (choose a class in the road menu)",
+            ));
+        }
+        if let Some((p, s)) = previous {
+            if p.road_profile == self.road_profile && s.road == *road && s.measured.is_some() {
+                return Ok(s.measured.clone());
+            }
+        }
+        let roads = roads.ok_or_else(|| {
+            RideError::field(
+                "road",
+                format!("the measured road '{key}' is not loaded here"),
+            )
+        })?;
+        Ok(Some(Measured(roads(key, road.speed, road.tracks)?)))
     }
 
     /// The scenario of this state, re-using the parts of `previous` (a state and its
     /// scenario) whose fields did not change: a slider move re-parses neither a custom
     /// car's file nor the surrogate's name. The first error names its field.
-    pub(crate) fn scenario_after(&self, previous: Option<(&State, &Scenario)>) -> Result<Scenario> {
+    pub(crate) fn scenario_after(
+        &self,
+        previous: Option<(&State, &Scenario)>,
+        roads: Option<&RoadResolver>,
+    ) -> Result<Scenario> {
         let datum = match previous {
             Some((p, s)) if p.car == self.car && p.car_json == self.car_json => s.datum.clone(),
             _ => self.datum_car()?,
@@ -393,6 +472,7 @@ impl State {
             }
             _ => self.road()?,
         };
+        let measured = self.measured(&road, previous, roads)?;
         let design = datum.with_front(self.ks, self.cs)?;
         let (surrogate, plan) = match previous {
             Some((p, s)) if p.surrogate == self.surrogate && p.plan == self.plan => {
@@ -419,6 +499,7 @@ impl State {
             datum,
             design,
             road,
+            measured,
             dbox,
             objectives: self.objectives()?,
             surrogate,
@@ -445,7 +526,35 @@ impl Scenario {
     /// The LoFi (`quarter`) or HiFi (`full`) evaluator of the datum car on the road with
     /// the scenario's comfort measure in the BAcc slot ([`Comfort::evaluator`]: with Wk,
     /// the exact Wk-weighted RMS body acceleration, m/s^2, as `ridelab map --comfort wk`).
+    /// On a measured road, that model there.
     pub fn evaluator(&self, model: ModelKind) -> Result<Box<dyn Evaluator + Sync>> {
-        self.comfort.evaluator(model, &self.datum, &self.road)
+        self.evaluator_with(model, self.comfort)
+    }
+
+    /// [`Scenario::evaluator`] with `comfort` in the BAcc slot.
+    pub fn evaluator_with(
+        &self,
+        model: ModelKind,
+        comfort: Comfort,
+    ) -> Result<Box<dyn Evaluator + Sync>> {
+        match &self.measured {
+            Some(m) => Ok(m.0.evaluator(model, &self.datum, comfort)),
+            None => comfort.evaluator(model, &self.datum, &self.road),
+        }
+    }
+
+    /// An error naming `road` when the scenario is on a measured road: `what` (a study
+    /// the page offers on ISO classes only) is refused there, with where to go instead.
+    pub fn iso_only(&self, what: &str) -> Result<()> {
+        match &self.measured {
+            Some(m) => Err(RideError::field(
+                "road",
+                format!(
+                    "{what} runs on an ISO 8608 class; on the measured road {} use the CLI's --road (choose a class in the road menu here)",
+                    m.0.summary().file
+                ),
+            )),
+            None => Ok(()),
+        }
     }
 }

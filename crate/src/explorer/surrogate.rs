@@ -7,10 +7,12 @@
 //! dragging a slider or the SWS limit reuses it.
 
 use super::state::Scenario;
+use crate::analysis::ModelKind;
 use crate::car::Car;
 use crate::comfort::Comfort;
 use crate::design::DesignBox;
 use crate::error::{Result, RideError};
+use crate::evaluate::Evaluator;
 use crate::optimize::Counted;
 use crate::road::Road;
 use crate::robust::CaseSet;
@@ -40,12 +42,15 @@ pub struct FittedSurrogate {
 #[derive(Debug, Clone, PartialEq)]
 pub struct FitKey {
     car: Car,
-    road: Road,
+    /// The ISO road (`None` on a measured road: its key holds the speed and tracks).
+    road: Option<Road>,
     dbox: DesignBox,
     spec: SurrogateSpec,
     plan: PlanSpec,
     comfort: Comfort,
     cases: Option<CaseSet>,
+    /// The measured road's key (`None`: the ISO class).
+    measured: Option<String>,
 }
 
 impl FitKey {
@@ -53,12 +58,13 @@ impl FitKey {
     pub fn of(s: &Scenario) -> FitKey {
         FitKey {
             car: s.datum.clone(),
-            road: s.road,
+            road: iso_road(s),
             dbox: s.dbox,
             spec: s.surrogate,
             plan: s.plan,
             comfort: s.comfort,
             cases: s.cases.clone(),
+            measured: measured_key(s),
         }
     }
 }
@@ -68,10 +74,31 @@ impl FitKey {
 #[derive(Serialize)]
 struct FitInputs {
     car: Car,
-    road: Road,
+    road: Option<Road>,
     dbox: DesignBox,
     spec: SurrogateSpec,
     plan: PlanSpec,
+    measured: Option<String>,
+}
+
+/// The scenario's ISO road, `None` on a measured road (the class under it is not used).
+fn iso_road(s: &Scenario) -> Option<Road> {
+    s.measured.is_none().then_some(s.road)
+}
+
+/// The key of the scenario's measured road (`None` on an ISO class).
+fn measured_key(s: &Scenario) -> Option<String> {
+    s.measured.as_ref().map(|m| m.0.key().to_string())
+}
+
+/// The surrogate's setting for scenario `s` (on its measured road if it has one) and the
+/// HiFi it is fitted to (the full car there, unweighted BAcc).
+fn setting_and_hifi(s: &Scenario) -> Result<(Setting, Box<dyn Evaluator + Sync>)> {
+    let setting = match &s.measured {
+        Some(m) => m.0.setting(&s.datum, &s.dbox)?,
+        None => Setting::new(&s.datum, &s.road, &s.dbox)?,
+    };
+    Ok((setting, s.evaluator_with(ModelKind::Full, Comfort::Bacc)?))
 }
 
 impl FitInputs {
@@ -79,10 +106,11 @@ impl FitInputs {
     fn bytes(s: &Scenario) -> Result<Vec<u8>> {
         let inputs = FitInputs {
             car: s.datum.clone(),
-            road: s.road,
+            road: iso_road(s),
             dbox: s.dbox,
             spec: s.surrogate,
             plan: s.plan,
+            measured: measured_key(s),
         };
         postcard::to_allocvec(&inputs).map_err(|e| RideError::field("fit", e.to_string()))
     }
@@ -144,8 +172,7 @@ impl FitRecord {
 
 /// Fits the scenario's surrogate to HiFi samples at its plan. Errors name `approach` or `plan`.
 pub fn fit(s: &Scenario) -> Result<FittedSurrogate> {
-    let setting = Setting::new(&s.datum, &s.road, &s.dbox)?;
-    let hifi = s.hifi()?;
+    let (setting, hifi) = setting_and_hifi(s)?;
     let plan = s.plan.plan()?;
     let samples = sample_plan(&hifi, &plan, &s.dbox)?;
     let model = s.surrogate.fit(&setting, &samples, &LmOptions::default())?;
@@ -166,8 +193,8 @@ pub fn fit_report(
     fitted: &FittedSurrogate,
     levels: usize,
 ) -> Result<SurrogateReport> {
-    let setting = Setting::new(&s.datum, &s.road, &s.dbox)?;
-    let hifi = Counted::with_count(s.hifi()?, fitted.samples.len());
+    let (setting, hifi) = setting_and_hifi(s)?;
+    let hifi = Counted::with_count(hifi, fitted.samples.len());
     Fitted {
         spec: s.surrogate,
         plan: s.plan.name(),

@@ -592,7 +592,9 @@ fn the_key_field_lists_are_what_fits_and_reports_depend_on() {
     let base = State::default();
     let base_s = base.scenario().unwrap();
     let base_report = report(ModelKind::Quarter, &base_s.design, &base_s.road).unwrap();
-    let mut seen = vec!["carJson", "case"];
+    // A measured road (`roadProfile`) is a fit and report field: tested with its
+    // resolver in tests_measured (the fit key there, the report's road and numbers here).
+    let mut seen = vec!["carJson", "case", "roadProfile"];
     // The case the maps show picks among kept values: neither the fit nor the values change.
     let with_cases = State {
         cases: Some(

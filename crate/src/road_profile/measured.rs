@@ -11,6 +11,7 @@ use crate::criteria::{comfort_label, quarter_shaped, PoleZeroFilter, ShapedResid
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::model::{quarter_car, LinearModel};
+use crate::road::MeasuredRoad;
 use crate::road::Road;
 use serde::Serialize;
 
@@ -208,21 +209,6 @@ impl Evaluator for MeasuredModel {
     }
 }
 
-/// What a report says of the measured road it was computed on (JSON `road`).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct MeasuredRoad {
-    /// The profile file as given.
-    pub file: String,
-    /// Speed, m/s.
-    pub speed: f64,
-    /// How its tracks drive the wheels.
-    pub tracks: ProfileTracks,
-    /// Temporal band where the measured PSD is used, Hz.
-    pub band_hz: [f64; 2],
-    /// The shaping filters' largest relative PSD error over the band, -.
-    pub fit_error: f64,
-}
-
 impl MeasuredRoad {
     /// The summary of `road`, shaped from the profile `file` with `tracks`.
     pub fn of(file: &str, road: &ShapedRoad, tracks: ProfileTracks) -> MeasuredRoad {
@@ -232,27 +218,6 @@ impl MeasuredRoad {
             tracks,
             band_hz: road.band_hz,
             fit_error: road.fit_error(),
-        }
-    }
-}
-
-/// The road of a report: an ISO 8608 class (JSON as [`Road`], unchanged) or a measured
-/// profile.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(untagged)]
-pub enum RoadScenario {
-    /// An ISO 8608 class at a speed.
-    Iso(Road),
-    /// A measured profile at a speed.
-    Measured(MeasuredRoad),
-}
-
-impl RoadScenario {
-    /// In words: "class B at 20 m/s" or "road.csv at 20 m/s".
-    pub fn words(&self) -> String {
-        match self {
-            RoadScenario::Iso(r) => format!("class {:?} at {} m/s", r.class, r.speed),
-            RoadScenario::Measured(m) => format!("{} at {} m/s", m.file, m.speed),
         }
     }
 }

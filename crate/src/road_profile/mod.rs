@@ -43,11 +43,11 @@ mod spectral;
 mod synth;
 mod welch;
 
+pub use crate::road::{MeasuredRoad, RoadScenario};
 pub use describe::{describe, CoherenceSeries, IsoFit, PsdSeries, RoadDescription, WelchInfo};
 pub use exact::{bacc_wk_shaped, criteria_shaped};
 pub use measured::{
-    road_error, DesignOnRoad, MeasuredModel, MeasuredRoad, QuarterRoute, RoadScenario,
-    ShapedQuarter, WkOnRoad,
+    road_error, DesignOnRoad, MeasuredModel, QuarterRoute, ShapedQuarter, WkOnRoad,
 };
 pub use modal::{
     bacc_wk_shaped_fast, bacc_wk_shaped_modal, criteria_shaped_fast, criteria_shaped_modal,

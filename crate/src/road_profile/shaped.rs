@@ -19,44 +19,12 @@ use super::profile::Profile;
 use super::shaping::{ShapingFilter, VelocityPsd};
 use super::welch::welch;
 use super::{BAND_HZ, LOWEST_BIN, NYQUIST_FRACTION};
-use crate::error::{parse_choice, Result, RideError};
+use crate::error::{Result, RideError};
+pub use crate::road::ProfileTracks;
 #[cfg(test)]
-use crate::road::{Road, Tracks};
-use serde::{Deserialize, Serialize};
-use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
-
-/// How a profile's tracks drive the wheels (see the module doc).
-#[derive(
-    Debug,
-    Clone,
-    Copy,
-    PartialEq,
-    Eq,
-    Serialize,
-    Deserialize,
-    EnumIter,
-    EnumProperty,
-    IntoStaticStr,
-    VariantNames,
-)]
-#[serde(rename_all = "lowercase")]
-#[strum(serialize_all = "lowercase")]
-#[strum()]
-pub enum ProfileTracks {
-    /// Both tracks see the same profile.
-    Correlated,
-    /// The tracks are independent.
-    Independent,
-    /// Two measured tracks, their coherence kept (sum and difference sources).
-    Measured,
-}
-
-impl std::str::FromStr for ProfileTracks {
-    type Err = RideError;
-    fn from_str(s: &str) -> Result<ProfileTracks> {
-        parse_choice("tracks", s)
-    }
-}
+use crate::road::Road;
+use crate::road::Tracks;
+use serde::Serialize;
 
 impl ProfileTracks {
     /// The natural choice for a profile: measured with two tracks, correlated with one.
@@ -65,6 +33,17 @@ impl ProfileTracks {
             ProfileTracks::Measured
         } else {
             ProfileTracks::Correlated
+        }
+    }
+
+    /// How `profile`'s tracks drive the car when the page's state says `tracks`: two
+    /// tracks keep their measured coherence (the CLI's default for them); one drives both
+    /// wheels as `tracks` says (as `ridelab ... --road FILE --tracks ...`).
+    pub fn on_page(profile: &Profile, tracks: Tracks) -> ProfileTracks {
+        match (profile.tracks(), tracks) {
+            (2, _) => ProfileTracks::Measured,
+            (_, Tracks::Correlated) => ProfileTracks::Correlated,
+            (_, Tracks::Independent) => ProfileTracks::Independent,
         }
     }
 }

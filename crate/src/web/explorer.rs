@@ -7,11 +7,32 @@
 use super::{js_error, parse_state, to_js};
 use crate::analysis::ModelKind;
 use crate::car::Car;
-use crate::explorer::{EvaluatorKind, FrontModel, MapModel, ModelMap, Session};
+use crate::explorer::{
+    EvaluatorKind, FrontModel, MapModel, ModelMap, RoadResolver, Scenario, Session, State,
+};
 use crate::gpu::ComputePath;
 use js_sys::{Float64Array, Object, Reflect, Uint8Array};
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
+
+/// The measured roads a session here can be on: the profiles `useRoad` registered on
+/// this thread (the workers' module), none in the first-screen module, which leaves the
+/// shaped routes out (the page sends a state on a measured road to its on-demand module).
+pub(super) fn roads() -> Option<RoadResolver> {
+    #[cfg(feature = "on-demand")]
+    return Some(std::rc::Rc::new(super::road::resolve));
+    #[cfg(not(feature = "on-demand"))]
+    None
+}
+
+/// The scenario of `state`, its `roadProfile` resolved by [`roads`]; errors name the
+/// field at fault.
+pub(super) fn scenario_of(state: &State) -> crate::error::Result<Scenario> {
+    match roads() {
+        Some(r) => state.scenario_on(&r),
+        None => state.scenario(),
+    }
+}
 
 /// The explorer session (see the module documentation).
 #[wasm_bindgen]
@@ -37,6 +58,10 @@ struct Description {
     /// Worst case or weighted mean, with cases.
     #[serde(skip_serializing_if = "Option::is_none")]
     combine: Option<crate::robust::Combine>,
+    /// The measured road in place of the class (file, speed, tracks, band, filter
+    /// error); absent on an ISO class.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    measured_road: Option<crate::road::MeasuredRoad>,
 }
 
 /// A map as `{nx, ny, values: Float64Array, feasible: Uint8Array, broken: Uint8Array,
@@ -78,7 +103,7 @@ impl Explorer {
     /// A session on `state`; errors name the field at fault.
     #[wasm_bindgen(constructor)]
     pub fn new(state: JsValue) -> Result<Explorer, JsValue> {
-        Session::new(parse_state(state)?)
+        Session::with_roads(parse_state(state)?, roads())
             .map(Explorer)
             .map_err(js_error)
     }
@@ -123,6 +148,7 @@ impl Explorer {
                 .as_ref()
                 .map(|c| c.cases.iter().map(|k| k.name.clone()).collect()),
             combine: s.cases.as_ref().map(|c| c.combine),
+            measured_road: s.measured.as_ref().map(|m| m.0.summary().clone()),
             car: s.datum.clone(),
         })
     }

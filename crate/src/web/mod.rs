@@ -26,7 +26,7 @@ pub use gpu::GpuMaps;
 #[cfg(feature = "on-demand")]
 pub use on_demand::AdaptiveRun;
 #[cfg(feature = "on-demand")]
-pub use road::{describe_road, design_on_road, road_front, road_map};
+pub use road::{describe_road, design_on_road, road_front, road_map, use_road};
 pub use screen::{draw_line_chart_js, draw_map_frame_js};
 
 use crate::car::{Car, PRESETS};
@@ -276,7 +276,7 @@ pub fn parse_car(json: &str) -> Result<JsValue, JsValue> {
 #[wasm_bindgen(js_name = checkState)]
 pub fn check_state(state: JsValue) -> Result<JsValue, JsValue> {
     let s = parse_state(state)?;
-    s.scenario().map_err(js_error)?;
+    explorer::scenario_of(&s).map_err(js_error)?;
     to_js(&s)
 }
 

@@ -128,7 +128,7 @@ impl AdaptiveRun {
     /// The loop on `state`'s scenario; errors name the field.
     #[wasm_bindgen(constructor)]
     pub fn new(state: JsValue, options: JsValue) -> Result<AdaptiveRun, JsValue> {
-        let scenario = parse_state(state)?.scenario().map_err(js_error)?;
+        let scenario = super::explorer::scenario_of(&parse_state(state)?).map_err(js_error)?;
         let options: crate::study::adaptive::AdaptiveOptions =
             if options.is_undefined() || options.is_null() {
                 Default::default()

@@ -18,6 +18,7 @@ use crate::road_profile::{
 };
 use crate::study::measured::{measured_map, optimize_measured};
 use crate::study::{EvaluatorSpec, MapSettings, OptimizeRequest};
+use crate::study::{OnRoad, RoadSource};
 use js_sys::{Float64Array, Object, Reflect, Uint8Array};
 use std::cell::RefCell;
 use std::hash::{Hash, Hasher};
@@ -55,7 +56,7 @@ pub fn describe_road(bytes: &[u8]) -> Result<JsValue, JsValue> {
 /// their measured coherence (the CLI's default for them).
 #[wasm_bindgen(js_name = designOnRoad)]
 pub fn design_on_road(state: JsValue, bytes: &[u8], file: &str) -> Result<JsValue, JsValue> {
-    let scenario = parse_state(state)?.scenario().map_err(js_error)?;
+    let scenario = panel_scenario(state)?;
     let (road, tracks) = shaped(bytes, &scenario)?;
     let q = scenario.design.quarter();
     let on = DesignOnRoad::on_shaped(&scenario.datum, q.ks, q.cs, &road, file, tracks)
@@ -63,15 +64,12 @@ pub fn design_on_road(state: JsValue, bytes: &[u8], file: &str) -> Result<JsValu
     to_js(&on)
 }
 
-/// How the profile's tracks drive the car in `scenario`: two tracks keep their measured
-/// coherence (the CLI's default for them); one drives both wheels as the state's `tracks`
-/// says (as `ridelab ... --road FILE --tracks ...`).
-fn tracks_of(p: &Profile, scenario: &Scenario) -> ProfileTracks {
-    match (p.tracks(), scenario.road.tracks) {
-        (2, _) => ProfileTracks::Measured,
-        (_, Tracks::Correlated) => ProfileTracks::Correlated,
-        (_, Tracks::Independent) => ProfileTracks::Independent,
-    }
+/// The scenario of `state` for the road panel, which judges the dropped file itself: the
+/// state's own road choice (`roadProfile`, the road menu's) is not used.
+fn panel_scenario(state: JsValue) -> Result<Scenario, JsValue> {
+    let mut s = parse_state(state)?;
+    s.road_profile = None;
+    s.scenario().map_err(js_error)
 }
 
 /// The shaped road last made on this thread, with its key ([`shaped_key`]).
@@ -101,7 +99,7 @@ fn shaped(bytes: &[u8], scenario: &Scenario) -> Result<(ShapedRoad, ProfileTrack
         return Ok((road, tracks));
     }
     let p = profile(bytes)?;
-    let tracks = tracks_of(&p, scenario);
+    let tracks = ProfileTracks::on_page(&p, scenario.road.tracks);
     crate::domain::SPEED
         .check("speed", scenario.road.speed)
         .map_err(road_js_error)?;
@@ -135,7 +133,7 @@ pub fn road_map(
     ny: usize,
 ) -> Result<JsValue, JsValue> {
     let kind = model_kind(model)?;
-    let scenario = parse_state(state)?.scenario().map_err(js_error)?;
+    let scenario = panel_scenario(state)?;
     let grid = Grid::cells(&scenario.dbox, nx, ny).map_err(js_error)?;
     crate::budget::check_measured(
         (nx as u64) * (ny as u64),
@@ -219,7 +217,7 @@ pub fn road_front(
     model: &str,
 ) -> Result<JsValue, JsValue> {
     let kind = model_kind(model)?;
-    let scenario = parse_state(state)?.scenario().map_err(js_error)?;
+    let scenario = panel_scenario(state)?;
     let method = crate::explorer::studies::method("stm").map_err(js_error)?;
     if let Method::Stm(stm) = &method {
         crate::budget::check_measured(
@@ -260,4 +258,87 @@ pub fn road_front(
         &to_js(&MeasuredRoad::of(file, &road, tracks))?,
     )?;
     Ok(v)
+}
+
+/// Most profiles a thread keeps for the road menu (each at most
+/// [`crate::road_profile::MAX_BYTES`] as a file): the newest replace the oldest.
+const KEPT_PROFILES: usize = 4;
+
+/// Most shaped roads a thread keeps for the road menu (a profile at a few speeds).
+const KEPT_ROADS: usize = 8;
+
+/// A profile the road menu offers: its key (`useRoad`'s), file name and the read profile.
+type KeptProfile = (String, String, std::rc::Rc<Profile>);
+
+thread_local! {
+    /// The profiles `useRoad` registered on this thread, oldest first.
+    static PROFILES: RefCell<Vec<KeptProfile>> = const { RefCell::new(Vec::new()) };
+    /// The roads the session asked for, oldest first, by [`OnRoad`]'s key.
+    static ROADS: RefCell<Vec<std::sync::Arc<OnRoad>>> = const { RefCell::new(Vec::new()) };
+}
+
+/// A hash of a profile file's bytes (two files of one name are two roads).
+fn content_hash(bytes: &[u8]) -> u64 {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    bytes.hash(&mut h);
+    h.finish()
+}
+
+/// Registers the profile `bytes` (named `file`) for the road menu on this thread and
+/// returns its key, `"<file>#<hash>"`: a state whose `roadProfile` is that key is on the
+/// profile (shaped at the state's speed with its tracks) in place of its ISO class. The
+/// page registers a road on each of its threads. Errors name `road` (the column and row).
+#[wasm_bindgen(js_name = useRoad)]
+pub fn use_road(bytes: &[u8], file: &str) -> Result<String, JsValue> {
+    let content = content_hash(bytes);
+    let key = format!("{file}#{content:016x}");
+    let known = PROFILES.with_borrow(|p| p.iter().any(|(k, _, _)| *k == key));
+    if !known {
+        let p = std::rc::Rc::new(profile(bytes)?);
+        PROFILES.with_borrow_mut(|kept| {
+            if kept.len() >= KEPT_PROFILES {
+                kept.remove(0);
+            }
+            kept.push((key.clone(), file.to_string(), p));
+        });
+    }
+    Ok(key)
+}
+
+/// The session's road resolver ([`crate::explorer::RoadResolver`]): the registered
+/// profile `key` shaped at `speed` with the page's `tracks`, kept for the next ask;
+/// errors name `road` (a key not registered here, or what the speed needs of the file)
+/// or `speed`.
+pub(super) fn resolve(
+    key: &str,
+    speed: f64,
+    tracks: Tracks,
+) -> crate::error::Result<std::sync::Arc<dyn RoadSource>> {
+    let Some((_, file, p)) = PROFILES.with_borrow(|kept| kept.iter().find(|k| k.0 == key).cloned())
+    else {
+        return Err(RideError::field(
+            "road",
+            format!("the measured road '{key}' is not loaded on this thread: drop its file on the Car & road tab again"),
+        ));
+    };
+    let t = ProfileTracks::on_page(&p, tracks);
+    let content = key
+        .rsplit('#')
+        .next()
+        .and_then(|h| u64::from_str_radix(h, 16).ok())
+        .unwrap_or(0);
+    let want = OnRoad::key_of(&file, content, speed, t);
+    if let Some(r) = ROADS.with_borrow(|kept| kept.iter().find(|r| r.key() == want).cloned()) {
+        return Ok(r);
+    }
+    crate::domain::SPEED.check("speed", speed)?;
+    let road = ShapedRoad::from_profile(&p, speed, t).map_err(road_error)?;
+    let on = std::sync::Arc::new(OnRoad::new(&file, content, road, t));
+    ROADS.with_borrow_mut(|kept| {
+        if kept.len() >= KEPT_ROADS {
+            kept.remove(0);
+        }
+        kept.push(on.clone());
+    });
+    Ok(on)
 }

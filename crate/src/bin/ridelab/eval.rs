@@ -56,7 +56,7 @@ pub(crate) fn text_report(r: &Report) -> String {
             ModelKind::Full => "Full-car (HiFi)",
         },
         r.car,
-        crate::text::road_words(&r.road),
+        crate::text::scenario_words(&r.road),
         r.ks / 1e3,
         r.cs / 1e3,
         r.bacc,
@@ -69,7 +69,7 @@ pub(crate) fn text_report(r: &Report) -> String {
             Some(d) => format!("{} (the frequency route differs by {d:.1e})", r.route),
             None => format!(
                 "{} only (no exact route with road warp to check it against; its own error estimate {:.1e})",
-                r.route, r.spectral_error_estimate
+                r.route, r.spectral_error_estimate.unwrap_or(0.0)
             ),
         }
     );

@@ -1,0 +1,266 @@
+//! The session on a measured road (#31, the page's road menu): its maps are `ridelab map
+//! --road FILE`'s, its readout and criteria `ridelab eval --road FILE`'s
+//! ([`DesignOnRoad`]), its surrogate the fit of `ridelab surrogate --road FILE`; what runs
+//! on ISO classes only is refused naming `road`.
+
+use super::*;
+use crate::analysis::ModelKind;
+use crate::comfort::Comfort;
+use crate::dos::DesignObjectives;
+use crate::evaluate::Evaluator;
+use crate::maps::{Grid, Scale};
+use crate::road::Tracks;
+use crate::road_profile::{DesignOnRoad, Profile, ProfileTracks, ShapedRoad};
+use crate::study::measured::measured_map;
+use crate::study::MapSettings;
+use crate::study::{OnRoad, RoadSource};
+use crate::surrogate::{sample_plan, LmOptions};
+use crate::time_domain::TimeOptions;
+use std::rc::Rc;
+use std::sync::Arc;
+
+const SLAB: &str = "concrete-slab-5m.csv";
+
+/// The shipped slab-road profile.
+fn slab() -> Profile {
+    let path = format!("{}/../assets/roads/{SLAB}", env!("CARGO_MANIFEST_DIR"));
+    Profile::from_csv_bytes(&std::fs::read(path).unwrap()).unwrap()
+}
+
+/// A resolver of the key "slab" (the slab profile), as the page's `useRoad` registers one.
+fn roads() -> RoadResolver {
+    let profile = slab();
+    Rc::new(move |key: &str, speed: f64, tracks: Tracks| {
+        assert_eq!(key, "slab");
+        let t = ProfileTracks::on_page(&profile, tracks);
+        let road = ShapedRoad::from_profile(&profile, speed, t)?;
+        Ok(Arc::new(OnRoad::new(SLAB, 1, road, t)) as Arc<dyn RoadSource>)
+    })
+}
+
+fn on_slab() -> State {
+    State {
+        road_profile: Some("slab".into()),
+        ..State::default()
+    }
+}
+
+/// The LoFi and HiFi maps (both comfort measures) are `measured_map`'s, the CLI's `map
+/// --road`, bit for bit; so is the datum; the objectives' mask is the same.
+#[test]
+fn maps_on_a_measured_road_are_the_clis() {
+    let (nx, ny) = (24, 18);
+    for comfort in ["bacc", "wk"] {
+        let state = State {
+            comfort: Some(comfort.into()),
+            speed: 25.0,
+            ..on_slab()
+        };
+        let mut x = Session::with_roads(state, Some(roads())).unwrap();
+        let s = x.scenario().clone();
+        let profile = slab();
+        let road = ShapedRoad::from_profile(&profile, 25.0, ProfileTracks::Correlated).unwrap();
+        for (model, kind) in [
+            (MapModel::LoFi, ModelKind::Quarter),
+            (MapModel::HiFi, ModelKind::Full),
+        ] {
+            let m = x.map(model, nx, ny).unwrap();
+            let settings = MapSettings {
+                grid: Grid::cells(&s.dbox, nx, ny).unwrap(),
+                scale: Scale::Absolute,
+                objectives: DesignObjectives::default(),
+                contour_levels: 0,
+                comfort: s.comfort,
+            };
+            let cli = measured_map(
+                kind,
+                &s.datum,
+                &road,
+                SLAB,
+                ProfileTracks::Correlated,
+                &settings,
+            )
+            .unwrap();
+            let want: Vec<f64> = [cli.bacc, cli.dtl, cli.sws].concat();
+            assert_eq!(m.planes(), want, "{comfort} {kind:?}");
+            assert_eq!(m.values.datum.criteria, cli.datum.criteria);
+            assert_eq!(m.broken(), cli.feasibility.mask, "{comfort} {kind:?}");
+        }
+    }
+}
+
+/// The design's readout and criteria by both models are `ridelab eval --road`'s
+/// ([`DesignOnRoad`]) bit for bit, Wk included; the report's frequency route on the raw
+/// PSD agrees with the exact route to its tolerance; the describe-able road is the file.
+#[test]
+fn readout_on_a_measured_road_is_eval_road() {
+    let state = State {
+        ks: 24_000.0,
+        cs: 1_900.0,
+        ..on_slab()
+    };
+    let mut x = Session::with_roads(state, Some(roads())).unwrap();
+    let s = x.scenario().clone();
+    let road = ShapedRoad::from_profile(&slab(), 20.0, ProfileTracks::Correlated).unwrap();
+    let on = DesignOnRoad::on_shaped(
+        &s.datum,
+        24_000.0,
+        1_900.0,
+        &road,
+        SLAB,
+        ProfileTracks::Correlated,
+    )
+    .unwrap();
+    for (kind, model, want, wk) in [
+        (
+            ModelKind::Quarter,
+            EvaluatorKind::LoFi,
+            on.quarter,
+            on.bacc_wk.quarter,
+        ),
+        (
+            ModelKind::Full,
+            EvaluatorKind::HiFi,
+            on.full,
+            on.bacc_wk.full,
+        ),
+    ] {
+        let r = x.readout(kind).unwrap();
+        assert_eq!([r.bacc, r.dtl, r.sws], want.to_array(), "{kind:?}");
+        assert_eq!(r.bacc_wk, wk);
+        assert_eq!(x.criteria(model).unwrap(), want);
+        let rep = x.report(kind).unwrap();
+        assert_eq!([rep.bacc, rep.dtl, rep.sws], want.to_array());
+        assert!(
+            rep.route_difference.unwrap() < 0.03,
+            "{kind:?}: {:?}",
+            rep.route_difference
+        );
+        assert!(matches!(rep.road, crate::road::RoadScenario::Measured(ref m) if m.file == SLAB));
+    }
+}
+
+/// The surrogate is fitted to the full car's samples on the road with the quarter car
+/// there as its LoFi (`ridelab surrogate --road`'s fit): the same predictions bit for
+/// bit; a measured road changes the fit key, the ISO class under it does not matter.
+#[test]
+fn the_surrogate_on_a_measured_road_is_the_clis() {
+    let mut x = Session::with_roads(on_slab(), Some(roads())).unwrap();
+    let s = x.scenario().clone();
+    let m = s.measured.as_ref().unwrap();
+    let setting = m.0.setting(&s.datum, &s.dbox).unwrap();
+    let hifi = m.0.evaluator(ModelKind::Full, &s.datum, Comfort::Bacc);
+    let samples = sample_plan(&hifi, &s.plan.plan().unwrap(), &s.dbox).unwrap();
+    let cli = s
+        .surrogate
+        .fit(&setting, &samples, &LmOptions::default())
+        .unwrap();
+    let fitted = x.surrogate().unwrap();
+    for (ks, cs) in [(18_000.0, 1_000.0), (30_000.0, 2_600.0)] {
+        assert_eq!(
+            fitted.model.evaluate(ks, cs).unwrap(),
+            cli.evaluate(ks, cs).unwrap()
+        );
+    }
+    assert_eq!(x.fit_count(), 1);
+    let iso = State::default().scenario().unwrap();
+    assert_ne!(FitKey::of(&s), FitKey::of(&iso));
+    // ... and the design's report (FIT_FIELDS and REPORT_FIELDS hold `roadProfile`).
+    let on_iso = crate::analysis::report(ModelKind::Quarter, &iso.design, &iso.road).unwrap();
+    let on_road = x.report(ModelKind::Quarter).unwrap();
+    assert_ne!(on_road.bacc, on_iso.bacc);
+    assert_ne!(on_road.road, on_iso.road);
+    assert!(FIT_FIELDS.contains(&"roadProfile") && REPORT_FIELDS.contains(&"roadProfile"));
+    // Another class under the measured road: the same road, the same fit.
+    x.set_state(State {
+        class: "E".into(),
+        ..on_slab()
+    })
+    .unwrap();
+    assert_eq!(FitKey::of(x.scenario()), FitKey::of(&s));
+    // The speed shapes the road again.
+    x.set_state(State {
+        speed: 30.0,
+        ..on_slab()
+    })
+    .unwrap();
+    assert_ne!(FitKey::of(x.scenario()), FitKey::of(&s));
+}
+
+/// What runs on ISO classes only is refused naming `road`, robust cases naming `cases`,
+/// and a road no resolver knows naming `road`; the session keeps its last good state.
+#[test]
+fn a_measured_road_refuses_what_it_cannot_run() {
+    let mut x = Session::with_roads(on_slab(), Some(roads())).unwrap();
+    let field = |e: crate::error::RideError| match e {
+        crate::error::RideError::Field { field, .. } => field,
+        other => panic!("{other}"),
+    };
+    assert_eq!(field(x.spectra(50).unwrap_err()), "road");
+    assert_eq!(
+        field(x.time_response(&TimeOptions::default()).unwrap_err()),
+        "road"
+    );
+    assert_eq!(field(x.study_report().unwrap_err()), "road");
+    assert_eq!(
+        field(x.hifi_front(Some(&[1.0; 3 * 61 * 61])).unwrap_err()),
+        "road"
+    );
+    assert_eq!(
+        field(x.keep_hifi_planes(2, 2, &[1.0; 12]).unwrap_err()),
+        "road"
+    );
+    let with_cases = State {
+        cases: Some(r#"{"operating": [{"class": "C", "speed": 25}]}"#.into()),
+        ..on_slab()
+    };
+    assert_eq!(field(x.set_state(with_cases).unwrap_err()), "cases");
+    assert_eq!(x.state(), &on_slab());
+    assert_eq!(field(Session::new(on_slab()).err().unwrap()), "road");
+    // Back to the class: the ISO road again.
+    x.set_state(State::default()).unwrap();
+    assert!(x.scenario().measured.is_none());
+    assert!(x.spectra(50).is_ok());
+}
+
+/// The HiFi front on a measured road is `ridelab optimize --road FILE --evaluator full
+/// --grid 61 --levels 2`'s bit for bit (front, hypervolume, pick), as on an ISO road.
+#[test]
+fn the_hifi_front_on_a_measured_road_is_optimize_road() {
+    use crate::optimize::Method;
+    use crate::road_profile::MeasuredModel;
+    use crate::study::measured::optimize_measured;
+    use crate::study::{EvaluatorSpec, OptimizeRequest};
+    let mut x = Session::with_roads(on_slab(), Some(roads())).unwrap();
+    let view = x.hifi_front(None).unwrap();
+    let s = x.scenario().clone();
+    let road = ShapedRoad::from_profile(&slab(), 20.0, ProfileTracks::Correlated).unwrap();
+    let hifi = MeasuredModel::new(ModelKind::Full, &s.datum, road);
+    let request = OptimizeRequest {
+        evaluator: EvaluatorSpec::Model(ModelKind::Full),
+        ..OptimizeRequest::new(
+            &s.datum,
+            &s.road,
+            s.dbox,
+            Method::Stm(crate::optimize::StmParams {
+                grid: 61,
+                levels: 2,
+            }),
+            s.objectives.clone(),
+        )
+    };
+    let (cli, _) = optimize_measured(&request, &hifi, None).unwrap();
+    let f = &view.front.study;
+    assert_eq!(f.front.len(), cli.study.front.len());
+    for (a, b) in f.front.iter().zip(&cli.study.front) {
+        assert_eq!(
+            [a.ks, a.cs, a.bacc, a.dtl, a.sws],
+            [b.ks, b.cs, b.bacc, b.dtl, b.sws]
+        );
+    }
+    assert_eq!(f.hypervolume, cli.study.hypervolume);
+    assert_eq!(
+        (f.pick.ks, f.pick.cs),
+        (cli.study.pick.ks, cli.study.pick.cs)
+    );
+}
