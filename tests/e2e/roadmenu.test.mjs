@@ -3,7 +3,7 @@
 // workbench is on it: the LoFi and HiFi maps equal `ridelab map --road FILE` to REL_TOL,
 // the readout `ridelab eval --road FILE`, the objective plane's front and pick are found
 // on the surrogate fitted there, the HiFi front is `ridelab optimize --road FILE
-// --evaluator full`'s; a new speed reshapes the road; what needs an ISO class
+// --evaluator full`'s, the study report `ridelab report --road FILE`'s byte for byte; a new speed reshapes the road; what needs an ISO class
 // (spectra, load cases) says so naming the road; a class chosen again is the ISO road.
 // The main thread's first-screen module has no shaped routes: its calls on a measured
 // road go to the on-demand module. Screenshots go to tests/e2e/out/.
@@ -16,7 +16,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { openPage, settled } from './browser.mjs';
-import { useSuite, assertClean, ROOT, OUT } from './harness.mjs';
+import { useSuite, assertClean, assertSameLines, ROOT, OUT } from './harness.mjs';
 
 const TIMEOUT = 300_000;
 /** The page's numbers against the CLI's, relative (the same code on both targets). */
@@ -24,11 +24,15 @@ const REL_TOL = 1e-9;
 const suite = useSuite();
 const SLAB = path.join(ROOT, 'assets/roads/concrete-slab-5m.csv');
 
-function cli(args) {
+function cliPath() {
   const candidates = [process.env.RIDELAB_CLI, path.join(ROOT, 'target/debug/ridelab'), path.join(ROOT, 'target/release/ridelab')];
   const c = candidates.filter(Boolean).find((x) => fs.existsSync(x));
   assert.ok(c, 'the native CLI is built (cargo build -p ridelab)');
-  return JSON.parse(execFileSync(c, [...args, '--json'], { encoding: 'utf8', maxBuffer: 256 * 1024 * 1024 }));
+  return path.resolve(c);
+}
+
+function cli(args) {
+  return JSON.parse(execFileSync(cliPath(), [...args, '--json'], { encoding: 'utf8', maxBuffer: 256 * 1024 * 1024 }));
 }
 
 function close(got, want, what) {
@@ -61,7 +65,7 @@ function mapCells(page, which, cells) {
 }
 
 test('the road menu\'s measured road: the workbench\'s maps, readout and front on it, as ridelab --road', { timeout: TIMEOUT }, async () => {
-  const { page, context, log } = await openPage(suite.browser, `${suite.srv.url}#car=sedan&class=B&speed=20&tracks=correlated`, { width: 1600, height: 1000 });
+  const { page, context, log } = await openPage(suite.browser, `${suite.srv.url}#car=sedan&class=B&speed=20&tracks=correlated`, { width: 1600, height: 1000, downloads: true });
   await settled(page, 100);
   assert.equal(await page.$('#class option[value="measured"]'), null, 'no measured entry before a road is read');
   await page.click('#tab-car');
@@ -131,6 +135,17 @@ test('the road menu\'s measured road: the workbench\'s maps, readout and front o
   fs.mkdirSync(OUT, { recursive: true });
   await page.screenshot({ path: path.join(OUT, 'roadmenu-1600.png') });
 
+  // The study report on the road: `ridelab report --road FILE` byte for byte (the CLI run
+  // where the file is, so that both name it alike).
+  await page.click('#tab-export');
+  const [dl] = await Promise.all([page.waitForEvent('download', { timeout: 200_000 }), page.click('#report-html')]);
+  const pageReport = path.join(OUT, 'report-page-slab.html');
+  await dl.saveAs(pageReport);
+  const dir = path.join(OUT, 'report-cli-slab');
+  execFileSync(cliPath(), ['report', '--road', path.basename(SLAB), '--car', 'sedan', '--speed', '20', '--approach', 'rba-mul-rbf-mq', '--plan', 'ae:10', '--out', dir], { cwd: path.dirname(SLAB), stdio: ['ignore', 'pipe', 'pipe'] });
+  assertSameLines(fs.readFileSync(pageReport, 'utf8'), fs.readFileSync(path.join(dir, 'report.html'), 'utf8'), 'page and CLI reports on the measured road');
+  await page.click('#tab-car');
+
   // A new speed: the road shaped again at it, the maps the CLI's there.
   await page.fill('#speed', '27');
   await page.press('#speed', 'Enter');
@@ -142,7 +157,6 @@ test('the road menu\'s measured road: the workbench\'s maps, readout and front o
   at27.cells.forEach((g, k) => ['bacc', 'dtl', 'sws'].forEach((c, ci) => close(g.v[ci], want27[c][k], `27 m/s quarter ${c} cell ${k}`)));
 
   // What needs an ISO class says so, naming the road.
-  await page.click('#tab-spectra').catch(() => {});
   const refused = await page.evaluate(() => window.__ridelab.engine.call('spectra', window.__ridelab.state, 50).then(() => null, (e) => e));
   assert.equal(refused.field, 'road');
   assert.match(refused.message, /ISO 8608 class/);
@@ -150,7 +164,7 @@ test('the road menu\'s measured road: the workbench\'s maps, readout and front o
   // A class again: the ISO road, the menu shows it.
   await page.selectOption('#class', 'C');
   await settledOn(page, false);
-  assert.equal((await page.evaluate(() => window.__ridelab.state)).roadProfile, null);
+  assert.equal((await page.evaluate(() => window.__ridelab.state)).roadProfile, undefined);
   assert.match(await page.textContent('#map-status'), /class C at 27 m\/s/);
   assertClean(log);
   await context.close();

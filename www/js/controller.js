@@ -142,7 +142,9 @@ export class Controller {
       const st = this.store;
       const patch = typeof patchOrFn === 'function' ? patchOrFn() : patchOrFn;
       // A class chosen (the road menu, a lesson step, a class code) leaves the measured road.
-      const s = { ...st.state, ...('class' in patch && !('roadProfile' in patch) ? { roadProfile: null } : {}), ...patch };
+      const s = { ...st.state, ...patch };
+      if ('class' in patch && !('roadProfile' in patch)) delete s.roadProfile;
+      if (s.roadProfile === null) delete s.roadProfile;
       let r;
       try {
         r = await this.compute.scenario(s);

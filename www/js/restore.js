@@ -130,12 +130,10 @@ export async function fromSession(compute, defaults, text) {
   const kept = sessionKept(s.kept, problems);
   const state = { ...defaults };
   for (const [k, v] of Object.entries(s.state)) {
-    if (Object.hasOwn(defaults, k)) state[k] = v;
+    if (k === 'roadProfile') {
+      if (v) problems.push(`state.roadProfile: a measured road's file is not kept in a session (its class is used; drop the file on the Car & road tab again)`);
+    } else if (Object.hasOwn(defaults, k)) state[k] = v;
     else problems.push(`state: '${k}' is not a known field (left out)`);
-  }
-  if (state.roadProfile) {
-    problems.push(`state.roadProfile: a measured road's file is not kept in a session (its class ${state.class} is used; drop the file on the Car & road tab again)`);
-    state.roadProfile = null;
   }
   const r = await usableState((x) => compute.checkState(x), state, defaults, problems, (k) => `state.${k}`);
   return { state: r.state, view, kept, problems };

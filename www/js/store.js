@@ -201,6 +201,7 @@ export class Store {
   /** The session file's object: `{ridelab: "session", version, state, view, kept}`. */
   session() {
     // A measured road's file is not kept (the road panel says so): the session keeps its class.
-    return { ridelab: 'session', version: 1, state: { ...this.state, roadProfile: null }, view: { ...this.view }, kept: this.keptDesigns() };
+    const { roadProfile, ...state } = this.state;
+    return { ridelab: 'session', version: 1, state, view: { ...this.view }, kept: this.keptDesigns() };
   }
 }

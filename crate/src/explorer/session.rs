@@ -670,18 +670,20 @@ impl Session {
     /// The study report of this scenario (as `ridelab report` with the view's car, road,
     /// design box, objectives, surrogate and plan, seed 1; it takes seconds, so the page
     /// runs it in a worker).
+    ///
+    /// On a measured road, `ridelab report --road FILE`'s report.
     pub fn study_report(&self) -> Result<MethodReport> {
-        self.scenario.iso_only("The study report here")?;
         let s = &self.scenario;
-        build_report(
-            &ReportInputs {
-                design_box: s.dbox,
-                objectives: s.objectives.clone(),
-                surrogate: Some((s.surrogate, s.plan)),
-                ..ReportInputs::new(s.datum.clone(), s.road)
-            },
-            |_| {},
-        )
+        let inputs = ReportInputs {
+            design_box: s.dbox,
+            objectives: s.objectives.clone(),
+            surrogate: Some((s.surrogate, s.plan)),
+            ..ReportInputs::new(s.datum.clone(), s.road)
+        };
+        match &s.measured {
+            Some(m) => m.0.study_report(&inputs),
+            None => build_report(&inputs, |_| {}),
+        }
     }
 
     fn design(&self) -> (f64, f64) {

@@ -4,6 +4,7 @@
 //! Units follow the core (SI): `ks` N/m, `cs` N s/m, `speed` m/s, `swsLimit` m,
 //! `bounceBand` Hz. The UI converts to kN/m, kNs/m and mm for display only.
 
+use super::road_source::RoadSource;
 use crate::analysis::ModelKind;
 use crate::car::Car;
 use crate::comfort::Comfort;
@@ -14,7 +15,6 @@ use crate::evaluate::Evaluator;
 use crate::optimize::PickRule;
 use crate::road::{Road, RoadClass, Tracks};
 use crate::robust::{CarFile, CaseSet};
-use crate::study::RoadSource;
 use crate::surrogate::{PlanSpec, SurrogateSpec};
 use crate::LoFi;
 use serde::{Deserialize, Serialize};
@@ -112,8 +112,9 @@ pub struct State {
     pub class: String,
     /// A measured road in place of the class (#31): the key under which the caller
     /// registered the profile (the page's `useRoad`), which the session's
-    /// [`RoadResolver`] shapes at the state's speed with its tracks. Absent: the class.
-    #[serde(default)]
+    /// [`RoadResolver`] shapes at the state's speed with its tracks. Absent: the class
+    /// (and left out of the state the core hands back).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub road_profile: Option<String>,
     /// Vehicle speed, m/s.
     pub speed: f64,

@@ -546,6 +546,7 @@ fn state_fields_are_the_serialised_keys() {
         no_worse: Some([false; 3]),
         dtl_margin: Some(3.0),
         travel: Some([0.025, 3.0]),
+        road_profile: Some("road.csv#0".into()),
         ..State::default()
     };
     let v = serde_json::to_value(&state).unwrap();

@@ -27,7 +27,6 @@ pub mod fidelity;
 pub mod map;
 pub mod measured;
 pub mod optimize;
-pub mod road_source;
 pub mod robust;
 pub mod surrogate;
 
@@ -43,7 +42,6 @@ pub use optimize::{
     optimize_model, optimize_model_with, optimize_on_models, optimize_report, optimize_report_on,
     optimize_report_with, EvaluatorSpec, OptimizeReport, OptimizeRequest, SameModel,
 };
-pub use road_source::{OnRoad, RoadSource};
 pub use robust::{
     case_map_report, robust_map_report, robust_optimize_report, CaseInfo, CaseMapReport,
     RobustMapReport, RobustOptimizeReport, RobustProblem,

@@ -9,6 +9,7 @@ use super::{js_error, parse_state, to_js};
 use crate::analysis::ModelKind;
 use crate::error::{parse_choice, RideError};
 use crate::explorer::Scenario;
+use crate::explorer::{OnRoad, RoadSource};
 use crate::maps::{Grid, Scale};
 use crate::optimize::{Method, PickRule};
 use crate::road::{Road, Tracks};
@@ -18,7 +19,6 @@ use crate::road_profile::{
 };
 use crate::study::measured::{measured_map, optimize_measured};
 use crate::study::{EvaluatorSpec, MapSettings, OptimizeRequest};
-use crate::study::{OnRoad, RoadSource};
 use js_sys::{Float64Array, Object, Reflect, Uint8Array};
 use std::cell::RefCell;
 use std::hash::{Hash, Hasher};
@@ -268,7 +268,7 @@ const KEPT_PROFILES: usize = 4;
 const KEPT_ROADS: usize = 8;
 
 /// A profile the road menu offers: its key (`useRoad`'s), file name and the read profile.
-type KeptProfile = (String, String, std::rc::Rc<Profile>);
+type KeptProfile = (String, String, std::sync::Arc<Profile>);
 
 thread_local! {
     /// The profiles `useRoad` registered on this thread, oldest first.
@@ -294,7 +294,7 @@ pub fn use_road(bytes: &[u8], file: &str) -> Result<String, JsValue> {
     let key = format!("{file}#{content:016x}");
     let known = PROFILES.with_borrow(|p| p.iter().any(|(k, _, _)| *k == key));
     if !known {
-        let p = std::rc::Rc::new(profile(bytes)?);
+        let p = std::sync::Arc::new(profile(bytes)?);
         PROFILES.with_borrow_mut(|kept| {
             if kept.len() >= KEPT_PROFILES {
                 kept.remove(0);
@@ -333,7 +333,7 @@ pub(super) fn resolve(
     }
     crate::domain::SPEED.check("speed", speed)?;
     let road = ShapedRoad::from_profile(&p, speed, t).map_err(road_error)?;
-    let on = std::sync::Arc::new(OnRoad::new(&file, content, road, t));
+    let on = std::sync::Arc::new(OnRoad::new(&file, content, p, road, t));
     ROADS.with_borrow_mut(|kept| {
         if kept.len() >= KEPT_ROADS {
             kept.remove(0);

@@ -3,8 +3,8 @@
 //! fronts are then computed on it.
 //!
 //! The session holds the road as a [`RoadSource`] trait object, so that only a build
-//! that makes one (the page's workers and on-demand module, the CLI, the tests) links the
-//! shaped routes: the page's first-screen wasm never makes one and stays small (#29).
+//! that makes one (the page's workers and on-demand module, the tests) links the shaped
+//! routes: the page's first-screen wasm never makes one and stays small (#29).
 
 use crate::analysis::{ModelKind, Readout, Report};
 use crate::car::{damping_ratio, Car};
@@ -13,10 +13,12 @@ use crate::criteria::comfort_label;
 use crate::design::DesignBox;
 use crate::error::Result;
 use crate::evaluate::{Criteria, Evaluator};
+use crate::report::{build_on, MeasuredInputs, MethodReport, ReportInputs};
 use crate::road::{MeasuredRoad, ProfileTracks, RoadScenario};
-use crate::road_profile::{criteria_shaped_spectral, MeasuredModel, ShapedRoad};
+use crate::road_profile::{criteria_shaped_spectral, MeasuredModel, Profile, ShapedRoad};
 use crate::surrogate::Setting;
 use std::fmt::Debug;
+use std::sync::Arc;
 
 /// A road the explorer's session evaluates on in place of its ISO class: the models on
 /// it, the report and readout of a design there, and the surrogate's setting there.
@@ -40,6 +42,9 @@ pub trait RoadSource: Debug + Send + Sync {
     /// The surrogate's setting for `car` over `dbox` on the road (its LoFi the quarter
     /// car there), as `ridelab surrogate --road FILE`.
     fn setting(&self, car: &Car, dbox: &DesignBox) -> Result<Setting>;
+    /// The study report of `inputs` on the road (at `inputs.road`'s speed, its class not
+    /// used), as `ridelab report --road FILE` builds it.
+    fn study_report(&self, inputs: &ReportInputs) -> Result<MethodReport>;
 }
 
 /// A profile shaped at a speed, as the session's road.
@@ -48,16 +53,27 @@ pub struct OnRoad {
     key: String,
     summary: MeasuredRoad,
     road: ShapedRoad,
+    /// The profile it was shaped from (the report plays it back).
+    profile: Arc<Profile>,
+    tracks: ProfileTracks,
 }
 
 impl OnRoad {
-    /// The road `road`, shaped from the profile `file` with `tracks`; `content` names the
-    /// profile's bytes (a hash: two files of one name are two roads).
-    pub fn new(file: &str, content: u64, road: ShapedRoad, tracks: ProfileTracks) -> OnRoad {
+    /// The road `road`, shaped from `profile` (the file `file`) with `tracks`; `content`
+    /// names the profile's bytes (a hash: two files of one name are two roads).
+    pub fn new(
+        file: &str,
+        content: u64,
+        profile: Arc<Profile>,
+        road: ShapedRoad,
+        tracks: ProfileTracks,
+    ) -> OnRoad {
         OnRoad {
             key: OnRoad::key_of(file, content, road.speed, tracks),
             summary: MeasuredRoad::of(file, &road, tracks),
             road,
+            profile,
+            tracks,
         }
     }
 
@@ -168,6 +184,15 @@ impl RoadSource for OnRoad {
     fn setting(&self, car: &Car, dbox: &DesignBox) -> Result<Setting> {
         Setting::measured(car, self.road.clone(), dbox)
     }
+
+    fn study_report(&self, inputs: &ReportInputs) -> Result<MethodReport> {
+        let measured = MeasuredInputs {
+            file: self.summary.file.clone(),
+            profile: (*self.profile).clone(),
+            tracks: self.tracks,
+        };
+        build_on(inputs, &measured, |_| {})
+    }
 }
 
 #[cfg(test)]
@@ -175,6 +200,7 @@ mod tests {
     use super::*;
     use crate::road::Road;
     use crate::road_profile::ShapedRoad;
+    use crate::road_profile::{synthesize, Synthesis};
 
     /// The readout on a road shaped from ISO class C (waviness 2) is the ISO readout
     /// within the filter's stated error, and the report's two routes agree.
@@ -182,7 +208,15 @@ mod tests {
     fn readout_on_an_iso_shaped_road_is_the_iso_readout() {
         let iso = Road::default();
         let road = ShapedRoad::iso(&iso, 2.0).unwrap();
-        let on = OnRoad::new("iso-c.csv", 7, road, ProfileTracks::Correlated);
+        // The profile only feeds the study report, not tested here.
+        let profile = synthesize(&Synthesis::default()).unwrap();
+        let on = OnRoad::new(
+            "iso-c.csv",
+            7,
+            Arc::new(profile),
+            road,
+            ProfileTracks::Correlated,
+        );
         let car = Car::preset("sedan").unwrap();
         for kind in [ModelKind::Quarter, ModelKind::Full] {
             let want = crate::analysis::readout(kind, &car, &iso).unwrap();
