@@ -1,12 +1,14 @@
 // End-to-end test of the road menu's measured road (issue #31): a profile read on the
-// Car & road tab becomes the road menu's last entry, "Measured: FILE"; chosen, the whole
+// Car & road tab becomes the road menu's last entry, "Measured: FILE"; chosen, the
 // workbench is on it: the LoFi and HiFi maps equal `ridelab map --road FILE` to REL_TOL,
 // the readout `ridelab eval --road FILE`, the objective plane's front and pick are found
 // on the surrogate fitted there, the HiFi front is `ridelab optimize --road FILE
-// --evaluator full`'s, the study report `ridelab report --road FILE`'s byte for byte; a new speed reshapes the road; what needs an ISO class
-// (spectra, load cases) says so naming the road; a class chosen again is the ISO road.
-// The main thread's first-screen module has no shaped routes: its calls on a measured
-// road go to the on-demand module. Screenshots go to tests/e2e/out/.
+// --evaluator full`'s, the study report `ridelab report --road FILE`'s byte for byte, the
+// time response the first seconds of `ridelab simulate --road FILE`'s playback; a new
+// speed reshapes the road; what needs an ISO class (the adaptive loop, load cases) says
+// so naming the field; a class chosen again is the ISO road. The main thread's
+// first-screen module has no shaped routes: its calls on a measured road go to the
+// on-demand module. Screenshots go to tests/e2e/out/.
 //
 //   trunk build --release --offline && RIDELAB_CLI=target/debug/ridelab node --test tests/e2e/roadmenu.test.mjs
 
@@ -36,7 +38,7 @@ function cli(args) {
 }
 
 function close(got, want, what) {
-  assert.ok(Math.abs(got / want - 1) <= REL_TOL, `${what}: page ${got}, CLI ${want}`);
+  assert.ok(got === want || Math.abs(got / want - 1) <= REL_TOL, `${what}: page ${got}, CLI ${want}`);
 }
 
 /** Waits until the workbench is settled on a measured road at the state's speed (or on a class: `measured` false). */
@@ -156,10 +158,30 @@ test('the road menu\'s measured road: the workbench\'s maps, readout and front o
   const want27 = cli(['map', '--model', 'quarter', ...road.map((a) => (a === '20' ? '27' : a)), '--ks-range', `${ks(i)}:${ks(i + 1)}:2`, '--cs-range', `${cs(j)}:${cs(j + 1)}:2`]);
   at27.cells.forEach((g, k) => ['bacc', 'dtl', 'sws'].forEach((c, ci) => close(g.v[ci], want27[c][k], `27 m/s quarter ${c} cell ${k}`)));
 
-  // What needs an ISO class says so, naming the road.
-  const refused = await page.evaluate(() => window.__ridelab.engine.call('spectra', window.__ridelab.state, 50).then(() => null, (e) => e));
+  // The time response: the profile played back from rest, the first 10 s of `ridelab
+  // simulate --road FILE` (both models, every kept sample to REL_TOL).
+  const tr = await page.evaluate(() => window.__ridelab.heavyEngine.call('timeResponse', window.__ridelab.state, { duration: 10, dt: 0.001, f_min: 0.1, f_max: 200, decimate: 10, seed: 1 }));
+  for (const [model, r] of [['quarter', tr.lofi], ['full', tr.hifi]]) {
+    const want = cli(['simulate', '--model', model, '--car', 'sedan', '--road', SLAB, '--speed', '27', '--decimate', '10']);
+    const n = r.t.length;
+    assert.ok(n > 1000 && Math.abs(r.t[n - 1] - 10) < 0.01, `${model}: ${n} samples to ${r.t[n - 1]} s`);
+    for (let i = 0; i < n; i += 7) {
+      assert.equal(r.t[i], want.series.t[i], `${model} t[${i}]`);
+      ['bacc', 'dtl', 'sws'].forEach((c, o) => close(r.outputs[o][i], want.series[c][i], `${model} ${c} at ${r.t[i]} s`));
+    }
+  }
+  // The spectra: drawn on the road's PSD (the Rust tests check their area).
+  const sp = await page.evaluate(() => window.__ridelab.heavyEngine.call('spectra', window.__ridelab.state, 60));
+  assert.equal(sp.f.length, 60);
+  assert.ok(sp.hifi.psd[0].every((p) => Number.isFinite(p) && p > 0), 'HiFi BAcc PSD');
+
+  // What needs an ISO class says so, naming the road: the adaptive loop, robust cases.
+  const refused = await page.evaluate(() => window.__ridelab.heavyEngine.call('adaptiveStart', window.__ridelab.state, {}).then(() => null, (e) => e));
   assert.equal(refused.field, 'road');
   assert.match(refused.message, /ISO 8608 class/);
+  const cases = await page.evaluate(() => window.__ridelab.engine.call('checkState', { ...window.__ridelab.state, cases: '{"operating": [{"class": "C", "speed": 25}]}' }).then(() => null, (e) => e));
+  assert.equal(cases.field, 'cases');
+  assert.match(cases.message, /measured road is one scenario/);
 
   // A class again: the ISO road, the menu shows it.
   await page.selectOption('#class', 'C');

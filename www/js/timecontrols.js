@@ -120,7 +120,9 @@ export function wireTime({ store, controller: ctl, controls, compute, ui }) {
         `${law.knee ? ` to ${fmtInput(law.knee.velocity, 4)} m/s, ${kns(law.knee.bump)} / ${kns(law.knee.rebound)} kNs/m above` : ''}` +
         `, so Cs = their mean ${kns((law.bump + law.rebound) / 2)} kNs/m`
       : 'linear damper';
-    ctl.runTime(opts, `${what}, seed ${seed.value}`);
+    // On a measured road the profile itself is played back: no seed.
+    const road = store.state.roadProfile ? `${store.state.roadProfile.replace(/#[0-9a-f]+$/, '')} played back from its start` : `seed ${seed.value}`;
+    ctl.runTime(opts, `${what}, ${road}`);
   });
   $('tp-play').addEventListener('click', () => ui.time.toggle());
   $('tp-rate').addEventListener('change', (ev) => {

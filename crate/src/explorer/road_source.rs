@@ -13,10 +13,14 @@ use crate::criteria::comfort_label;
 use crate::design::DesignBox;
 use crate::error::Result;
 use crate::evaluate::{Criteria, Evaluator};
+use crate::model::LinearModel;
 use crate::report::{build_on, MeasuredInputs, MethodReport, ReportInputs};
 use crate::road::{MeasuredRoad, ProfileTracks, RoadScenario};
-use crate::road_profile::{criteria_shaped_spectral, MeasuredModel, Profile, ShapedRoad};
+use crate::road_profile::{
+    criteria_shaped_spectral, playback, MeasuredModel, Profile, ShapedRoad, ShapedSpectrum,
+};
 use crate::surrogate::Setting;
+use crate::time_domain::{simulate_playback, TimeOptions, TimeResponse};
 use std::fmt::Debug;
 use std::sync::Arc;
 
@@ -42,6 +46,20 @@ pub trait RoadSource: Debug + Send + Sync {
     /// The surrogate's setting for `car` over `dbox` on the road (its LoFi the quarter
     /// car there), as `ridelab surrogate --road FILE`.
     fn setting(&self, car: &Car, dbox: &DesignBox) -> Result<Setting>;
+    /// One-sided output PSDs `[BAcc (m/s^2)^2/Hz, DTL N^2/Hz, SWS m^2/Hz]` of `model` at
+    /// each frequency of `f` (Hz) on the road's measured PSD (with its extensions).
+    fn output_psds(&self, model: &LinearModel, f: &[f64]) -> Result<Vec<[f64; 3]>>;
+    /// The time response of `design` by `kind` on the profile itself, played back under
+    /// the wheels from rest at its start (as `ridelab simulate --road FILE`, whose run
+    /// this is the first `opt.duration` seconds of), at the largest step at most
+    /// `opt.dt` that divides the profile's spacing at the road's speed; `opt`'s seed does
+    /// not apply.
+    fn time_response(
+        &self,
+        kind: ModelKind,
+        design: &Car,
+        opt: &TimeOptions,
+    ) -> Result<TimeResponse>;
     /// The study report of `inputs` on the road (at `inputs.road`'s speed, its class not
     /// used), as `ridelab report --road FILE` builds it.
     fn study_report(&self, inputs: &ReportInputs) -> Result<MethodReport>;
@@ -183,6 +201,33 @@ impl RoadSource for OnRoad {
 
     fn setting(&self, car: &Car, dbox: &DesignBox) -> Result<Setting> {
         Setting::measured(car, self.road.clone(), dbox)
+    }
+
+    fn output_psds(&self, model: &LinearModel, f: &[f64]) -> Result<Vec<[f64; 3]>> {
+        let sp = ShapedSpectrum::new(model, &self.road)?;
+        Ok(f.iter().map(|&fi| sp.psd(fi)).collect())
+    }
+
+    fn time_response(
+        &self,
+        kind: ModelKind,
+        design: &Car,
+        opt: &TimeOptions,
+    ) -> Result<TimeResponse> {
+        opt.validate()?;
+        let speed = self.road.speed;
+        let dt = self.profile.playback_step(speed, opt.dt);
+        let mut road = playback(&self.profile, &kind.build(design).wheels, speed, dt)?;
+        let n = ((opt.duration / dt).round() as usize + 1).min(road.len());
+        for w in &mut road.wheels {
+            w.truncate(n);
+        }
+        let opt = TimeOptions {
+            dt,
+            duration: (n.max(1) - 1) as f64 * dt,
+            ..*opt
+        };
+        simulate_playback(kind, design, dt, &road.wheels, &opt)
     }
 
     fn study_report(&self, inputs: &ReportInputs) -> Result<MethodReport> {

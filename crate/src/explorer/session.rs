@@ -642,14 +642,12 @@ impl Session {
 
     /// FRFs and PSDs of the design by the LoFi, the HiFi and the surrogate.
     pub fn spectra(&mut self, nfreq: usize) -> Result<Spectra> {
-        self.scenario.iso_only("The FRF and PSD plot")?;
         let fit = self.surrogate()?;
         studies::spectra(&self.scenario, &fit, nfreq)
     }
 
     /// Seeded time responses of the design by both models (as `ridelab simulate`).
     pub fn time_response(&self, opt: &TimeOptions) -> Result<TimeResult> {
-        self.scenario.iso_only("The time response here")?;
         studies::time_response(&self.scenario, opt)
     }
 

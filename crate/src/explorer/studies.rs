@@ -215,19 +215,26 @@ pub struct Spectra {
     pub surrogate_route: String,
 }
 
-/// FRF magnitudes and PSDs of `model`'s outputs `outputs[o]` on the road.
+/// FRF magnitudes and PSDs of `model`'s outputs `outputs[o]` on the scenario's road: the
+/// FRF from the first source of the ISO road with the scenario's speed and tracks (the
+/// transfer does not depend on the class), the PSD on the measured road's PSD when the
+/// scenario has one, else on the ISO road's.
 fn spectra_of(
     model: &crate::model::LinearModel,
-    road: &crate::road::Road,
+    s: &Scenario,
     f: &[f64],
     out: &mut ModelSpectra,
     outputs: std::ops::Range<usize>,
 ) -> Result<()> {
-    let sp = crate::criteria::Spectrum::new(model, road)?;
-    for &fi in f {
+    let sp = crate::criteria::Spectrum::new(model, &s.road)?;
+    let measured = match &s.measured {
+        Some(m) => Some(m.0.output_psds(model, f)?),
+        None => None,
+    };
+    for (k, &fi) in f.iter().enumerate() {
         let omega = 2.0 * std::f64::consts::PI * fi;
         let h = sp.displacement_transfer(0, omega);
-        let p = sp.psd(fi);
+        let p = measured.as_ref().map_or_else(|| sp.psd(fi), |m| m[k]);
         for o in outputs.clone() {
             out.frf[o].push(math::cabs(h[o]));
             out.psd[o].push(p[o]);
@@ -241,7 +248,7 @@ fn model_spectra(kind: ModelKind, s: &Scenario, f: &[f64]) -> Result<ModelSpectr
         frf: Default::default(),
         psd: Default::default(),
     };
-    spectra_of(&kind.build(&s.design), &s.road, f, &mut out, 0..3)?;
+    spectra_of(&kind.build(&s.design), s, f, &mut out, 0..3)?;
     Ok(out)
 }
 
@@ -263,18 +270,15 @@ fn surrogate_spectra(
     };
     if let Some(quarters) = fit.model.tuned_quarters(ks, cs)? {
         for (k, q) in quarters.iter().enumerate() {
-            spectra_of(
-                &crate::model::quarter_car(q),
-                &s.road,
-                f,
-                &mut out,
-                k..k + 1,
-            )?;
+            spectra_of(&crate::model::quarter_car(q), s, f, &mut out, k..k + 1)?;
         }
         return Ok((out, "tuned quarter car".into()));
     }
     let sur = fit.model.evaluate(ks, cs)?.to_array();
-    let low = s.lofi().evaluate(ks, cs)?.to_array();
+    let low = s
+        .evaluator_with(ModelKind::Quarter, Comfort::Bacc)?
+        .evaluate(ks, cs)?
+        .to_array();
     for k in 0..3 {
         let r = sur[k] / low[k];
         out.frf[k] = lofi.frf[k].iter().map(|h| h * r).collect();
@@ -329,9 +333,16 @@ pub struct TimeResult {
 }
 
 /// Simulates the design with both models, as `ridelab simulate` does.
+///
+/// On a measured road the profile itself is played back under the wheels from rest at its
+/// start, for `opt.duration` seconds (the first seconds of `ridelab simulate --road FILE`).
 pub fn time_response(s: &Scenario, opt: &TimeOptions) -> Result<TimeResult> {
-    let lofi = simulate(ModelKind::Quarter, &s.design, &s.road, opt)?;
-    let hifi = simulate(ModelKind::Full, &s.design, &s.road, opt)?;
+    let run = |kind| match &s.measured {
+        Some(m) => m.0.time_response(kind, &s.design, opt),
+        None => simulate(kind, &s.design, &s.road, opt),
+    };
+    let lofi = run(ModelKind::Quarter)?;
+    let hifi = run(ModelKind::Full)?;
     Ok(TimeResult {
         damper: opt.damper,
         damper_rate: hifi.damper_rate,
