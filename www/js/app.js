@@ -148,7 +148,7 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
       return;
     }
     await ctl.changeScenario({ roadProfile: key, cases: null, case: null }, 'class', {
-      note: `The workbench is on the measured road ${road.name} at ${fmt(st.state.speed, 3)} m/s: its maps, surrogate, fronts, readout, spectra, time response (the profile played back) and report; the adaptive loop and load cases need an ISO class.`,
+      note: `The workbench is on the measured road ${road.name} at ${fmt(st.state.speed, 3)} m/s: its maps, surrogate, fronts, readout, spectra, time response (the profile played back), adaptive loop and report; load cases need an ISO class.`,
     });
   };
   /** A road read by the road panel: the road menu's last entry; the workbench follows a new file when it is on the last one. */

@@ -10,9 +10,11 @@
 //! --adaptive K`, sample for sample.
 
 use super::state::Scenario;
-use crate::analysis::HiFi;
+use crate::analysis::ModelKind;
+use crate::comfort::Comfort;
 use crate::dos::DosContext;
 use crate::error::{Result, RideError};
+use crate::evaluate::Evaluator;
 use crate::maps::Grid;
 use crate::optimize::{recheck, FrontPoint, Recheck, StmParams};
 use crate::study::adaptive::{
@@ -53,10 +55,11 @@ pub struct PageUncertainty {
     pub at_samples_percent: ByCriterion<f64>,
 }
 
-/// An adaptive loop on one scenario, with the HiFi it runs.
+/// An adaptive loop on one scenario, with the HiFi it runs (the full car on the
+/// scenario's road, measured or ISO).
 pub struct PageLoop {
     state: AdaptiveLoop,
-    hifi: HiFi,
+    hifi: Box<dyn Evaluator + Sync>,
     /// The HiFi validation grid, kept once run (it does not change as samples are added).
     validation: Option<ValidationSet>,
 }
@@ -65,10 +68,15 @@ impl PageLoop {
     /// Runs the scenario's plan on the HiFi, fits its surrogate and finds the front.
     /// `options.runs` is only recorded in the report (the page steps); the rest are
     /// checked, naming the field.
+    ///
+    /// On a measured road it is `ridelab surrogate --road FILE --adaptive K`'s loop: the
+    /// HiFi the full car there, the surrogate's LoFi the quarter car there.
     pub fn new(s: &Scenario, options: AdaptiveOptions) -> Result<PageLoop> {
-        s.iso_only("The adaptive loop here")?;
-        let setting = Setting::new(&s.datum, &s.road, &s.dbox)?;
-        let hifi = s.hifi()?;
+        let setting = match &s.measured {
+            Some(m) => m.0.setting(&s.datum, &s.dbox)?,
+            None => Setting::new(&s.datum, &s.road, &s.dbox)?,
+        };
+        let hifi = s.evaluator_with(ModelKind::Full, Comfort::Bacc)?;
         let decision = Decision {
             objectives: s.objectives.clone(),
             ctx: DosContext::of_model(&s.datum, &hifi)?,

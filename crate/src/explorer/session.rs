@@ -509,7 +509,7 @@ impl Session {
     /// on that grid then show them (the datum's criteria stay the CPU HiFi's) until the
     /// car, road, box or surrogate change.
     pub fn keep_hifi_planes(&mut self, nx: usize, ny: usize, planes: &[f64]) -> Result<()> {
-        self.scenario.iso_only("the GPU path")?;
+        self.scenario.gpu_on_iso()?;
         let grid = Grid::cells(&self.scenario.dbox, nx, ny)?;
         let values = criteria_of_planes(planes, grid.len(), &format!("3 x {nx} x {ny}"))?;
         let given = HiFiGrid::from_values(self.scenario.hifi()?, grid, values, ComputePath::Gpu);
@@ -622,7 +622,7 @@ impl Session {
         let n = studies::STM_GRID * studies::STM_GRID;
         let given = match grid_planes {
             Some(p) => {
-                self.scenario.iso_only("The GPU path")?;
+                self.scenario.gpu_on_iso()?;
                 Some(criteria_of_planes(p, n, &format!("3 x {n}"))?)
             }
             None => None,

@@ -544,14 +544,14 @@ impl Scenario {
         }
     }
 
-    /// An error naming `road` when the scenario is on a measured road: `what` (a study
-    /// the page offers on ISO classes only) is refused there, with where to go instead.
-    pub fn iso_only(&self, what: &str) -> Result<()> {
+    /// An error naming `road` when the scenario is on a measured road: the GPU path's
+    /// values (its kernel is the ISO road's) are refused there; the CPU computes them.
+    pub fn gpu_on_iso(&self) -> Result<()> {
         match &self.measured {
             Some(m) => Err(RideError::field(
                 "road",
                 format!(
-                    "{what} runs on an ISO 8608 class; on the measured road {} use the CLI's --road (choose a class in the road menu here)",
+                    "the GPU path computes an ISO 8608 class; the measured road {} runs on the CPU",
                     m.0.summary().file
                 ),
             )),

@@ -187,8 +187,9 @@ fn the_surrogate_on_a_measured_road_is_the_clis() {
     assert_ne!(FitKey::of(x.scenario()), FitKey::of(&s));
 }
 
-/// What runs on ISO classes only is refused naming `road`, robust cases naming `cases`,
-/// and a road no resolver knows naming `road`; the session keeps its last good state.
+/// What runs on ISO classes only is refused: the GPU path's values naming `road`, robust
+/// cases naming `cases`, and a road no resolver knows naming `road`; the session keeps
+/// its last good state.
 #[test]
 fn a_measured_road_refuses_what_it_cannot_run() {
     let mut x = Session::with_roads(on_slab(), Some(roads())).unwrap();
@@ -214,7 +215,7 @@ fn a_measured_road_refuses_what_it_cannot_run() {
     // Back to the class: the ISO road again.
     x.set_state(State::default()).unwrap();
     assert!(x.scenario().measured.is_none());
-    assert!(x.spectra(50).is_ok());
+    x.keep_hifi_planes(2, 2, &[1.0; 12]).unwrap();
 }
 
 /// The HiFi front on a measured road is `ridelab optimize --road FILE --evaluator full
@@ -347,4 +348,44 @@ fn the_time_response_on_a_measured_road_is_the_playback() {
             );
         }
     }
+}
+
+/// The page's adaptive loop on a measured road is `ridelab surrogate --road FILE
+/// --adaptive K`'s (the study's loop with the full car there as its HiFi and the quarter
+/// car there as the surrogate's LoFi): the same samples, reasons, fronts and picks.
+#[test]
+fn the_adaptive_loop_on_a_measured_road_is_the_clis() {
+    use crate::road_profile::MeasuredModel;
+    use crate::study::adaptive::{run, AdaptiveOptions, Decision};
+    use crate::surrogate::{PlanSpec, Setting, SurrogateSpec};
+    let state = State {
+        surrogate: Some("gp-mul".into()),
+        plan: Some("ae:5".into()),
+        ..on_slab()
+    };
+    let x = Session::with_roads(state, Some(roads())).unwrap();
+    let sc = x.scenario();
+    let options = AdaptiveOptions {
+        runs: 2,
+        candidates: 11,
+        ..AdaptiveOptions::default()
+    };
+    let mut page = PageLoop::new(sc, options).unwrap();
+    for _ in 0..2 {
+        page.step().unwrap();
+    }
+    let road = ShapedRoad::from_profile(&slab(), 20.0, ProfileTracks::Correlated).unwrap();
+    let setting = Setting::measured(&sc.datum, road.clone(), &sc.dbox).unwrap();
+    let hifi = MeasuredModel::new(ModelKind::Full, &sc.datum, road);
+    let cli = run(
+        SurrogateSpec::parse("gp-mul").unwrap(),
+        &setting,
+        &hifi,
+        PlanSpec::AudzeEglais(5),
+        &Decision::of_car(&sc.datum, &hifi).unwrap(),
+        options,
+    )
+    .unwrap();
+    assert_eq!(page.report(), cli.report());
+    assert_eq!(page.front(), cli.front());
 }
