@@ -698,24 +698,41 @@ pub fn readout(kind: ModelKind, car: &Car, road: &Road) -> Result<Readout> {
         Err(e) => return Err(e),
     };
     let wk = bacc_wk(&model, road)?;
-    let q = car.quarter();
-    Ok(Readout {
-        model: kind,
-        ks: q.ks,
-        cs: q.cs,
-        bacc: values.bacc,
-        dtl: values.dtl,
-        sws: values.sws,
-        bacc_wk: wk,
-        comfort: comfort_label(wk),
-        dtl_relative: values.dtl / car.front_wheel_load(),
-        route,
-        low_cutoff_hz,
-        modes: model.modes()?,
-        body_bounce_hz: q.bounce_frequency(),
-        critical_damping: q.critical_damping(),
-        damping_ratio: crate::car::damping_ratio(q.ks, q.cs, q.ms),
-        wheel_rate: q.wheel_rate(),
-        static_wheel_load: car.front_wheel_load(),
-    })
+    Readout::of(kind, car, values, wk, route, low_cutoff_hz)
+}
+
+impl Readout {
+    /// The readout of `car`'s design by `kind` with the criteria `values` (m/s^2, N, m)
+    /// and the Wk-weighted BAcc `wk` (m/s^2) that `route` gave (`low_cutoff_hz`: its band's
+    /// lower limit, Hz, where a road warp needs one), with the modes and ride properties
+    /// of the design, which do not depend on the road.
+    pub fn of(
+        kind: ModelKind,
+        car: &Car,
+        values: Criteria,
+        wk: f64,
+        route: &'static str,
+        low_cutoff_hz: Option<f64>,
+    ) -> Result<Readout> {
+        let q = car.quarter();
+        Ok(Readout {
+            model: kind,
+            ks: q.ks,
+            cs: q.cs,
+            bacc: values.bacc,
+            dtl: values.dtl,
+            sws: values.sws,
+            bacc_wk: wk,
+            comfort: comfort_label(wk),
+            dtl_relative: values.dtl / car.front_wheel_load(),
+            route,
+            low_cutoff_hz,
+            modes: kind.build(car).modes()?,
+            body_bounce_hz: q.bounce_frequency(),
+            critical_damping: q.critical_damping(),
+            damping_ratio: crate::car::damping_ratio(q.ks, q.cs, q.ms),
+            wheel_rate: q.wheel_rate(),
+            static_wheel_load: car.front_wheel_load(),
+        })
+    }
 }

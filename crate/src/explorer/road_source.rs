@@ -7,9 +7,8 @@
 //! routes: the page's first-screen wasm never makes one and stays small (#29).
 
 use crate::analysis::{ModelKind, Readout, Report};
-use crate::car::{damping_ratio, Car};
+use crate::car::Car;
 use crate::comfort::Comfort;
-use crate::criteria::comfort_label;
 use crate::design::DesignBox;
 use crate::error::Result;
 use crate::evaluate::{Criteria, Evaluator};
@@ -177,26 +176,7 @@ impl RoadSource for OnRoad {
     fn readout(&self, kind: ModelKind, datum: &Car, car: &Car) -> Result<Readout> {
         car.validate()?;
         let (values, wk) = self.exact(kind, datum, car)?;
-        let q = car.quarter();
-        Ok(Readout {
-            model: kind,
-            ks: q.ks,
-            cs: q.cs,
-            bacc: values.bacc,
-            dtl: values.dtl,
-            sws: values.sws,
-            bacc_wk: wk,
-            comfort: comfort_label(wk),
-            dtl_relative: values.dtl / car.front_wheel_load(),
-            route: "exact",
-            low_cutoff_hz: None,
-            modes: kind.build(car).modes()?,
-            body_bounce_hz: q.bounce_frequency(),
-            critical_damping: q.critical_damping(),
-            damping_ratio: damping_ratio(q.ks, q.cs, q.ms),
-            wheel_rate: q.wheel_rate(),
-            static_wheel_load: car.front_wheel_load(),
-        })
+        Readout::of(kind, car, values, wk, "exact", None)
     }
 
     fn setting(&self, car: &Car, dbox: &DesignBox) -> Result<Setting> {
