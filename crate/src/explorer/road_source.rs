@@ -94,6 +94,16 @@ impl OnRoad {
         }
     }
 
+    /// The shaped road (speed, band, sources and their filters).
+    pub fn road(&self) -> &ShapedRoad {
+        &self.road
+    }
+
+    /// How the profile's tracks drive the wheels.
+    pub fn tracks(&self) -> ProfileTracks {
+        self.tracks
+    }
+
     /// The key of the profile `file` (content hash `content`) at `speed` m/s with
     /// `tracks`: `"<file>#<hash>@<speed>:<tracks>"`.
     pub fn key_of(file: &str, content: u64, speed: f64, tracks: ProfileTracks) -> String {

@@ -57,7 +57,7 @@ pub fn describe_road(bytes: &[u8]) -> Result<JsValue, JsValue> {
 #[wasm_bindgen(js_name = designOnRoad)]
 pub fn design_on_road(state: JsValue, bytes: &[u8], file: &str) -> Result<JsValue, JsValue> {
     let scenario = panel_scenario(state)?;
-    let (road, tracks) = shaped(bytes, &scenario)?;
+    let (road, tracks) = shaped(bytes, file, &scenario)?;
     let q = scenario.design.quarter();
     let on = DesignOnRoad::on_shaped(&scenario.datum, q.ks, q.cs, &road, file, tracks)
         .map_err(road_js_error)?;
@@ -72,41 +72,18 @@ fn panel_scenario(state: JsValue) -> Result<Scenario, JsValue> {
     s.scenario().map_err(js_error)
 }
 
-/// The shaped road last made on this thread, with its key ([`shaped_key`]).
-type ShapedCache = Option<(u64, ShapedRoad, ProfileTracks)>;
-
-thread_local! {
-    /// The last profile shaped at a speed: the panel's map, front and judgement ask for
-    /// the same road in a row, and shaping it (reading the file, Welch PSDs, fitting the
-    /// filters) costs more than a map's runs on a short profile.
-    static SHAPED: RefCell<ShapedCache> = const { RefCell::new(None) };
-}
-
-/// A key of the file's bytes, the speed and the state's tracks.
-fn shaped_key(bytes: &[u8], speed: f64, tracks: Tracks) -> u64 {
-    let mut h = std::collections::hash_map::DefaultHasher::new();
-    bytes.hash(&mut h);
-    speed.to_bits().hash(&mut h);
-    matches!(tracks, Tracks::Independent).hash(&mut h);
-    h.finish()
-}
-
-/// The profile `bytes` shaped at the scenario's speed with its tracks (kept for the next
-/// call on the same file, speed and tracks); errors name `road` or `speed`.
-fn shaped(bytes: &[u8], scenario: &Scenario) -> Result<(ShapedRoad, ProfileTracks), JsValue> {
-    let key = shaped_key(bytes, scenario.road.speed, scenario.road.tracks);
-    if let Some((_, road, tracks)) = SHAPED.with_borrow(|c| c.clone().filter(|c| c.0 == key)) {
-        return Ok((road, tracks));
-    }
-    let p = profile(bytes)?;
-    let tracks = ProfileTracks::on_page(&p, scenario.road.tracks);
-    crate::domain::SPEED
-        .check("speed", scenario.road.speed)
-        .map_err(road_js_error)?;
-    let road = ShapedRoad::from_profile(&p, scenario.road.speed, tracks)
-        .map_err(|e| road_js_error(road_error(e)))?;
-    SHAPED.set(Some((key, road.clone(), tracks)));
-    Ok((road, tracks))
+/// The profile `bytes` (named `file`) shaped at the scenario's speed with its tracks, by
+/// the profiles and roads this thread keeps ([`use_road`], [`resolve`]: the panel's map,
+/// front and judgement ask for the same road in a row, and shaping it costs more than a
+/// map's runs on a short profile); errors name `road` or `speed`.
+fn shaped(
+    bytes: &[u8],
+    file: &str,
+    scenario: &Scenario,
+) -> Result<(ShapedRoad, ProfileTracks), JsValue> {
+    let key = use_road(bytes, file)?;
+    let on = kept_road(&key, scenario.road.speed, scenario.road.tracks).map_err(road_js_error)?;
+    Ok((on.road().clone(), on.tracks()))
 }
 
 /// `"lofi"` or `"quarter"` (the quarter car), `"hifi"` or `"full"` (the full car); errors
@@ -142,7 +119,7 @@ pub fn road_map(
         "the map's cells",
     )
     .map_err(js_error)?;
-    let (road, tracks) = shaped(bytes, &scenario)?;
+    let (road, tracks) = shaped(bytes, file, &scenario)?;
     let settings = MapSettings {
         grid,
         scale: Scale::Absolute,
@@ -228,7 +205,7 @@ pub fn road_front(
         )
         .map_err(js_error)?;
     }
-    let (road, tracks) = shaped(bytes, &scenario)?;
+    let (road, tracks) = shaped(bytes, file, &scenario)?;
     let car = &scenario.datum;
     let hifi =
         MeasuredModel::new(ModelKind::Full, car, road.clone()).with_comfort(scenario.comfort);
@@ -260,15 +237,24 @@ pub fn road_front(
     Ok(v)
 }
 
-/// Most profiles a thread keeps for the road menu (each at most
+/// Most profiles a thread keeps for the road panel and the road menu (each at most
 /// [`crate::road_profile::MAX_BYTES`] as a file): the newest replace the oldest.
 const KEPT_PROFILES: usize = 4;
 
-/// Most shaped roads a thread keeps for the road menu (a profile at a few speeds).
+/// Most shaped roads a thread keeps for the road panel and the road menu (a profile at a
+/// few speeds).
 const KEPT_ROADS: usize = 8;
 
-/// A profile the road menu offers: its key (`useRoad`'s), file name and the read profile.
-type KeptProfile = (String, String, std::sync::Arc<Profile>);
+/// A profile registered by [`use_road`].
+#[derive(Clone)]
+struct KeptProfile {
+    /// `"<file>#<content>"`, the state's `roadProfile`.
+    key: String,
+    file: String,
+    /// A hash of the file's bytes ([`content_hash`]).
+    content: u64,
+    profile: std::sync::Arc<Profile>,
+}
 
 thread_local! {
     /// The profiles `useRoad` registered on this thread, oldest first.
@@ -284,7 +270,7 @@ fn content_hash(bytes: &[u8]) -> u64 {
     h.finish()
 }
 
-/// Registers the profile `bytes` (named `file`) for the road menu on this thread and
+/// Registers the profile `bytes` (named `file`) for the road panel and menu on this thread and
 /// returns its key, `"<file>#<hash>"`: a state whose `roadProfile` is that key is on the
 /// profile (shaped at the state's speed with its tracks) in place of its ISO class. The
 /// page registers a road on each of its threads. Errors name `road` (the column and row).
@@ -292,53 +278,61 @@ fn content_hash(bytes: &[u8]) -> u64 {
 pub fn use_road(bytes: &[u8], file: &str) -> Result<String, JsValue> {
     let content = content_hash(bytes);
     let key = format!("{file}#{content:016x}");
-    let known = PROFILES.with_borrow(|p| p.iter().any(|(k, _, _)| *k == key));
+    let known = PROFILES.with_borrow(|p| p.iter().any(|k| k.key == key));
     if !known {
-        let p = std::sync::Arc::new(profile(bytes)?);
-        PROFILES.with_borrow_mut(|kept| {
-            if kept.len() >= KEPT_PROFILES {
-                kept.remove(0);
+        let kept = KeptProfile {
+            key: key.clone(),
+            file: file.to_string(),
+            content,
+            profile: std::sync::Arc::new(profile(bytes)?),
+        };
+        PROFILES.with_borrow_mut(|all| {
+            if all.len() >= KEPT_PROFILES {
+                all.remove(0);
             }
-            kept.push((key.clone(), file.to_string(), p));
+            all.push(kept);
         });
     }
     Ok(key)
 }
 
-/// The session's road resolver ([`crate::explorer::RoadResolver`]): the registered
-/// profile `key` shaped at `speed` with the page's `tracks`, kept for the next ask;
-/// errors name `road` (a key not registered here, or what the speed needs of the file)
-/// or `speed`.
+/// The session's road resolver ([`crate::explorer::RoadResolver`]): [`kept_road`].
 pub(super) fn resolve(
     key: &str,
     speed: f64,
     tracks: Tracks,
 ) -> crate::error::Result<std::sync::Arc<dyn RoadSource>> {
-    let Some((_, file, p)) = PROFILES.with_borrow(|kept| kept.iter().find(|k| k.0 == key).cloned())
+    Ok(kept_road(key, speed, tracks)?)
+}
+
+/// The registered profile `key` shaped at `speed` with the page's `tracks`, kept for the
+/// next ask; errors name `road` (a key not registered here, or what the speed needs of
+/// the file) or `speed`.
+fn kept_road(
+    key: &str,
+    speed: f64,
+    tracks: Tracks,
+) -> crate::error::Result<std::sync::Arc<OnRoad>> {
+    let Some(kept) = PROFILES.with_borrow(|kept| kept.iter().find(|k| k.key == key).cloned())
     else {
         return Err(RideError::field(
             "road",
             format!("the measured road '{key}' is not loaded on this thread: drop its file on the Car & road tab again"),
         ));
     };
-    let t = ProfileTracks::on_page(&p, tracks);
-    let content = key
-        .rsplit('#')
-        .next()
-        .and_then(|h| u64::from_str_radix(h, 16).ok())
-        .unwrap_or(0);
-    let want = OnRoad::key_of(&file, content, speed, t);
-    if let Some(r) = ROADS.with_borrow(|kept| kept.iter().find(|r| r.key() == want).cloned()) {
+    let t = ProfileTracks::on_page(&kept.profile, tracks);
+    let want = OnRoad::key_of(&kept.file, kept.content, speed, t);
+    if let Some(r) = ROADS.with_borrow(|roads| roads.iter().find(|r| r.key() == want).cloned()) {
         return Ok(r);
     }
     crate::domain::SPEED.check("speed", speed)?;
-    let road = ShapedRoad::from_profile(&p, speed, t).map_err(road_error)?;
-    let on = std::sync::Arc::new(OnRoad::new(&file, content, p, road, t));
-    ROADS.with_borrow_mut(|kept| {
-        if kept.len() >= KEPT_ROADS {
-            kept.remove(0);
+    let road = ShapedRoad::from_profile(&kept.profile, speed, t).map_err(road_error)?;
+    let on = std::sync::Arc::new(OnRoad::new(&kept.file, kept.content, kept.profile, road, t));
+    ROADS.with_borrow_mut(|roads| {
+        if roads.len() >= KEPT_ROADS {
+            roads.remove(0);
         }
-        kept.push(on.clone());
+        roads.push(on.clone());
     });
     Ok(on)
 }
