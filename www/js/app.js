@@ -6,7 +6,8 @@
 //   js/render.js      store -> views (each view takes plain data)
 //   js/testhooks.js   window.__ridelab for the browser tests
 //   js/restore.js     links and session files: what of them applies
-//   js/timecontrols.js, js/offline.js  the Time tab's fields; the service worker
+//   js/panels.js      the panels beyond the first screen, loaded after the first map
+//   js/offline.js     the service worker
 // "?engine=main" runs everything on the main thread.
 
 import init, * as api from '../ridelab-first.js';
@@ -15,14 +16,10 @@ import { Compute } from './compute.js';
 import { Store, scenarioKey, setKeyFields } from './store.js';
 import { Controller } from './controller.js';
 import { Render } from './render.js';
-import { Controls, plainWords } from './controls.js';
+import { Controls, fieldName, plainWords } from './controls.js';
 import { MapView, CRITERIA } from './mapview.js';
 import { ObjectivePlane, frontPointText } from './plane.js';
 import { Plot } from './plot.js';
-import { SpectraPanel } from './spectra.js';
-import { TimePanel, DamperChart } from './timepanel.js';
-import { CarEditor, carFieldMessage } from './careditor.js';
-import { Guide } from './guide.js';
 import { Workbench, bindShortcuts } from './workbench.js';
 import { buildPickers } from './surrogatepanel.js';
 import { UncertaintyPanel } from './uncertaintypanel.js';
@@ -31,18 +28,11 @@ import { currentHifiFront } from './hififront.js';
 import { loadTables } from './colormap.js';
 import { keyStep } from './steps.js';
 import { fmt, parseNumber } from './format.js';
-import { download, mapsCsv, frontCsv, slidePng, slidePngs, zip } from './exports.js';
-import { allSvgs, carSlug, exportCharts, objectiveChart } from './svgexport.js';
 import { installTestHooks } from './testhooks.js';
 import { pathText, computeMode } from './gpupath.js';
 import { keepDesign, renderCompare, savedEntry, MAX_SAVED } from './compare.js';
-import { LessonPanel } from './lessonpanel.js';
-import { ClassFront } from './classfront.js';
-import { isLessonHash } from './lessons.js';
+import { isLessonHash } from './urlstate.js';
 import { RobustPanel, withLoadCases } from './robustpanel.js';
-import { RoadPanel } from './roadpanel.js';
-import { fromSession } from './restore.js';
-import { fieldName, wireTime } from './timecontrols.js';
 import { registerServiceWorker } from './offline.js';
 
 /** ISO 8608 wording of the classes. */
@@ -79,11 +69,6 @@ function numberField(controls, store, id, field, toState) {
   });
 }
 
-/** "sedan-B-20ms" ("my-van-B-20ms" for a custom car named "My van"): the stem of export file names. */
-function stamp(state) {
-  return `${carSlug(state)}-${state.roadProfile ? 'measured' : state.class}-${state.speed}ms`;
-}
-
 function buildSelects(store) {
   buildPickers($('sur-approach'), $('sur-plan'), store.surrogateNames);
   const car = $('car');
@@ -104,7 +89,7 @@ function buildSelects(store) {
 }
 
 /** Wires every control to the controller. */
-function wire({ store, controller: ctl, controls, render, ui, guide, bench, compute, lessons }) {
+function wire({ store, controller: ctl, controls, render, ui, bench, compute, panels }) {
   const st = store;
   // Design sliders: pointer and keyboard; keys move on the grid through the datum.
   for (const [axis, id] of [['ks', 'ks-range'], ['cs', 'cs-range']]) {
@@ -210,39 +195,6 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
       render.controls();
     }
   });
-  $('car-apply').addEventListener('click', async () => {
-    const ed = ui.carEditor;
-    const r = ed.read();
-    if (r.error) {
-      ed.mark(r.path, r.error);
-      return;
-    }
-    const json = JSON.stringify(r.car);
-    let parsed;
-    try {
-      parsed = await compute.parseCar(json);
-    } catch (e) {
-      const path = e.message.split(':')[0];
-      if (ed.has(path)) ed.mark(path, carFieldMessage(path, e.message));
-      else controls.setMsg('carEditor', plainWords(e.message));
-      return;
-    }
-    ed.mark('', '');
-    // The design stays where it is; the datum is the edited car's own front.
-    const ok = await ctl.changeScenario({ car: 'custom', carJson: json }, 'carEditor', {
-      onFail: (e) => controls.setMsg('carEditor', `The edited car cannot be computed: ${plainWords(e.message)}`),
-    });
-    if (ok) {
-      st.custom = { json, ks: parsed.ks, cs: parsed.cs, origin: 'editor', name: r.car.name };
-      controls.setMsg('carEditor', '');
-      render.controls();
-    }
-  });
-  $('car-export').addEventListener('click', () => {
-    const car = st.desc.car;
-    const name = (car.name || 'car').toLowerCase().replace(/[^a-z0-9]+/g, '-').replace(/^-|-$/g, '');
-    download(`${name}.json`, new Blob([JSON.stringify(car, null, 2) + '\n'], { type: 'application/json' }));
-  });
   const toDatum = () => ctl.changeDesign(st.desc.datumKs, st.desc.datumCs, 'ks');
   const toPick = () => {
     if (st.front && !st.front.error) ctl.changeDesign(st.front.study.pick.ks, st.front.study.pick.cs, 'ks');
@@ -344,7 +296,6 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
       ctl.changeScenario({ noWorse: nw.some((x) => x) ? nw : null }, 'noWorse');
     });
   }
-  $('tour').addEventListener('click', () => guide.open());
   $('copy-link').addEventListener('click', async () => {
     st.writeUrl();
     const btn = $('copy-link');
@@ -358,8 +309,6 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
   });
   $('banner-close').addEventListener('click', () => controls.banner(''));
   $('keys').addEventListener('click', () => $('shortcuts').showModal());
-  wireTime({ store, controller: ctl, controls, compute, ui });
-  wireExports({ store: st, controller: ctl, controls, ui, compute });
   bindShortcuts({
     help: () => $('shortcuts').showModal(),
     tab: (i) => bench.tabs[i]?.click(),
@@ -368,22 +317,25 @@ function wire({ store, controller: ctl, controls, render, ui, guide, bench, comp
     keep,
     map: () => ui.maps[0].surface.focus(),
     projector: () => ctl.setView({ projector: !st.view.projector }),
-    lesson: () => lessons.open(),
-    escape: () => (guide.isOpen ? guide.close() : bench.close()),
+    lesson: () => panels.then(() => ui.lessons.open()),
+    escape: () => (ui.guide?.isOpen ? ui.guide.close() : bench.close()),
   });
   window.addEventListener('hashchange', () => {
     if (location.hash === st.lastHash) return;
-    if (isLessonHash(location.hash)) lessons.openLink(location.hash);
+    if (isLessonHash(location.hash)) panels.then(() => ui.lessons.openLink(location.hash));
     else ctl.loadHash(location.hash);
   });
   matchMedia(`(resolution: ${window.devicePixelRatio}dppx)`).addEventListener('change', () => render.redrawAll());
-  // The plane and the panels follow the size of their boxes (window, drawer, type).
+  // The plane and the panels follow the size of their boxes (window, drawer, type). The
+  // observer's first report, of the size the plane was just drawn at, redraws nothing.
   let resizeTimer = null;
   const later = () => {
     clearTimeout(resizeTimer);
     resizeTimer = setTimeout(() => render.redrawAll(), 100);
   };
-  new ResizeObserver(later).observe($('op-wrap'));
+  new ResizeObserver(() => {
+    if (!ui.plane.base.fitsBox()) later();
+  }).observe($('op-wrap'));
   window.addEventListener('resize', later);
 }
 
@@ -405,88 +357,6 @@ function exportDataOf(store, ui) {
     views: ui.maps,
     model: st.view.model,
   };
-}
-
-function wireExports({ store: st, controller: ctl, controls, ui, compute }) {
-  const status = (t) => ($('export-status').textContent = t);
-  const failed = (what) => (e) => status(`${what} failed: ${e.message || e}`);
-  $('front-csv').addEventListener('click', () => download(`ridelab-front-${stamp(st.state)}.csv`, new Blob([frontCsv(st.front, st.nsga, adaptivePlane(st.adaptive))], { type: 'text/csv' })));
-  $('maps-csv').addEventListener('click', () => {
-    const shown = st.shownMaps();
-    if (!shown) return;
-    const m = st.view.model;
-    download(`ridelab-${m}-maps-${stamp(st.state)}.csv`, new Blob([mapsCsv(st.desc.designBox, m, shown.maps)], { type: 'text/csv' }));
-  });
-  $('op-png').addEventListener('click', () => {
-    const data = exportDataOf(st, ui);
-    Promise.resolve()
-      .then(() => slidePng({ kind: 'line', spec: objectiveChart(data) }))
-      .then((png) => download(`ridelab-objective-${stamp(st.state)}.png`, png))
-      .catch(failed('PNG export'));
-  });
-  $('op-svg').addEventListener('click', () => {
-    Promise.resolve()
-      .then(() => compute.svg('line', objectiveChart(exportDataOf(st, ui))))
-      .then((svg) => download(`ridelab-objective-${stamp(st.state)}.svg`, new Blob([svg], { type: 'image/svg+xml' })))
-      .catch(failed('SVG export'));
-  });
-  // Every chart in one download: a burst of downloads trips the browser's guard.
-  $('png-all').addEventListener('click', async () => {
-    try {
-      const charts = exportCharts(exportDataOf(st, ui));
-      const files = await slidePngs(charts, (c) => `ridelab-${c.name}-${stamp(st.state)}.png`, (n, total) => status(`Drawing the charts at slide size: ${n} of ${total}…`));
-      download(`ridelab-charts-png-${stamp(st.state)}.zip`, await zip(files));
-      status(`${files.length} PNGs (1600 px wide) in one zip.`);
-    } catch (e) {
-      failed('PNG export')(e);
-    }
-  });
-  $('svg-all').addEventListener('click', async () => {
-    try {
-      const list = await allSvgs(exportDataOf(st, ui), (kind, spec) => compute.svg(kind, spec));
-      const files = list.map(({ name, svg }) => ({ name: `ridelab-${name}-${stamp(st.state)}.svg`, data: svg }));
-      download(`ridelab-charts-svg-${stamp(st.state)}.zip`, await zip(files));
-      status(`${files.length} SVGs in one zip.`);
-    } catch (e) {
-      failed('SVG export')(e);
-    }
-  });
-  // The study report: built by the core in the heavy worker (seconds), saved as one HTML file.
-  $('report-html').addEventListener('click', async () => {
-    const button = $('report-html');
-    button.disabled = true;
-    status('Building the study report in the worker (maps, fidelity study, fronts)…');
-    try {
-      const t0 = performance.now();
-      const r = await compute.report(st.state);
-      download(`ridelab-report-${stamp(st.state)}.html`, new Blob([r.html], { type: 'text/html' }));
-      status(`Study report: ${r.title} (${((performance.now() - t0) / 1000).toFixed(1)} s).`);
-    } catch (e) {
-      failed('The report')(e);
-    } finally {
-      button.disabled = false;
-    }
-  });
-  $('session-save').addEventListener('click', () => {
-    download(`ridelab-session-${stamp(st.state)}.json`, new Blob([JSON.stringify(st.session(), null, 2)], { type: 'application/json' }));
-  });
-  $('session-load').addEventListener('change', async (ev) => {
-    const input = ev.target;
-    const file = input.files && input.files[0];
-    if (!file) return;
-    input.value = '';
-    let session;
-    try {
-      session = await fromSession(compute, st.defaults, await file.text());
-    } catch (e) {
-      controls.setMsg('session', `${file.name}: ${plainWords(e.message || e)}`);
-      return;
-    }
-    controls.setMsg('session', '');
-    const shown = await ctl.enqueue(async () => ctl.load(session, 'session'));
-    if (!shown) controls.setMsg('session', `${file.name}: not loaded, it cannot be computed (the banner says why); the current view stays.`);
-    else if (session.problems.length) controls.setMsg('session', `${file.name}: ${session.problems.join('; ')}; the rest is loaded.`);
-  });
 }
 
 // ---------------------------------------------------------------- start
@@ -555,34 +425,23 @@ async function main() {
     return true;
   };
   const grid = $('map-grid');
+  // The callbacks of every map view (the three maps, the uncertainty map, the road panel's).
+  const mapHooks = {
+    onPick: (ks, cs) => controller.changeDesign(Math.round(ks / 10) * 10, Math.round(cs / 5) * 5, 'ks'),
+    onKey: onMapKey,
+    contours: (field, nx, ny, levels) => compute.contours(field, nx, ny, levels),
+    objectives: store.objectives,
+  };
   const ui = {
     controls,
     tables: loadTables((name) => compute.colourTable(name)),
-    maps: CRITERIA.map((c) => new MapView(grid, c, {
-      onPick: (ks, cs) => controller.changeDesign(Math.round(ks / 10) * 10, Math.round(cs / 5) * 5, 'ks'),
-      onKey: onMapKey,
-      contours: (field, nx, ny, levels) => compute.contours(field, nx, ny, levels),
-      objectives: store.objectives,
-    })),
+    maps: CRITERIA.map((c) => new MapView(grid, c, mapHooks)),
     plane: new ObjectivePlane({ base: $('op-base'), overlay: $('op-overlay'), wrap: $('op-wrap'), msg: $('op-msg') }, (p, sel) => {
       controller.changeDesign(p.ks, p.cs, 'ks');
       $('op-status').textContent = frontPointText(store.front, sel.index);
     }),
-    spectra: new SpectraPanel((which, key) => $(`sp-${which}-${key}`), $('panel-spectra'), $('sp-key-route')),
-    time: new TimePanel({
-      car: $('tp-car'),
-      play: $('tp-play'),
-      charts: Object.fromEntries(['bacc', 'dtl', 'sws'].map((k) => [k, { base: $(`tp-${k}`), overlay: $(`tp-${k}-cursor`) }])),
-    }),
-    damper: new DamperChart($('tp-fv')),
     adaptiveChart: new Plot($('ad-chart'), { aspect: 0.5 }),
-    uncertainty: new UncertaintyPanel({ box: $('ad-unc-box'), select: $('ad-unc-crit'), maps: $('ad-unc-map'), caption: $('ad-unc-caption') }, {
-      onPick: (ks, cs) => controller.changeDesign(Math.round(ks / 10) * 10, Math.round(cs / 5) * 5, 'ks'),
-      onKey: onMapKey,
-      contours: (field, nx, ny, levels) => compute.contours(field, nx, ny, levels),
-      objectives: store.objectives,
-    }),
-    carEditor: new CarEditor($('car-fields')),
+    uncertainty: new UncertaintyPanel({ box: $('ad-unc-box'), select: $('ad-unc-crit'), maps: $('ad-unc-map'), caption: $('ad-unc-caption') }, mapHooks),
     robust: new RobustPanel({
       load: $('rb-load'), operating: $('rb-op'), addLoad: $('rb-add-load'), addOp: $('rb-add-op'), combine: $('rb-combine'),
       text: $('rb-text'), apply: $('rb-apply'), pending: $('rb-pending'), clear: $('rb-clear'), caseSelect: $('rb-case'), msg: $('msg-cases'), count: $('rb-count'),
@@ -601,6 +460,7 @@ async function main() {
     }),
   };
   const render = new Render(store, ui);
+  const redraw = () => requestAnimationFrame(() => render.redrawAll());
   controller = new Controller(store, compute, render, controls);
   controller.onFirstMap = firstScreenDone;
   const bench = new Workbench({
@@ -608,37 +468,22 @@ async function main() {
     drawer: $('drawer'),
     tabs: [...document.querySelectorAll('.tabs [role="tab"]')],
     close: $('drawer-close'),
-    onResize: () => requestAnimationFrame(() => render.redrawAll()),
+    onResize: () => redraw(),
   });
-  const guide = new Guide($('tour-card'));
-  const lessons = new LessonPanel({
-    root: $('lesson'), bench: $('app'), store, controller, compute, onResize: () => requestAnimationFrame(() => render.redrawAll()),
-  });
-  const ids = { name: 'cf-name', make: 'cf-make', code: 'cf-code', copy: 'cf-copy', text: 'cf-text', file: 'cf-file', apply: 'cf-apply', clear: 'cf-clear', status: 'cf-status', problems: 'cf-problems', table: 'cf-table', drop: 'cf-drop' };
-  const classFront = new ClassFront(Object.fromEntries(Object.entries(ids).map(([k, id]) => [k, $(id)])), { store, controller, compute });
-  ui.road = new RoadPanel({
-    box: $('road-box'), file: $('road-file'), msg: $('msg-road'), summary: $('road-summary'), canvas: $('road-psd'), table: $('road-table'), notes: $('road-notes'),
-    study: { box: $('road-study'), model: $('road-model'), crit: $('road-crit'), status: $('road-study-status'), maps: $('road-maps'), front: $('road-front'), caption: $('road-study-caption') },
-  }, {
-    store,
-    compute,
-    hooks: {
-      onPick: (ks, cs) => controller.changeDesign(Math.round(ks / 10) * 10, Math.round(cs / 5) * 5, 'ks'),
-      onKey: onMapKey,
-      contours: (field, nx, ny, levels) => compute.contours(field, nx, ny, levels),
-      objectives: store.objectives,
-    },
-    look: () => ({ palette: store.view.palette, tables: ui.tables }),
-    onRoad: (road) => ui.onRoad(road),
-  });
-  $('tab-car').addEventListener('click', () => requestAnimationFrame(() => ui.road.redraw()));
+  // The panels beyond the first screen (js/panels.js: the drawer's spectra, time, car, road,
+  // export and class-front panels, the tour and the lessons) load once the first map is
+  // drawn; until then their charts are not drawn and their buttons wait for them.
+  const panels = firstScreen
+    .then(() => import('./panels.js'))
+    .then(({ startPanels }) => startPanels({ store, controller, compute, render, controls, ui, hooks: mapHooks, exportData: () => exportDataOf(store, ui), redraw }));
+  panels.catch((e) => controls.banner(`Some panels failed to load (${e.message || e}); reload the page to use them.`, 'error'));
   controller.onViewsChanged = () => {
-    lessons.viewsChanged();
-    classFront.viewsChanged();
-    ui.road.viewsChanged();
+    ui.lessons?.viewsChanged();
+    ui.classFront?.viewsChanged();
+    ui.road?.viewsChanged();
   };
-  installTestHooks({ store, controller, compute, ui, boot, lessons, exportData: () => exportDataOf(store, ui) });
-  wire({ store, controller, controls, render, ui, guide, bench, compute, lessons });
+  installTestHooks({ store, controller, compute, ui, boot, exportData: () => exportDataOf(store, ui) });
+  wire({ store, controller, controls, render, ui, bench, compute, panels });
   $('loading').hidden = true;
   $('app').removeAttribute('aria-busy');
   // A lesson link opens on the default view; the lesson's first step sets its own.
@@ -646,14 +491,19 @@ async function main() {
   await controller.enqueue(async () => controller.load(await controller.fromHash(lessonLink ? '' : location.hash)));
   for (const v of ui.maps) v.resize();
   boot.interactiveAt = performance.now();
-  // Ready when the HiFi column has arrived too.
+  // Ready when the HiFi column has arrived too, and the panels beyond the first screen.
   while (!controller.isSettled()) await new Promise((r) => setTimeout(r, 5));
+  try {
+    await panels;
+  } catch {
+    return; // the banner says so
+  }
   boot.ready = true;
   boot.readyAt = performance.now();
-  if (lessonLink) lessons.openLink(lessonLink);
-  else guide.showIfNew();
+  if (lessonLink) ui.lessons.openLink(lessonLink);
+  else ui.guide.showIfNew();
   document.documentElement.dataset.ready = '1';
-  registerServiceWorker(controls, (what) => lessons.own.mayLeave(what));
+  registerServiceWorker(controls, (what) => ui.lessons.own.mayLeave(what));
 }
 
 main();

@@ -314,9 +314,3 @@ export class ClassFront {
     }
   }
 }
-
-/** The class's designs to mark (`[{rank, label, ks, cs, plane}]`), or null (none, or for another scenario). */
-export function classMarks(st) {
-  const cf = st.classFront;
-  return cf && cf.key === scenarioKey(st.state) && cf.rows.length ? cf.rows : null;
-}

@@ -3,6 +3,8 @@
 // the three maps (at Ks, Cs) and on the objective plane (at its criteria by the plane's
 // model). Magenta is in neither colour map (viridis, cividis) nor the plane's series.
 
+import { scenarioKey } from './store.js';
+
 /** The class markers' fill. */
 export const CLASS_COLOUR = '#d6008f';
 
@@ -41,4 +43,10 @@ export function paintClass(g, rows, at, { r, lw, fs }) {
     g.fillText(text, p[0] + r + 1.5, p[1]);
   }
   g.restore();
+}
+
+/** The class's designs to mark (`[{rank, label, ks, cs, plane}]`), or null (none, or for another scenario). */
+export function classMarks(st) {
+  const cf = st.classFront;
+  return cf && cf.key === scenarioKey(st.state) && cf.rows.length ? cf.rows : null;
 }

@@ -61,6 +61,8 @@ export class Controller {
      */
     /** Called when the first map is drawn, or the maps fail (the page starts its workers then). */
     this.onFirstMap = () => {};
+    /** True once the page's first maps are drawn (`counters.firstMapAt`: when they were on the screen). */
+    this.firstMapsDrawn = false;
     this.counters = { frontDraws: 0, frontDrawnAt: 0, nsgaRuns: 0, nsgaDropped: 0, nsgaLog: [], firstMapAt: null, adaptiveDropped: 0 };
     /** True while the adaptive loop runs (its buttons are disabled). */
     this.adaptiveBusy = false;
@@ -344,15 +346,22 @@ export class Controller {
    * and readout first, its maps a frame later, and a newer edit never waits for a map.
    * The refresh steps aside while updates are queued and starts again if the state
    * changes under it; it reads the state when it runs. At most one is scheduled.
+   * The page's first maps are the exception: nothing of the user's can wait behind them
+   * yet, so they are computed and drawn at once, in the task that loaded the first state,
+   * and the first screen (plane, readout and maps) paints in one frame (issue #29).
    */
   refreshMaps() {
     if (this.mapsJob) return;
     const st = this.store;
+    const eager = !this.firstMapsDrawn;
     this.mapsJob = this.track(
       (async () => {
-        for (;;) {
-          await afterPaint();
-          if (this.queued > 0) continue;
+        for (let pass = 0; ; pass++) {
+          const atOnce = eager && pass === 0;
+          if (!atOnce) {
+            await afterPaint();
+            if (this.queued > 0) continue;
+          }
           const s = st.state;
           const key = scenarioKey(s);
           const t0 = performance.now();
@@ -375,16 +384,20 @@ export class Controller {
             }
             // Two short tasks per map (data, then drawing), so an edit waits at most one.
             this.render.mapData(k, shown);
-            await nextTask();
+            if (!atOnce) await nextTask();
             this.render.mapDraw(k);
-            await nextTask();
+            if (!atOnce) await nextTask();
           }
           if (!current || st.state !== s) continue;
           this.render.mapsDone(shown);
           this.onViewsChanged();
-          if (this.counters.firstMapAt === null) {
-            this.counters.firstMapAt = performance.now();
-            this.onFirstMap();
+          if (!this.firstMapsDrawn) {
+            this.firstMapsDrawn = true;
+            // The first map counts once it is on the screen: after the frame that paints it.
+            afterPaint().then(() => {
+              this.counters.firstMapAt = performance.now();
+              this.onFirstMap();
+            });
           }
           this.metrics.maps.push(performance.now() - t0);
           return;

@@ -4,6 +4,12 @@
 
 import { fmt, fmtInput } from './format.js';
 
+/** The name of input `el` as its label says it ("Speed, m/s"), for messages that name the field. */
+export function fieldName(el) {
+  const label = el.getAttribute('aria-label') || (el.labels && el.labels[0] ? el.labels[0].textContent : '') || el.id;
+  return label.trim().replace(/\s+/g, ' ');
+}
+
 const $ = (id) => document.getElementById(id);
 
 /** The input element of each field (the engine's error `field`, or a page field). */

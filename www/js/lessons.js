@@ -270,11 +270,6 @@ export function lessonHash(lesson) {
   return `#lesson=${toBase64url(JSON.stringify(JSON.parse(lessonJson(lesson))))}`;
 }
 
-/** True for a lesson link's hash (`#lesson=...`). */
-export function isLessonHash(hash) {
-  return /^#?lesson=/.test(hash || '');
-}
-
 /**
  * A lesson link's content: null when `hash` is no lesson link, `{id}` for a shipped
  * lesson (`#lesson=comfort`), `{lesson}` for an encoded one; throws `{message}` when the

@@ -27,13 +27,25 @@ export class Plot {
     this.error = null;
   }
 
-  /** Sizes the backing store to the element's CSS width times devicePixelRatio. */
-  resize() {
-    const dpr = window.devicePixelRatio || 1;
+  /** The chart's CSS size in its box now: `{w, h}` (px). */
+  measure() {
     const w = Math.max(MIN_W, this.canvas.clientWidth || this.canvas.parentElement.clientWidth || 400);
     const h = this.opts.fill
       ? Math.max(MIN_H * 0.8, Math.floor(this.canvas.parentElement.clientHeight))
       : Math.max(MIN_H * 0.8, Math.round(w * this.opts.aspect));
+    return { w, h };
+  }
+
+  /** True when the chart's box still has the size it was last drawn at: a redraw would change nothing. */
+  fitsBox() {
+    const { w, h } = this.measure();
+    return w === this.size.w && h === this.size.h && (window.devicePixelRatio || 1) === this.size.dpr;
+  }
+
+  /** Sizes the backing store to the element's CSS width times devicePixelRatio. */
+  resize() {
+    const dpr = window.devicePixelRatio || 1;
+    const { w, h } = this.measure();
     const type = (parseFloat(getComputedStyle(document.documentElement).fontSize) || NORMAL_TYPE_PX) / NORMAL_TYPE_PX;
     // Never lay a chart out below the chart module's minimum: shrink the zoom instead.
     const zoom = Math.min(type, w / MIN_W, h / MIN_H);

@@ -14,7 +14,7 @@ import { fmt, fmtInput, fmtPct, inPageUnits, roadWords } from './format.js';
 import { pathText } from './gpupath.js';
 import { currentHifiFront, hifiFrontLine, hifiFrontTitle, renderHifiFront } from './hififront.js';
 import { renderCasePicks, robustMapLabel, robustPlaneLabel } from './robustpanel.js';
-import { classMarks } from './classfront.js';
+import { classMarks } from './classmarks.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -74,7 +74,7 @@ export class Render {
     // The car editor follows the datum car (only a scenario change can change it), but
     // edits in progress survive changes of road, box or objectives.
     const ed = this.ui.carEditor;
-    if (JSON.stringify(ed.car) !== JSON.stringify(st.desc.car)) ed.show(st.desc.car);
+    if (ed && JSON.stringify(ed.car) !== JSON.stringify(st.desc.car)) ed.show(st.desc.car);
     this.criteriaLabels();
     this.plane();
     renderPick($('op-pick'), st.front);
@@ -149,7 +149,7 @@ export class Render {
     this.markers();
     this.ui.plane.drawDesign(st.plane.design);
     // The linear damper's force-velocity line follows Cs while the time panel is open.
-    if (this.ui.damper.linear && this.ui.damper.visible()) this.ui.damper.refresh();
+    if (this.ui.damper?.linear && this.ui.damper.visible()) this.ui.damper.refresh();
     this.timeStale();
     this.ui.controls.syncDesign(st.state, st.desc);
   }
@@ -348,7 +348,7 @@ export class Render {
 
   /** The FRF / PSD panel of state `s`'s design. */
   spectra(s) {
-    this.ui.spectra.show(this.store.spectra);
+    this.ui.spectra?.show(this.store.spectra);
     this.spectraStatus(`Ks ${fmt(s.ks / 1000, 4)} kN/m, Cs ${fmt(s.cs / 1000, 4)} kNs/m`);
   }
 
@@ -360,7 +360,7 @@ export class Render {
   time(text) {
     const st = this.store;
     $('tp-charts').hidden = false;
-    this.ui.time.draw(st.time.result, st.state.speed, st.time.linear);
+    this.ui.time?.draw(st.time.result, st.state.speed, st.time.linear);
     this.timeStale();
     $('tp-play').disabled = false;
     this.timeStatus(text);
@@ -384,8 +384,21 @@ export class Render {
     const on = this.store.view.projector;
     document.documentElement.classList.toggle('projector', on);
     const thick = on ? 1.8 : 1;
-    for (const v of [...this.ui.maps, this.ui.plane, this.ui.spectra, this.ui.time, this.ui.damper, this.ui.uncertainty, ...(this.ui.road ? [this.ui.road] : [])]) v.setStyle({ thick });
+    for (const v of [...this.ui.maps, this.ui.plane, this.ui.uncertainty, ...this.panelViews()]) v.setStyle({ thick });
     requestAnimationFrame(() => this.redrawAll());
+  }
+
+  /** The charts of the panels loaded after the first map (js/panels.js), once they are. */
+  panelViews() {
+    return [this.ui.spectra, this.ui.time, this.ui.damper, this.ui.road].filter(Boolean);
+  }
+
+  /** The panels loaded after the first map (js/panels.js): brought up to the store and the view. */
+  panels() {
+    const st = this.store;
+    const thick = st.view.projector ? 1.8 : 1;
+    for (const v of this.panelViews()) v.setStyle({ thick });
+    if (st.desc) this.ui.carEditor.show(st.desc.car);
   }
 
   /** Redraws every chart at its current size (after a resize, the type size or the drawer). */
@@ -400,6 +413,7 @@ export class Render {
     this.plane();
     if (st.adaptive && !$('ad-chart-box').hidden) this.ui.adaptiveChart.draw(adaptiveSpec(st.adaptive));
     this.ui.uncertainty.redraw();
+    if (!this.ui.spectra) return;
     if (st.spectra) this.ui.spectra.show(st.spectra);
     if (st.time) this.ui.time.draw(st.time.result, st.state.speed, st.time.linear);
     if (this.ui.damper.visible()) this.ui.damper.refresh();

@@ -2,7 +2,7 @@
 // the controller's counters and the engines. Nothing in the page reads it.
 
 /** Installs `window.__ridelab` over the page's parts (`parts`: see js/app.js). */
-export function installTestHooks({ store, controller, compute, ui, boot, lessons, exportData }) {
+export function installTestHooks({ store, controller, compute, ui, boot, exportData }) {
   const hooks = {
     /** Milestones, ms since navigation: script start, wasm ready; interactive (maps drawn) and ready (HiFi too). */
     marks: boot.marks,
@@ -107,11 +107,20 @@ export function installTestHooks({ store, controller, compute, ui, boot, lessons
     objPlane: ui.plane,
     /** The adaptive loop's uncertainty map (js/uncertaintypanel.js). */
     uncertaintyPanel: ui.uncertainty,
-    spectraPanel: ui.spectra,
-    timePanel: ui.time,
-    damperChart: ui.damper,
+    // The panels loaded after the first map (js/panels.js): undefined until then.
+    get spectraPanel() {
+      return ui.spectra;
+    },
+    get timePanel() {
+      return ui.time;
+    },
+    get damperChart() {
+      return ui.damper;
+    },
     /** The lesson panel (js/lessonpanel.js). */
-    lessons,
+    get lessons() {
+      return ui.lessons;
+    },
     // The controller's measurements.
     metrics: controller.metrics,
     counters: controller.counters,

@@ -1,19 +1,13 @@
 // The Time tab's controls (js/timepanel.js draws it): the seed and the front damper law
 // (bump and rebound rates, a knee with the slopes above it) read from their fields,
 // checked with messages that name the field, shown as the force-velocity chart and run
-// as the time response; and `fieldName`, how any input is named in such messages.
+// as the time response.
 
 import { DAMPER_V_MAX } from './timepanel.js';
 import { fmtInput, parseNumber } from './format.js';
-import { FIELD_INPUT } from './controls.js';
+import { FIELD_INPUT, fieldName } from './controls.js';
 
 const $ = (id) => document.getElementById(id);
-
-/** The name of input `el` as its label says it ("Speed, m/s"), for messages that name the field. */
-export function fieldName(el) {
-  const label = el.getAttribute('aria-label') || (el.labels && el.labels[0] ? el.labels[0].textContent : '') || el.id;
-  return label.trim().replace(/\s+/g, ' ');
-}
 
 /**
  * A number field of the time panel: `{value}` (undefined when empty and `optional`) or null

@@ -21,6 +21,11 @@ import { compactCases } from './robustpanel.js';
 
 const NUMBERS = { ks: 'ks', cs: 'cs', speed: 'speed', dm: 'dtlMargin' };
 
+/** True for a lesson link's hash (`#lesson=...`). */
+export function isLessonHash(hash) {
+  return /^#?lesson=/.test(hash || '');
+}
+
 /**
  * The hash (with '#') for `state` (core state), `view` (page-only settings) and `kept`
  * (the designs kept to compare, `[[ks N/m, cs N s/m], ...]`).
