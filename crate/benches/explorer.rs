@@ -7,7 +7,7 @@
 //! Run: `cargo bench -p ridelab --bench explorer`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use ridelab::explorer::{FrontModel, MapModel, Session, State};
+use ridelab::explorer::{Model, Session, State};
 use std::cell::Cell;
 use std::hint::black_box;
 
@@ -31,7 +31,7 @@ fn explorer(c: &mut Criterion) {
         b.iter(|| black_box(next().surrogate().unwrap()))
     });
     c.bench_function("surrogate map 160x120, fresh (fit included)", |b| {
-        b.iter(|| black_box(next().map(MapModel::Surrogate, 160, 120).unwrap()))
+        b.iter(|| black_box(next().map(Model::Surrogate, 160, 120).unwrap()))
     });
     let mut s = at_speed(0);
     let mut limit = 0.007;
@@ -43,18 +43,18 @@ fn explorer(c: &mut Criterion) {
                 ..s.state().clone()
             })
             .unwrap();
-            black_box(s.map(MapModel::Surrogate, 160, 120).unwrap())
+            black_box(s.map(Model::Surrogate, 160, 120).unwrap())
         })
     });
     c.bench_function("lofi map 160x120, fresh", |b| {
-        b.iter(|| black_box(next().map(MapModel::LoFi, 160, 120).unwrap()))
+        b.iter(|| black_box(next().map(Model::LoFi, 160, 120).unwrap()))
     });
     c.bench_function(
         "front stm 61x61 + 2 levels on the surrogate (fit kept)",
-        |b| b.iter(|| black_box(s.front("stm", FrontModel::Surrogate).unwrap())),
+        |b| b.iter(|| black_box(s.front("stm", Model::Surrogate).unwrap())),
     );
     c.bench_function("front stm 61x61 + 2 levels on the LoFi (baseline)", |b| {
-        b.iter(|| black_box(s.front("stm", FrontModel::LoFi).unwrap()))
+        b.iter(|| black_box(s.front("stm", Model::LoFi).unwrap()))
     });
     // The objective plane's HiFi front (issue #13): STM on the full car and the
     // surrogate's front judged on the HiFi against it (fit kept).

@@ -81,7 +81,7 @@ fn names_it(name: &str, alias: Option<&str>, t: &str) -> bool {
 }
 
 /// The refusal of `s` naming `field`: `'s' is not 'a', 'b' or 'c'`.
-fn none_of(field: &str, s: &str, names: &[&str]) -> RideError {
+pub(crate) fn none_of(field: &str, s: &str, names: &[&str]) -> RideError {
     let names: Vec<String> = names.iter().map(|n| format!("'{n}'")).collect();
     let list = match names.split_last() {
         Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),

@@ -3,56 +3,14 @@
 //! ([`Grid::cells`]). They go through the one map pipeline of [`crate::maps`], as the CLI's
 //! maps do: [`Dcs`] computes the criteria, [`DosMap`] judges the design objectives.
 
-use crate::error::{parse_choice, Result};
 use crate::maps::{Dcs, DosMap, Grid};
-use serde::Serialize;
 use std::rc::Rc;
-use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
-
-/// Which model a map shows.
-#[derive(
-    Debug,
-    Clone,
-    Copy,
-    PartialEq,
-    Eq,
-    Serialize,
-    EnumIter,
-    EnumProperty,
-    IntoStaticStr,
-    VariantNames,
-)]
-#[serde(rename_all = "lowercase")]
-#[strum(serialize_all = "lowercase")]
-pub enum MapModel {
-    /// The quarter car.
-    LoFi,
-    /// The full car.
-    HiFi,
-    /// The fitted surrogate.
-    Surrogate,
-    /// The surrogate's signed relative error against the HiFi, %.
-    #[serde(rename = "error")]
-    #[strum(serialize = "error")]
-    SurrogateError,
-    /// With robust cases, the LoFi's robust objective and DOS as the robust front's
-    /// problem sees them (each case scaled to its HiFi datum, each judged against it:
-    /// [`crate::study::robust::optimize::hifi_combination`]): the objective plane's feasible set.
-    Robust,
-}
-
-impl MapModel {
-    /// Parses "lofi", "hifi", "surrogate", "error" or "robust" (errors name `model`).
-    pub fn parse(s: &str) -> Result<MapModel> {
-        parse_choice("model", s)
-    }
-}
 
 /// A design map of one model: the criteria on the grid and the objectives judged there.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModelMap {
     /// The model's criteria (kept between objective edits, hence shared). For
-    /// [`MapModel::SurrogateError`], the fields hold `100 (surrogate / HiFi - 1)`, %.
+    /// [`Model::SurrogateError`], the fields hold `100 (surrogate / HiFi - 1)`, %.
     pub values: Rc<Dcs>,
     /// The design objectives on it; for the error map, the HiFi's.
     pub dos: DosMap,

@@ -16,14 +16,15 @@
 //! A setter that fails leaves the session as it was (the last good state).
 
 use super::hifi_front::{self, HifiFrontView};
-use super::maps::{error_values, MapModel, ModelMap};
+use super::maps::{error_values, ModelMap};
+use super::model::Model;
 use super::state::{RoadResolver, Scenario, State};
-use super::studies::{self, FrontModel, FrontResult, Spectra, TimeResult};
+use super::studies::{self, FrontResult, Spectra, TimeResult};
 use super::surrogate::{fit, fit_report, FitKey, FitRecord, FittedSurrogate};
 use crate::analysis::{readout, report, ModelKind, Readout, Report};
 use crate::comfort::Comfort;
 use crate::dos::DosContext;
-use crate::error::{parse_choice, Result, RideError};
+use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::gpu::{ComputePath, HiFiGrid};
 use crate::maps::{DatumPoint, Dcs, DosMap, Grid, Scale};
@@ -34,7 +35,6 @@ use crate::study::robust::optimize::hifi_combination;
 use crate::study::SurrogateReport;
 use crate::time_domain::TimeOptions;
 use std::rc::Rc;
-use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
 
 /// Map values kept at once: one per model and grid in use (the page shows one model's
 /// maps, its objective plane uses the surrogate's feasible set, the worker the HiFi's),
@@ -64,7 +64,7 @@ pub struct Session {
 /// One model's map values on one grid with one comfort measure, and the path that
 /// computed them.
 struct Kept {
-    model: MapModel,
+    model: Model,
     grid: Grid,
     comfort: Comfort,
     /// The robust case whose loaded car and road made them (`None`: the scenario's own).
@@ -169,20 +169,21 @@ impl Session {
     /// The criteria of the design by the fast evaluators the maps and optimisers use; the
     /// LoFi's and HiFi's BAcc is the scenario's comfort measure, the surrogate's the
     /// unweighted BAcc it was fitted to.
-    pub fn criteria(&mut self, model: EvaluatorKind) -> Result<Criteria> {
+    pub fn criteria(&mut self, model: Model) -> Result<Criteria> {
         let (ks, cs) = self.design();
         match model {
-            EvaluatorKind::LoFi => self
+            Model::LoFi => self
                 .scenario
                 .evaluator(ModelKind::Quarter)?
                 .evaluate(ks, cs),
-            EvaluatorKind::HiFi => self.scenario.evaluator(ModelKind::Full)?.evaluate(ks, cs),
-            EvaluatorKind::Surrogate => self.surrogate()?.model.evaluate(ks, cs),
-            EvaluatorKind::Robust => {
+            Model::HiFi => self.scenario.evaluator(ModelKind::Full)?.evaluate(ks, cs),
+            Model::Surrogate => self.surrogate()?.model.evaluate(ks, cs),
+            Model::Robust => {
                 let robust = self.robust_combination()?;
                 let per = self.case_criteria(ModelKind::Quarter)?;
                 Ok(robust.0.apply(&per))
             }
+            Model::SurrogateError => Err(model.refused("model", Model::CRITERIA)),
         }
     }
 
@@ -281,15 +282,15 @@ impl Session {
     /// On a measured road the LoFi report leaves out its frequency-route check (its
     /// adaptive quadrature on the raw PSD costs ten times the rest); the page's full
     /// reports at a scenario change and the HiFi worker's make it.
-    pub fn design_step(&mut self, plane: EvaluatorKind, with_hifi: bool) -> Result<DesignStep> {
+    pub fn design_step(&mut self, plane: Model, with_hifi: bool) -> Result<DesignStep> {
         let s = &self.scenario;
         let lofi = match &s.measured {
             Some(m) => m.0.report(ModelKind::Quarter, &s.datum, &s.design, false)?,
             None => self.report(ModelKind::Quarter)?,
         };
-        let surrogate = self.criteria(EvaluatorKind::Surrogate)?;
+        let surrogate = self.criteria(Model::Surrogate)?;
         let plane = match plane {
-            EvaluatorKind::Surrogate => None,
+            Model::Surrogate => None,
             other => Some(self.criteria(other)?),
         };
         let hifi = with_hifi
@@ -308,12 +309,12 @@ impl Session {
     /// objectives judged against the model's own datum (errors name `nx` or `ny`). The
     /// LoFi's and HiFi's BAcc plane is the scenario's comfort measure; the surrogate's and
     /// the error map's are the unweighted BAcc.
-    pub fn map(&mut self, model: MapModel, nx: usize, ny: usize) -> Result<ModelMap> {
+    pub fn map(&mut self, model: Model, nx: usize, ny: usize) -> Result<ModelMap> {
         let grid = Grid::cells(&self.scenario.dbox, nx, ny)?;
-        if model == MapModel::Robust {
+        if model == Model::Robust {
             return self.robust_front_map(&grid);
         }
-        if let (Some(n), MapModel::LoFi | MapModel::HiFi) =
+        if let (Some(n), Model::LoFi | Model::HiFi) =
             (self.scenario.cases.as_ref().map(|c| c.cases.len()), model)
         {
             return match self.scenario.case {
@@ -325,10 +326,10 @@ impl Session {
                 None => self.robust_map(model, &grid, n),
             };
         }
-        if model == MapModel::SurrogateError {
+        if model == Model::SurrogateError {
             // The surrogate is fitted to the unweighted BAcc: it is compared with the HiFi's.
-            let hifi = self.values_with(MapModel::HiFi, &grid, Comfort::Bacc)?;
-            let sur = self.values(MapModel::Surrogate, &grid)?;
+            let hifi = self.values_with(Model::HiFi, &grid, Comfort::Bacc)?;
+            let sur = self.values(Model::Surrogate, &grid)?;
             let dos = self.judge(&hifi)?;
             return Ok(ModelMap {
                 values: Rc::new(error_values(&sur, &hifi)),
@@ -360,7 +361,7 @@ impl Session {
     /// `ridelab map --cases`).
     fn combined(
         &mut self,
-        model: MapModel,
+        model: Model,
         grid: &Grid,
         n: usize,
         hifi: Option<&[Criteria]>,
@@ -401,7 +402,7 @@ impl Session {
 
     /// The robust map of `model` (LoFi or HiFi) over the `n` cases: the fields and mask
     /// of `ridelab map --cases` (each case against its own datum on `model`).
-    fn robust_map(&mut self, model: MapModel, grid: &Grid, n: usize) -> Result<ModelMap> {
+    fn robust_map(&mut self, model: Model, grid: &Grid, n: usize) -> Result<ModelMap> {
         self.combined(model, grid, n, None)
     }
 
@@ -411,16 +412,16 @@ impl Session {
     fn robust_front_map(&mut self, grid: &Grid) -> Result<ModelMap> {
         let n = self.cases("front")?.cases.len();
         let robust = self.robust_combination()?;
-        self.combined(MapModel::LoFi, grid, n, Some(&robust.1))
+        self.combined(Model::LoFi, grid, n, Some(&robust.1))
     }
 
     /// A model's values on `grid` with the scenario's comfort measure, kept or computed.
-    fn values(&mut self, model: MapModel, grid: &Grid) -> Result<Rc<Dcs>> {
+    fn values(&mut self, model: Model, grid: &Grid) -> Result<Rc<Dcs>> {
         self.values_with(model, grid, self.scenario.comfort)
     }
 
     /// A model's values on `grid` with `comfort`, kept or computed.
-    fn values_with(&mut self, model: MapModel, grid: &Grid, comfort: Comfort) -> Result<Rc<Dcs>> {
+    fn values_with(&mut self, model: Model, grid: &Grid, comfort: Comfort) -> Result<Rc<Dcs>> {
         self.values_in(model, grid, comfort, None)
     }
 
@@ -429,14 +430,14 @@ impl Session {
     /// road (`None`: the scenario's car and road), kept or computed.
     fn values_in(
         &mut self,
-        model: MapModel,
+        model: Model,
         grid: &Grid,
         comfort: Comfort,
         case: Option<usize>,
     ) -> Result<Rc<Dcs>> {
         let comfort = match model {
-            MapModel::LoFi | MapModel::HiFi | MapModel::Robust => comfort,
-            MapModel::Surrogate | MapModel::SurrogateError => Comfort::Bacc,
+            Model::LoFi | Model::HiFi | Model::Robust => comfort,
+            Model::Surrogate | Model::SurrogateError => Comfort::Bacc,
         };
         if let Some(k) = self
             .kept
@@ -458,15 +459,15 @@ impl Session {
             None => s.evaluator_with(kind, comfort),
         };
         let v = Rc::new(match model {
-            MapModel::LoFi | MapModel::Robust => {
+            Model::LoFi | Model::Robust => {
                 let e = model_on(ModelKind::Quarter)?;
                 Dcs::compute(&*e, grid, at, Scale::Absolute)?
             }
-            MapModel::HiFi => {
+            Model::HiFi => {
                 let e = model_on(ModelKind::Full)?;
                 Dcs::compute(&*e, grid, at, Scale::Absolute)?
             }
-            MapModel::Surrogate | MapModel::SurrogateError => {
+            Model::Surrogate | Model::SurrogateError => {
                 let fit = self.surrogate()?;
                 Dcs::compute(&*fit.model, grid, at, Scale::Absolute)?
             }
@@ -479,7 +480,7 @@ impl Session {
     /// past [`KEPT_MAPS`].
     fn keep(
         &mut self,
-        model: MapModel,
+        model: Model,
         grid: Grid,
         comfort: Comfort,
         case: Option<usize>,
@@ -518,7 +519,7 @@ impl Session {
         let dcs = Dcs::compute_with_threads(&given, &grid, at, Scale::Absolute, 1)?;
         // The GPU kernel computes the unweighted BAcc.
         self.keep(
-            MapModel::HiFi,
+            Model::HiFi,
             grid,
             Comfort::Bacc,
             None,
@@ -535,7 +536,7 @@ impl Session {
         self.kept
             .iter()
             .find(|k| {
-                k.model == MapModel::HiFi
+                k.model == Model::HiFi
                     && k.grid == grid
                     && k.comfort == self.scenario.comfort
                     && k.case.is_none()
@@ -549,34 +550,35 @@ impl Session {
     /// is refused (an error naming `comfort`), as `ridelab optimize --comfort wk` refuses it.
     ///
     /// With robust cases the LoFi's front is the robust one ([`Session::robust_front`]).
-    pub fn front(&mut self, method: &str, model: FrontModel) -> Result<FrontResult> {
+    pub fn front(&mut self, method: &str, model: Model) -> Result<FrontResult> {
         if self.scenario.cases.is_some() {
             return self.robust_front(method, model);
         }
         self.single_front(method, model)
     }
 
-    /// With robust cases, the LoFi's robust front ([`FrontModel::Robust`], as `ridelab
+    /// With robust cases, the LoFi's robust front ([`Model::Robust`], as `ridelab
     /// optimize --cases`: every case's datum is its HiFi datum); the surrogate is fitted to
     /// one case, so its front is refused (an error naming `cases`); without cases an error
     /// naming `cases`. The page's workers answer it: its first-screen wasm leaves the
     /// robust optimisation out (issue #29).
-    pub fn robust_front(&self, method: &str, model: FrontModel) -> Result<FrontResult> {
+    pub fn robust_front(&self, method: &str, model: Model) -> Result<FrontResult> {
         let set = self.cases("front")?;
         match model {
-            FrontModel::LoFi | FrontModel::Robust => {
+            Model::LoFi | Model::Robust => {
                 studies::robust_front(&self.scenario, set, method, ModelKind::Quarter)
             }
-            FrontModel::Surrogate => Err(RideError::field(
+            Model::Surrogate => Err(RideError::field(
                 "cases",
                 "the surrogate is fitted to the car as given (one case); the robust front is the LoFi's",
             )),
+            Model::HiFi | Model::SurrogateError => Err(model.refused("frontModel", Model::FRONT)),
         }
     }
 
     /// The front of a scenario without robust cases ([`Session::front`]); with cases an
     /// error naming `cases` (their front is [`Session::robust_front`]'s).
-    pub fn single_front(&mut self, method: &str, model: FrontModel) -> Result<FrontResult> {
+    pub fn single_front(&mut self, method: &str, model: Model) -> Result<FrontResult> {
         if self.scenario.cases.is_some() {
             return Err(RideError::field(
                 "cases",
@@ -584,19 +586,20 @@ impl Session {
             ));
         }
         match model {
-            FrontModel::Robust => Err(self.cases("front").unwrap_err()),
-            FrontModel::LoFi => {
+            Model::Robust => Err(self.cases("front").unwrap_err()),
+            Model::LoFi => {
                 let lofi = self.scenario.evaluator(ModelKind::Quarter)?;
                 studies::front(&self.scenario, method, &*lofi)
             }
-            FrontModel::Surrogate if self.scenario.comfort == Comfort::Wk => Err(RideError::field(
+            Model::Surrogate if self.scenario.comfort == Comfort::Wk => Err(RideError::field(
                 "comfort",
                 "wk: the surrogates are fitted to the unweighted BAcc; the Wk front is the LoFi's",
             )),
-            FrontModel::Surrogate => {
+            Model::Surrogate => {
                 let fit = self.surrogate()?;
                 studies::front(&self.scenario, method, &*fit.model)
             }
+            Model::HiFi | Model::SurrogateError => Err(model.refused("frontModel", Model::FRONT)),
         }
     }
 
@@ -616,7 +619,7 @@ impl Session {
                     "the GPU grid is one case's; the robust HiFi front runs on the CPU",
                 ));
             }
-            let plane = self.front("stm", FrontModel::Robust)?;
+            let plane = self.front("stm", Model::Robust)?;
             return hifi_front::robust_hifi_front(&self.scenario, &set, &plane);
         }
         let n = studies::STM_GRID * studies::STM_GRID;
@@ -628,9 +631,9 @@ impl Session {
             None => None,
         };
         let (model, name, runs) = match self.scenario.comfort {
-            Comfort::Wk => (FrontModel::LoFi, "lofi", 0),
+            Comfort::Wk => (Model::LoFi, "lofi", 0),
             Comfort::Bacc => (
-                FrontModel::Surrogate,
+                Model::Surrogate,
                 "surrogate",
                 self.surrogate()?.samples.len(),
             ),
@@ -701,32 +704,6 @@ pub struct DesignStep {
     pub plane: Option<Criteria>,
     /// Its HiFi readout, when asked for and it succeeds.
     pub hifi: Option<Readout>,
-}
-
-/// The evaluators behind [`Session::criteria`].
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, EnumIter, EnumProperty, IntoStaticStr, VariantNames,
-)]
-#[strum(serialize_all = "lowercase")]
-#[strum()]
-pub enum EvaluatorKind {
-    /// The quarter car (closed forms).
-    #[strum(serialize = "lofi", props(alias = "quarter"))]
-    LoFi,
-    /// The full car (the maps' fast exact route).
-    #[strum(serialize = "hifi", props(alias = "full"))]
-    HiFi,
-    /// The fitted surrogate.
-    Surrogate,
-    /// With robust cases, the quarter car's robust objective as the robust front's.
-    Robust,
-}
-
-impl EvaluatorKind {
-    /// Parses "lofi" / "quarter", "hifi" / "full", "surrogate" or "robust" (errors name `model`).
-    pub fn parse(s: &str) -> Result<EvaluatorKind> {
-        parse_choice("model", s)
-    }
 }
 
 /// `planes` (BAcc m/s^2, DTL N, SWS m planes of `n` designs each, a map's `values`

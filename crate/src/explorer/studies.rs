@@ -6,7 +6,7 @@ use super::surrogate::FittedSurrogate;
 use crate::analysis::ModelKind;
 use crate::comfort::Comfort;
 use crate::dos::DosContext;
-use crate::error::{parse_choice, Result, RideError};
+use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::math;
 use crate::optimize::{
@@ -23,7 +23,6 @@ use crate::study::robust_optimize_report;
 use crate::study::EvaluatorSpec;
 use crate::time_domain::{simulate, Damper, TimeOptions, TimeResponse};
 use serde::Serialize;
-use strum::{EnumIter, EnumProperty, IntoStaticStr, VariantNames};
 
 /// STM grid of the page's LoFi front (a few ms).
 pub(crate) const STM_GRID: usize = 61;
@@ -47,28 +46,6 @@ pub fn method(name: &str) -> Result<Method> {
             "method",
             format!("'{name}' is not 'stm' or 'nsga2'"),
         )),
-    }
-}
-
-/// The model a front is found on.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, EnumIter, EnumProperty, IntoStaticStr, VariantNames,
-)]
-#[strum(serialize_all = "lowercase")]
-pub enum FrontModel {
-    /// The quarter car.
-    LoFi,
-    /// The scenario's fitted surrogate.
-    Surrogate,
-    /// With robust cases, the quarter car's robust objective over the cases (as
-    /// `ridelab optimize --cases`); the LoFi's front is this one when there are cases.
-    Robust,
-}
-
-impl FrontModel {
-    /// Parses "lofi", "surrogate" or "robust" (errors name `frontModel`).
-    pub fn parse(s: &str) -> Result<FrontModel> {
-        parse_choice("frontModel", s)
     }
 }
 

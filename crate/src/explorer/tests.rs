@@ -51,9 +51,9 @@ fn lofi_and_hifi_maps_equal_point_evaluations() {
         s.no_worse = Some([false, true, false]);
     });
     let s = x.scenario().clone();
-    let lofi = x.map(MapModel::LoFi, 17, 13).unwrap();
+    let lofi = x.map(Model::LoFi, 17, 13).unwrap();
     check_map_cells(&s, &s.lofi(), &lofi);
-    let hifi = x.map(MapModel::HiFi, 6, 5).unwrap();
+    let hifi = x.map(Model::HiFi, 6, 5).unwrap();
     check_map_cells(&s, &s.hifi().unwrap(), &hifi);
     // Each of the four objectives is broken somewhere and met somewhere on the LoFi map.
     for o in [
@@ -81,7 +81,7 @@ fn the_pages_hifi_map_goes_by_the_residue_route_exact_to_1e_8() {
     let s = x.scenario().clone();
     assert!(s.hifi().unwrap().has_residue_route());
     let (nx, ny) = (16, 12);
-    let m = x.map(MapModel::HiFi, nx, ny).unwrap();
+    let m = x.map(Model::HiFi, nx, ny).unwrap();
     let reference = crate::HiFi::with_modal_route(&s.datum, &s.road).unwrap();
     let planes = m.planes();
     let mut worst = 0.0f64;
@@ -102,10 +102,10 @@ fn surrogate_map_and_error_map_agree_with_the_hifi() {
     let mut x = session(|_| {});
     let s = x.scenario().clone();
     let fit = x.surrogate().unwrap();
-    let sur = x.map(MapModel::Surrogate, 7, 6).unwrap();
+    let sur = x.map(Model::Surrogate, 7, 6).unwrap();
     check_map_cells(&s, &*fit.model, &sur);
-    let hifi = x.map(MapModel::HiFi, 7, 6).unwrap();
-    let err = x.map(MapModel::SurrogateError, 7, 6).unwrap();
+    let hifi = x.map(Model::HiFi, 7, 6).unwrap();
+    let err = x.map(Model::SurrogateError, 7, 6).unwrap();
     // The error planes are 100 (S / HiFi - 1) from the two maps, to rounding.
     let mut worst = 0.0f64;
     let (sur, hifi_v, err_v) = (sur.planes(), hifi.planes(), err.planes());
@@ -272,7 +272,7 @@ fn an_offered_fit_is_adopted_bit_for_bit_without_fitting_again() {
 #[test]
 fn the_surrogate_front_pick_holds_on_the_hifi() {
     let mut x = session(|_| {});
-    let r = x.front("stm", FrontModel::Surrogate).unwrap();
+    let r = x.front("stm", Model::Surrogate).unwrap();
     assert!(r.study.evaluator.contains("rba"), "{}", r.study.evaluator);
     assert!(r.study.front.len() > 50);
     // The pick's prediction error against the HiFi re-check: about 0.1 % (study), < 1 %.
@@ -280,7 +280,7 @@ fn the_surrogate_front_pick_holds_on_the_hifi() {
         assert!(e.abs() < 1.0, "{:?}", r.recheck.error_percent);
     }
     // The LoFi front's pick misses the HiFi by more (the fidelity gap the surrogate closes).
-    let l = x.front("stm", FrontModel::LoFi).unwrap();
+    let l = x.front("stm", Model::LoFi).unwrap();
     let gap = |r: &FrontResult| {
         r.recheck
             .error_percent
@@ -314,8 +314,8 @@ fn bad_surrogate_plan_and_bands_name_their_field() {
         field(|s| s.damping_band = Some([f64::NAN, 1.0])),
         "damping_band"
     );
-    assert!(MapModel::parse("kriging").is_err());
-    assert!(FrontModel::parse("hifi").is_err());
+    assert!(Model::parse_among("model", "kriging", Model::MAP).is_err());
+    assert!(Model::parse_among("frontModel", "hifi", Model::FRONT).is_err());
 }
 
 #[test]
@@ -323,9 +323,9 @@ fn kept_map_values_are_rejudged_when_only_the_objectives_change() {
     // First map at 7 mm fills the cache; the second, at 6 mm with a damping band, reuses
     // the values and must equal a fresh evaluation cell for cell, mask included.
     let mut x = session(|_| {});
-    let loose = x.map(MapModel::LoFi, 9, 8).unwrap();
-    let _ = x.map(MapModel::Surrogate, 9, 8).unwrap();
-    let _ = x.map(MapModel::SurrogateError, 5, 4).unwrap();
+    let loose = x.map(Model::LoFi, 9, 8).unwrap();
+    let _ = x.map(Model::Surrogate, 9, 8).unwrap();
+    let _ = x.map(Model::SurrogateError, 5, 4).unwrap();
     let tighter = |s: &mut State| {
         s.sws_limit = Some(0.006);
         s.damping_band = Some([0.2, 0.3]);
@@ -334,15 +334,15 @@ fn kept_map_values_are_rejudged_when_only_the_objectives_change() {
     tighter(&mut b);
     x.set_state(b).unwrap();
     let mut fresh = session(tighter);
-    for model in [MapModel::LoFi, MapModel::Surrogate] {
+    for model in [Model::LoFi, Model::Surrogate] {
         let kept = x.map(model, 9, 8).unwrap();
         assert_eq!(kept, fresh.map(model, 9, 8).unwrap(), "{model:?}");
     }
-    let err = x.map(MapModel::SurrogateError, 5, 4).unwrap();
-    let hifi = fresh.map(MapModel::HiFi, 5, 4).unwrap();
+    let err = x.map(Model::SurrogateError, 5, 4).unwrap();
+    let hifi = fresh.map(Model::HiFi, 5, 4).unwrap();
     assert_eq!(err.broken(), hifi.broken());
     // More of the box breaks the tighter limit than the looser one.
-    let tight = x.map(MapModel::LoFi, 9, 8).unwrap();
+    let tight = x.map(Model::LoFi, 9, 8).unwrap();
     // The kept values are the very same (not recomputed).
     assert!(Rc::ptr_eq(&loose.values, &tight.values));
     let count = |m: &ModelMap| m.broken().iter().filter(|&&x| x & 1 != 0).count();
@@ -651,7 +651,7 @@ fn hifi_values_from_the_gpu_path_are_kept_and_shown() {
     let (nx, ny) = (8, 6);
     let mut x = session(|_| {});
     let s = x.scenario().clone();
-    let cpu = x.map(MapModel::HiFi, nx, ny).unwrap();
+    let cpu = x.map(Model::HiFi, nx, ny).unwrap();
     assert_eq!(x.hifi_path(nx, ny), Some(ComputePath::Cpu));
     let grid = Grid::cells(&s.dbox, nx, ny).unwrap();
     let cells = MapInput::new(&s.datum, &s.road, &grid)
@@ -686,7 +686,7 @@ fn hifi_values_from_the_gpu_path_are_kept_and_shown() {
     );
     x.keep_hifi_planes(nx, ny, &planes).unwrap();
     assert_eq!(x.hifi_path(nx, ny), Some(ComputePath::Gpu));
-    let gpu = x.map(MapModel::HiFi, nx, ny).unwrap();
+    let gpu = x.map(Model::HiFi, nx, ny).unwrap();
     assert_eq!(gpu.planes(), planes);
     assert_eq!(
         gpu.values.datum, cpu.values.datum,
@@ -699,8 +699,8 @@ fn hifi_values_from_the_gpu_path_are_kept_and_shown() {
         .map(|(g, c)| (g / c - 1.0).abs())
         .fold(0.0, f64::max);
     assert!(worst <= 1e-4, "GPU route vs CPU HiFi: {worst:e}");
-    let sur = x.map(MapModel::Surrogate, nx, ny).unwrap().planes();
-    let err = x.map(MapModel::SurrogateError, nx, ny).unwrap().planes();
+    let sur = x.map(Model::Surrogate, nx, ny).unwrap().planes();
+    let err = x.map(Model::SurrogateError, nx, ny).unwrap().planes();
     for k in 0..3 * n {
         assert!(
             (err[k] - 100.0 * (sur[k] / planes[k] - 1.0)).abs() < 1e-9,
@@ -713,6 +713,6 @@ fn hifi_values_from_the_gpu_path_are_kept_and_shown() {
     };
     x.set_state(faster).unwrap();
     assert_eq!(x.hifi_path(nx, ny), None);
-    x.map(MapModel::HiFi, nx, ny).unwrap();
+    x.map(Model::HiFi, nx, ny).unwrap();
     assert_eq!(x.hifi_path(nx, ny), Some(ComputePath::Cpu));
 }

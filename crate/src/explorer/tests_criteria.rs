@@ -32,8 +32,8 @@ fn the_wk_map_plane_is_the_exact_wk_route() {
     let sc = wk.scenario().clone();
     assert_eq!(sc.comfort, Comfort::Wk);
     for (model, kind, nx, ny) in [
-        (MapModel::LoFi, ModelKind::Quarter, 6, 5),
-        (MapModel::HiFi, ModelKind::Full, 4, 3),
+        (Model::LoFi, ModelKind::Quarter, 6, 5),
+        (Model::HiFi, ModelKind::Full, 4, 3),
     ] {
         let m = wk.map(model, nx, ny).unwrap();
         let p = plain.map(model, nx, ny).unwrap();
@@ -80,12 +80,12 @@ fn the_wk_map_plane_is_the_exact_wk_route() {
     }
     // The surrogate is fitted to the unweighted BAcc: its map is the same under Wk.
     assert_eq!(
-        wk.map(MapModel::Surrogate, 5, 4).unwrap().planes(),
-        plain.map(MapModel::Surrogate, 5, 4).unwrap().planes()
+        wk.map(Model::Surrogate, 5, 4).unwrap().planes(),
+        plain.map(Model::Surrogate, 5, 4).unwrap().planes()
     );
     // The criteria of the design by the LoFi and HiFi carry Wk.
     let (ks, cs) = (sc.design.front.spring, sc.design.front.damper);
-    let c = wk.criteria(EvaluatorKind::HiFi).unwrap();
+    let c = wk.criteria(Model::HiFi).unwrap();
     assert_eq!(
         c.bacc,
         WkComfort::full(sc.hifi().unwrap()).bacc_wk(ks, cs).unwrap()
@@ -98,11 +98,11 @@ fn the_wk_map_plane_is_the_exact_wk_route() {
 /// not depend on the rule.
 #[test]
 fn the_sessions_pick_is_the_rules_pick_on_its_front() {
-    let base = session(|_| {}).front("stm", FrontModel::Surrogate).unwrap();
+    let base = session(|_| {}).front("stm", Model::Surrogate).unwrap();
     assert_eq!(base.study.pick.rule, "minmax");
     for rule in ["knee", "asf:0.3", "asf:0.8"] {
         let mut x = session(|s| s.pick = Some(rule.into()));
-        let r = x.front("stm", FrontModel::Surrogate).unwrap();
+        let r = x.front("stm", Model::Surrogate).unwrap();
         assert_eq!(r.study.front, base.study.front, "{rule}");
         let want = pick(&r.study.front, &r.datum, rule.parse::<PickRule>().unwrap()).unwrap();
         assert_eq!(r.study.pick, want, "{rule}");
@@ -119,7 +119,7 @@ fn the_sessions_pick_is_the_rules_pick_on_its_front() {
     }
     // The knee and a comfort-heavy weight pick other designs than min-max on this front.
     let knee = session(|s| s.pick = Some("asf:0.9".into()))
-        .front("stm", FrontModel::Surrogate)
+        .front("stm", Model::Surrogate)
         .unwrap();
     assert!(
         knee.study.pick.index < base.study.pick.index,
@@ -137,7 +137,7 @@ fn the_wk_front_is_the_lofis_and_is_rechecked_with_wk() {
         s.pick = Some("knee".into());
     });
     let sc = x.scenario().clone();
-    let r = x.front("stm", FrontModel::LoFi).unwrap();
+    let r = x.front("stm", Model::LoFi).unwrap();
     assert_eq!(r.comfort, Comfort::Wk);
     let lofi = WkComfort::quarter(&sc.datum, &sc.road);
     for p in r.study.front.iter().step_by(7) {
@@ -156,7 +156,7 @@ fn the_wk_front_is_the_lofis_and_is_rechecked_with_wk() {
         r.study.pick,
         pick(&r.study.front, &r.datum, PickRule::Knee).unwrap()
     );
-    match x.front("stm", FrontModel::Surrogate) {
+    match x.front("stm", Model::Surrogate) {
         Err(crate::RideError::Field { field, .. }) => assert_eq!(field, "comfort"),
         other => panic!("{:?}", other.map(|r| r.study.pick)),
     }

@@ -100,7 +100,7 @@ fn plane_check_equals_the_adaptive_studys_yardstick() {
         "{}",
         p.hypervolume_ratio
     );
-    let plane = x.front("stm", FrontModel::Surrogate).unwrap();
+    let plane = x.front("stm", Model::Surrogate).unwrap();
     let pts: Vec<[f64; 2]> = plane.study.front.iter().map(|q| [q.bacc, q.dtl]).collect();
     let hv = crate::optimize::hypervolume(&pts, view.front.study.reference_point);
     assert_eq!(p.hypervolume, hv);

@@ -61,8 +61,8 @@ fn maps_on_a_measured_road_are_the_clis() {
         let profile = slab();
         let road = ShapedRoad::from_profile(&profile, 25.0, ProfileTracks::Correlated).unwrap();
         for (model, kind) in [
-            (MapModel::LoFi, ModelKind::Quarter),
-            (MapModel::HiFi, ModelKind::Full),
+            (Model::LoFi, ModelKind::Quarter),
+            (Model::HiFi, ModelKind::Full),
         ] {
             let m = x.map(model, nx, ny).unwrap();
             let settings = MapSettings {
@@ -114,16 +114,11 @@ fn readout_on_a_measured_road_is_eval_road() {
     for (kind, model, want, wk) in [
         (
             ModelKind::Quarter,
-            EvaluatorKind::LoFi,
+            Model::LoFi,
             on.quarter,
             on.bacc_wk.quarter,
         ),
-        (
-            ModelKind::Full,
-            EvaluatorKind::HiFi,
-            on.full,
-            on.bacc_wk.full,
-        ),
+        (ModelKind::Full, Model::HiFi, on.full, on.bacc_wk.full),
     ] {
         let r = x.readout(kind).unwrap();
         assert_eq!([r.bacc, r.dtl, r.sws], want.to_array(), "{kind:?}");

@@ -89,8 +89,8 @@ fn robust_maps_are_the_clis() {
         assert_eq!(s.scenario().cases.as_ref().unwrap().cases.len(), 6);
         assert_eq!(s.scenario().case, None);
         for (model, kind, nx, ny, tol) in [
-            (MapModel::LoFi, ModelKind::Quarter, 32, 24, 0.0),
-            (MapModel::HiFi, ModelKind::Full, 8, 6, 1e-12),
+            (Model::LoFi, ModelKind::Quarter, 32, 24, 0.0),
+            (Model::HiFi, ModelKind::Full, 8, 6, 1e-12),
         ] {
             let (set, settings) = cli_setting(&s, nx, ny);
             let sc = s.scenario().clone();
@@ -113,7 +113,7 @@ fn robust_maps_are_the_clis() {
 #[test]
 fn case_k_map_is_that_cases_map() {
     let mut s = Session::new(robust_state("worst")).unwrap();
-    let robust = s.map(MapModel::LoFi, 20, 15).unwrap();
+    let robust = s.map(Model::LoFi, 20, 15).unwrap();
     for k in [0, 4, 5] {
         s.set_state(State {
             case: Some(k.to_string()),
@@ -123,7 +123,7 @@ fn case_k_map_is_that_cases_map() {
         assert_eq!(s.scenario().case, Some(k));
         let (set, settings) = cli_setting(&s, 20, 15);
         let want = case_map_report(ModelKind::Quarter, &set, k, &settings, Compute::Cpu).unwrap();
-        let got = s.map(MapModel::LoFi, 20, 15).unwrap();
+        let got = s.map(Model::LoFi, 20, 15).unwrap();
         assert_map_eq(&got, &want.map, 0.0, &format!("case {k}"));
     }
     s.set_state(State {
@@ -131,7 +131,7 @@ fn case_k_map_is_that_cases_map() {
         ..s.state().clone()
     })
     .unwrap();
-    assert_eq!(s.map(MapModel::LoFi, 20, 15).unwrap(), robust);
+    assert_eq!(s.map(Model::LoFi, 20, 15).unwrap(), robust);
 }
 
 /// One case (an empty cases file: the car as given on the state's road): the robust
@@ -145,14 +145,14 @@ fn one_case_is_the_plain_map() {
             ..plain.state().clone()
         })
         .unwrap();
-    let want = plain.map(MapModel::LoFi, 12, 9).unwrap();
+    let want = plain.map(Model::LoFi, 12, 9).unwrap();
     for text in ["{}", r#"{"combine": "mean"}"#] {
         let mut s = Session::new(State {
             cases: Some(text.into()),
             ..plain.state().clone()
         })
         .unwrap();
-        let got = s.map(MapModel::LoFi, 12, 9).unwrap();
+        let got = s.map(Model::LoFi, 12, 9).unwrap();
         assert_eq!(got.planes(), want.planes(), "{text}");
         assert_eq!(got.broken(), want.broken(), "{text}");
     }
@@ -187,7 +187,7 @@ fn robust_front_is_the_clis() {
         sc.pick,
     )
     .unwrap();
-    for model in [FrontModel::Robust, FrontModel::LoFi] {
+    for model in [Model::Robust, Model::LoFi] {
         let got = s.front("stm", model).unwrap();
         assert_eq!(got.study, want.study);
         assert_eq!(got.datum, want.datum);
@@ -210,7 +210,7 @@ fn robust_front_is_the_clis() {
         sc.pick,
     )
     .unwrap();
-    let got = s.front("nsga2", FrontModel::LoFi).unwrap();
+    let got = s.front("nsga2", Model::LoFi).unwrap();
     assert_eq!(got.study, nsga.study);
     assert_eq!(got.robust.as_ref().unwrap().cases, nsga.cases);
     assert!(
@@ -220,7 +220,7 @@ fn robust_front_is_the_clis() {
     );
     let p = &want.study.pick;
     s.set_design(p.ks, p.cs).unwrap();
-    assert_eq!(s.criteria(EvaluatorKind::Robust).unwrap(), p.criteria);
+    assert_eq!(s.criteria(Model::Robust).unwrap(), p.criteria);
     let per = s.case_criteria(ModelKind::Quarter).unwrap();
     for (c, w) in per.iter().zip(&want.cases) {
         assert_eq!(*c, w.hifi_recheck.predicted, "{}", w.case.name);
@@ -228,7 +228,7 @@ fn robust_front_is_the_clis() {
     // The plane's feasible set: its datum is the front's, and no feasible cell beats the
     // front's ideal point (the front's extremes bound the feasible set) by more than the
     // STM's grid resolution (0.5 %).
-    let cloud = s.map(MapModel::Robust, 40, 30).unwrap();
+    let cloud = s.map(Model::Robust, 40, 30).unwrap();
     assert_eq!(cloud.values.datum.criteria, want.datum);
     let f = &want.study.front;
     let min_b = f.iter().map(|q| q.bacc).fold(f64::INFINITY, f64::min);
@@ -288,20 +288,17 @@ fn bad_cases_are_named_and_the_last_good_state_kept() {
     assert_eq!(field(&e), "case");
     let e = err(&mut s, &|st| st.case = Some("first".into()));
     assert_eq!(field(&e), "case");
-    let e = s.front("stm", FrontModel::Surrogate).unwrap_err();
+    let e = s.front("stm", Model::Surrogate).unwrap_err();
     assert_eq!(field(&e), "cases");
     // The page's first-screen wasm asks for a single scenario's front only; with cases it
     // is refused, and the robust front (the workers') is `front`'s.
     assert_eq!(
-        field(&s.single_front("stm", FrontModel::LoFi).unwrap_err()),
+        field(&s.single_front("stm", Model::LoFi).unwrap_err()),
         "cases"
     );
     assert_eq!(
-        s.robust_front("stm", FrontModel::Robust)
-            .unwrap()
-            .study
-            .front,
-        s.front("stm", FrontModel::Robust).unwrap().study.front
+        s.robust_front("stm", Model::Robust).unwrap().study.front,
+        s.front("stm", Model::Robust).unwrap().study.front
     );
     // The robust HiFi front runs on the CPU: GPU values (one case's grid) are refused.
     let planes = vec![1.0; 3 * studies::STM_GRID * studies::STM_GRID];
@@ -315,17 +312,14 @@ fn bad_cases_are_named_and_the_last_good_state_kept() {
         .unwrap_err();
     assert_eq!(field(&e), "case");
     assert_eq!(
-        field(&plain.front("stm", FrontModel::Robust).unwrap_err()),
+        field(&plain.front("stm", Model::Robust).unwrap_err()),
         "cases"
     );
     assert_eq!(
-        field(&plain.robust_front("stm", FrontModel::LoFi).unwrap_err()),
+        field(&plain.robust_front("stm", Model::LoFi).unwrap_err()),
         "cases"
     );
-    assert_eq!(
-        field(&plain.criteria(EvaluatorKind::Robust).unwrap_err()),
-        "cases"
-    );
+    assert_eq!(field(&plain.criteria(Model::Robust).unwrap_err()), "cases");
 }
 
 /// The design's criteria as the maps show them (`map_criteria`, what the page's map
@@ -336,8 +330,8 @@ fn map_criteria_are_the_maps_cells() {
     for combine in ["worst", "mean"] {
         let mut s = Session::new(robust_state(combine)).unwrap();
         for (kind, model) in [
-            (ModelKind::Quarter, MapModel::LoFi),
-            (ModelKind::Full, MapModel::HiFi),
+            (ModelKind::Quarter, Model::LoFi),
+            (ModelKind::Full, Model::HiFi),
         ] {
             for case in [None, Some("4")] {
                 let mut st = s.state().clone();
@@ -364,7 +358,7 @@ fn map_criteria_are_the_maps_cells() {
     let mut plain = Session::new(State::default()).unwrap();
     assert_eq!(
         plain.map_criteria(ModelKind::Quarter).unwrap(),
-        plain.criteria(EvaluatorKind::LoFi).unwrap()
+        plain.criteria(Model::LoFi).unwrap()
     );
 }
 
@@ -411,7 +405,7 @@ fn a_car_files_load_cases_are_the_cases_default() {
     )
     .unwrap();
     assert_map_eq(
-        &s.map(MapModel::LoFi, 16, 12).unwrap(),
+        &s.map(Model::LoFi, 16, 12).unwrap(),
         &map.map,
         0.0,
         "car file's load cases",
@@ -473,7 +467,7 @@ fn robust_hifi_front_is_optimize_cases_on_the_full_car() {
         want.study.front.len()
     );
     // The plane's front, judged independently.
-    let plane = s.front("stm", FrontModel::Robust).unwrap();
+    let plane = s.front("stm", Model::Robust).unwrap();
     let (combination, datums) =
         crate::study::robust::optimize::hifi_combination(&set, sc.comfort).unwrap();
     let mut kept = Vec::new();

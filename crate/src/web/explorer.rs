@@ -7,9 +7,7 @@
 use super::{js_error, parse_state, to_js};
 use crate::analysis::ModelKind;
 use crate::car::Car;
-use crate::explorer::{
-    EvaluatorKind, FrontModel, MapModel, ModelMap, RoadResolver, Scenario, Session, State,
-};
+use crate::explorer::{Model, ModelMap, RoadResolver, Scenario, Session, State};
 use crate::gpu::ComputePath;
 use js_sys::{Float64Array, Object, Reflect, Uint8Array};
 use serde::Serialize;
@@ -174,7 +172,7 @@ impl Explorer {
     /// readout (null when it fails).
     #[wasm_bindgen(js_name = designStep)]
     pub fn design_step(&mut self, plane: &str, with_hifi: bool) -> Result<JsValue, JsValue> {
-        let kind = EvaluatorKind::parse(plane).map_err(js_error)?;
+        let kind = Model::parse_among("model", plane, Model::CRITERIA).map_err(js_error)?;
         to_js(&self.0.design_step(kind, with_hifi).map_err(js_error)?)
     }
 
@@ -184,7 +182,7 @@ impl Explorer {
     /// or with robust cases "robust": the LoFi's robust objective as the robust front's
     /// (one LoFi run per case; "lofi" and "hifi" stay the car as given).
     pub fn criteria(&mut self, model: &str) -> Result<JsValue, JsValue> {
-        let kind = EvaluatorKind::parse(model).map_err(js_error)?;
+        let kind = Model::parse_among("model", model, Model::CRITERIA).map_err(js_error)?;
         to_js(&self.0.criteria(kind).map_err(js_error)?)
     }
 
@@ -207,9 +205,9 @@ impl Explorer {
     /// `model` "robust" is the robust front's problem on the LoFi (the plane's feasible
     /// set); the surrogate and error maps stay on the car as given.
     pub fn maps(&mut self, model: &str, nx: usize, ny: usize) -> Result<JsValue, JsValue> {
-        let m = MapModel::parse(model).map_err(js_error)?;
+        let m = Model::parse_among("model", model, Model::MAP).map_err(js_error)?;
         let out = map_js(&self.0.map(m, nx, ny).map_err(js_error)?)?;
-        if matches!(m, MapModel::HiFi | MapModel::SurrogateError) {
+        if matches!(m, Model::HiFi | Model::SurrogateError) {
             if let Some(path) = self.0.hifi_path(nx, ny) {
                 Reflect::set(&out, &"compute".into(), &path_name(path).into())?;
             }
@@ -227,7 +225,12 @@ impl Explorer {
     /// `cases`: their front is `robustFront`'s (the workers' module). With no feasible
     /// design the error names the binding objective.
     pub fn front(&mut self, method: &str, model: Option<String>) -> Result<JsValue, JsValue> {
-        let on = FrontModel::parse(model.as_deref().unwrap_or("lofi")).map_err(js_error)?;
+        let on = Model::parse_among(
+            "frontModel",
+            model.as_deref().unwrap_or("lofi"),
+            Model::FRONT,
+        )
+        .map_err(js_error)?;
         to_js(&self.0.single_front(method, on).map_err(js_error)?)
     }
 

@@ -7,7 +7,7 @@
 use super::explorer::path_name;
 use super::{js_error, parse_state, state_error, to_js, Explorer};
 use crate::error::RideError;
-use crate::explorer::FrontModel;
+use crate::explorer::Model;
 use js_sys::Float64Array;
 use wasm_bindgen::prelude::*;
 
@@ -20,7 +20,12 @@ impl Explorer {
     /// `cases`. In the workers' module only: the first screen needs no robust optimiser.
     #[wasm_bindgen(js_name = robustFront)]
     pub fn robust_front(&self, method: &str, model: Option<String>) -> Result<JsValue, JsValue> {
-        let on = FrontModel::parse(model.as_deref().unwrap_or("lofi")).map_err(js_error)?;
+        let on = Model::parse_among(
+            "frontModel",
+            model.as_deref().unwrap_or("lofi"),
+            Model::FRONT,
+        )
+        .map_err(js_error)?;
         to_js(&self.0.robust_front(method, on).map_err(js_error)?)
     }
 
