@@ -76,7 +76,7 @@ where
 
 /// Whether `t` is `name` or `alias`, in any case (apart from [`parse_choice`], which is
 /// made once per enum, so that this and [`none_of`] are made once).
-fn names_it(name: &str, alias: Option<&str>, t: &str) -> bool {
+pub(crate) fn names_it(name: &str, alias: Option<&str>, t: &str) -> bool {
     name.eq_ignore_ascii_case(t) || alias.is_some_and(|a| a.eq_ignore_ascii_case(t))
 }
 

@@ -3,27 +3,15 @@
 //! (`MapModel`, `FrontModel`, `EvaluatorKind`) naming the same models; now each use
 //! says which of [`Model`]'s variants it takes ([`Model::MAP`], [`Model::FRONT`],
 //! [`Model::CRITERIA`]) and refuses the others by name, as the old enums' parsers did.
-//! Beneath it, [`ModelKind`] stays the physical model a criteria route builds (quarter or
-//! full car), as the CLI's `--model` names it.
+//! Beneath it, [`crate::analysis::ModelKind`] stays the physical model a criteria route
+//! builds (quarter or full car), as the CLI's `--model` names it.
 
-use crate::analysis::ModelKind;
-use crate::error::{none_of, Result, RideError};
+use crate::error::{names_it, none_of, Result, RideError};
 use serde::Serialize;
-use strum::{EnumIter, EnumProperty, IntoEnumIterator, IntoStaticStr, VariantNames};
+use strum::{EnumProperty, IntoStaticStr};
 
 /// A model of the explorer.
-#[derive(
-    Debug,
-    Clone,
-    Copy,
-    PartialEq,
-    Eq,
-    Serialize,
-    EnumIter,
-    EnumProperty,
-    IntoStaticStr,
-    VariantNames,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, EnumProperty, IntoStaticStr)]
 #[serde(rename_all = "lowercase")]
 #[strum(serialize_all = "lowercase")]
 pub enum Model {
@@ -67,35 +55,11 @@ impl Model {
     /// (`'x' is not 'lofi', 'surrogate' or 'robust'`).
     pub fn parse_among(field: &str, s: &str, among: &[Model]) -> Result<Model> {
         let t = s.trim();
-        Model::iter()
-            .find(|m| {
-                let name: &str = m.into();
-                name.eq_ignore_ascii_case(t)
-                    || m.get_str("alias")
-                        .is_some_and(|a| a.eq_ignore_ascii_case(t))
-            })
-            .filter(|m| among.contains(m))
+        among
+            .iter()
+            .copied()
+            .find(|m| names_it(m.into(), m.get_str("alias"), t))
             .ok_or_else(|| none_of(field, s, &names(among)))
-    }
-
-    /// This model if it is one of `among`, else the refusal [`Self::parse_among`] gives
-    /// its name (for callers in Rust, which pass a [`Model`] rather than its name).
-    pub fn among(self, field: &str, among: &[Model]) -> Result<Model> {
-        if among.contains(&self) {
-            Ok(self)
-        } else {
-            Err(none_of(field, self.into(), &names(among)))
-        }
-    }
-
-    /// The physical model behind the LoFi and HiFi (the robust objective is the quarter
-    /// car's); `None` for the surrogate and its error.
-    pub fn kind(self) -> Option<ModelKind> {
-        match self {
-            Model::LoFi | Model::Robust => Some(ModelKind::Quarter),
-            Model::HiFi => Some(ModelKind::Full),
-            Model::Surrogate | Model::SurrogateError => None,
-        }
     }
 
     /// Why this model cannot answer where only `among` can: the error naming `field`.
@@ -143,14 +107,11 @@ mod tests {
             e.to_string(),
             "model: 'x' is not 'lofi', 'hifi', 'surrogate', 'error' or 'robust'"
         );
-        let e = Model::SurrogateError
-            .among("model", Model::CRITERIA)
-            .unwrap_err();
+        // A model a Rust caller passes where it cannot answer: the same refusal.
+        let e = Model::SurrogateError.refused("model", Model::CRITERIA);
         assert_eq!(
             e.to_string(),
             "model: 'error' is not 'lofi', 'hifi', 'surrogate' or 'robust'"
         );
-        assert_eq!(Model::Robust.kind(), Some(ModelKind::Quarter));
-        assert_eq!(Model::SurrogateError.kind(), None);
     }
 }
