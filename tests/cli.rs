@@ -114,15 +114,15 @@ fn numbers_without_units(
 /// objective masks.
 #[test]
 fn the_page_and_the_cli_maps_are_the_same_numbers() {
-    use ridelab::explorer::{MapModel, Session, State};
+    use ridelab::explorer::{Model, Session, State};
     let mut session = Session::new(State {
         no_worse: Some([false, true, false]),
         ..State::default()
     })
     .unwrap();
     for (model, kind, nx, ny) in [
-        (MapModel::LoFi, "quarter", 16, 12),
-        (MapModel::HiFi, "full", 5, 4),
+        (Model::LoFi, "quarter", 16, 12),
+        (Model::HiFi, "full", 5, 4),
     ] {
         let page = session.map(model, nx, ny).unwrap();
         let g = page.grid();
