@@ -42,6 +42,10 @@ const CLASS_WORDS = {
 
 const $ = (id) => document.getElementById(id);
 
+/** The buttons js/panels.js wires (a click on one before it has is made again after). */
+const EARLY_BUTTONS = ['#lessons-open', '#tour', '#car-apply', '#car-export', '#cf-make', '#cf-copy', '#cf-apply', '#cf-clear', '#tp-run', '#tp-play',
+  '#panel-export button', '#lesson button', '#road-box button'].join(', ');
+
 /** Start-up milestones (ms since navigation), read by the tests. */
 const boot = { marks: { start: performance.now() }, ready: false, interactiveAt: null, readyAt: null };
 
@@ -472,11 +476,21 @@ async function main() {
   });
   // The panels beyond the first screen (js/panels.js: the drawer's spectra, time, car, road,
   // export and class-front panels, the tour and the lessons) load once the first map is
-  // drawn; until then their charts are not drawn and their buttons wait for them.
+  // drawn; until then their charts are not drawn, and a click on one of their buttons is
+  // held and made again once they are (EARLY_BUTTONS).
   const panels = firstScreen
     .then(() => import('./panels.js'))
     .then(({ startPanels }) => startPanels({ store, controller, compute, render, controls, ui, hooks: mapHooks, exportData: () => exportDataOf(store, ui), redraw }));
   panels.catch((e) => controls.banner(`Some panels failed to load (${e.message || e}); reload the page to use them.`, 'error'));
+  const early = (ev) => {
+    const button = ev.target.closest(EARLY_BUTTONS);
+    if (!button) return;
+    ev.preventDefault();
+    ev.stopPropagation();
+    panels.then(() => button.click(), () => {});
+  };
+  document.addEventListener('click', early, true);
+  panels.finally(() => document.removeEventListener('click', early, true)).catch(() => {});
   controller.onViewsChanged = () => {
     ui.lessons?.viewsChanged();
     ui.classFront?.viewsChanged();
