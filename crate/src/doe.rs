@@ -567,7 +567,7 @@ impl BranchAndBound {
             .filter(|&r| !self.used[r] && self.admissible(k, c, r))
             .map(|r| (self.cost[k][c * n + r], r))
             .collect();
-        cands.sort_by(|x, y| x.0.total_cmp(&y.0));
+        crate::order::sort_by_f64_key(&mut cands, |c| c.0);
         for (ce, r) in cands {
             if e + ce >= self.threshold() {
                 break;

@@ -28,6 +28,7 @@ pub mod maps;
 pub mod math;
 pub mod model;
 pub mod optimize;
+pub mod order;
 pub mod report;
 pub mod road;
 pub mod road_profile;

@@ -87,7 +87,7 @@ pub fn map_report_charts(r: &MapReport) -> Vec<(&'static str, MapChart)> {
 /// (where the legend goes: a front runs from the upper left to the lower right).
 pub fn front_chart(study: &Study, datum: &Criteria, recheck: Option<&Recheck>) -> LineChart {
     let mut front: Vec<(f64, f64)> = study.front.iter().map(|p| (p.bacc, p.dtl)).collect();
-    front.sort_by(|a, b| a.0.total_cmp(&b.0));
+    crate::order::sort_by_f64_key(&mut front, |p| p.0);
     let (method, style) = match study.method {
         Method::Stm(_) => ("STM", SeriesStyle::Line),
         Method::Nsga2(_) => ("NSGA-II", SeriesStyle::Dots),

@@ -85,7 +85,7 @@ impl WhiteForm {
                     }),
                 }
             }
-            groups.sort_by(|x, y| x.tau.total_cmp(&y.tau));
+            crate::order::sort_by_f64_key(&mut groups, |g| g.tau);
             check_stationary(groups.iter().map(|gr| gr.g), scale)?;
             sources.push(groups);
         }

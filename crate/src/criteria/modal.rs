@@ -353,7 +353,7 @@ fn groups(
             }),
         }
     }
-    groups.sort_by(|x, y| x.tau.total_cmp(&y.tau));
+    crate::order::sort_by_f64_key(&mut groups, |g| g.tau);
     let scale = model.outputs.iter().map(|r| r.r.amax()).fold(1.0, f64::max);
     for g in groups.iter_mut() {
         let static_q = kinv * nalgebra::DVector::from_column_slice(&g.kr);

@@ -395,7 +395,7 @@ impl ResidueFamily {
                     None => raw.push((tau, kr, cr, yr)),
                 }
             }
-            raw.sort_by(|a, b| a.0.total_cmp(&b.0));
+            crate::order::sort_by_f64_key(&mut raw, |r| r.0);
             if raw.len() > MAX_GROUPS {
                 return Err(unsuited("more than 2 wheel delays"));
             }

@@ -76,7 +76,7 @@ pub fn modes(model: &LinearModel) -> Result<Vec<Mode>> {
             }
         })
         .collect();
-    out.sort_by(|a, b| a.frequency.total_cmp(&b.frequency));
+    crate::order::sort_by_f64_key(&mut out, |m| m.frequency);
     Ok(out)
 }
 

@@ -244,8 +244,8 @@ fn crowding<I>(pop: &[Solution<I>], front: &[usize]) -> Vec<f64> {
     let m = front.len();
     let mut d = vec![0.0; m];
     for k in 0..2 {
-        let mut order: Vec<usize> = (0..m).collect();
-        order.sort_by(|&a, &b| pop[front[a]].eval.f[k].total_cmp(&pop[front[b]].eval.f[k]));
+        let keys: Vec<f64> = front.iter().map(|&i| pop[i].eval.f[k]).collect();
+        let order = crate::order::sorted_order(&keys);
         let f = |i: usize| pop[front[order[i]]].eval.f[k];
         let span = f(m - 1) - f(0);
         d[order[0]] = f64::INFINITY;
@@ -268,7 +268,9 @@ fn survive<I: Clone>(pop: &mut Vec<Solution<I>>, n: usize) -> Vec<Fitness> {
         let d = crowding(pop, &front);
         let mut order: Vec<usize> = (0..front.len()).collect();
         if keep.len() + front.len() > n {
-            order.sort_by(|&a, &b| d[b].total_cmp(&d[a]));
+            // Most crowded-apart first: the negated distances' ascending order (crate::order).
+            let apart: Vec<f64> = d.iter().map(|x| -x).collect();
+            order = crate::order::sorted_order(&apart);
             order.truncate(n - keep.len());
         }
         for i in order {

@@ -331,7 +331,8 @@ impl<E: Evaluator> Problem for SuspensionProblem<E> {
             .copied()
             .filter(|e| e.g > 0.0)
             .collect();
-        everywhere.sort_by(|a, b| b.g.total_cmp(&a.g));
+        // Descending g: the negated key's ascending order (crate::order).
+        crate::order::sort_by_f64_key(&mut everywhere, |e| -e.g);
         if let Some(first) = everywhere.first() {
             let reasons: Vec<String> = everywhere.iter().map(|e| self.describe(e)).collect();
             return RideError::Infeasible {

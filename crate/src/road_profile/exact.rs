@@ -169,7 +169,7 @@ fn forms(model: &LinearModel, road: &ShapedRoad) -> Result<Vec<Form>> {
         if raw.is_empty() {
             continue;
         }
-        raw.sort_by(|x, y| x.tau.total_cmp(&y.tau));
+        crate::order::sort_by_f64_key(&mut raw, |r| r.tau);
         check_stationary(raw.iter().map(|r| r.g), scale)?;
         let (af, bf, cf, df) = src.filter.state_space();
         let nf = af.nrows();

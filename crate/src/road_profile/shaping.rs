@@ -555,7 +555,7 @@ fn fit_from(
     let mut pairs: Vec<(f64, f64)> = (0..m)
         .map(|i| (math::exp(th[1 + i]), math::exp(th[1 + m + i])))
         .collect();
-    pairs.sort_by(|a, b| a.1.total_cmp(&b.1));
+    crate::order::sort_by_f64_key(&mut pairs, |p| p.1);
     let mut f = ShapingFilter {
         gain: math::exp(th[0]),
         zeros: pairs.iter().map(|p| p.0).collect(),

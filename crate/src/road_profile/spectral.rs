@@ -262,7 +262,7 @@ impl<'a> ShapedSpectrum<'a> {
             .collect();
         edges.push(th_lo);
         edges.push(PI / 2.0);
-        edges.sort_by(f64::total_cmp);
+        crate::order::sort_by_f64_key(&mut edges, |x| *x);
         edges.dedup_by(|a, b| (*a - *b).abs() < 1e-15);
         let mut cuts = Vec::with_capacity(edges.len() + 16);
         for w in edges.windows(2) {

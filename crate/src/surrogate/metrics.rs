@@ -175,8 +175,7 @@ pub(crate) fn spearman(x: &[f64], y: &[f64]) -> Option<f64> {
 
 /// Ranks `1..=n` of `x` (finite values), ties given the mean of their ranks.
 fn ranks(x: &[f64]) -> Vec<f64> {
-    let mut order: Vec<usize> = (0..x.len()).collect();
-    order.sort_by(|&a, &b| x[a].total_cmp(&x[b]));
+    let order = crate::order::sorted_order(x);
     let mut rank = vec![0.0; x.len()];
     let mut i = 0;
     while i < order.len() {

@@ -267,7 +267,7 @@ fn require_samples(samples: &[Sample], needed: usize, what: &str) -> Result<()> 
 fn distinct_levels(samples: &[Sample]) -> [usize; 2] {
     let count = |f: fn(&Sample) -> f64| {
         let mut v: Vec<f64> = samples.iter().map(f).collect();
-        v.sort_by(f64::total_cmp);
+        crate::order::sort_by_f64_key(&mut v, |x| *x);
         v.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs());
         v.len()
     };

@@ -94,7 +94,7 @@ impl Damper {
                 v.extend([-k.velocity, k.velocity]);
             }
         }
-        v.sort_by(f64::total_cmp);
+        crate::order::sort_by_f64_key(&mut v, |x| *x);
         v.into_iter().map(|v| (v, self.force(v))).collect()
     }
 

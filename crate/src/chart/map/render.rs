@@ -333,7 +333,7 @@ fn hatch<DB: DrawingBackend>(
             .collect();
         cuts.push(a);
         cuts.push(b);
-        cuts.sort_by(f64::total_cmp);
+        crate::order::sort_by_f64_key(&mut cuts, |x| *x);
         let mut start: Option<f64> = None;
         for w in cuts.windows(2) {
             if w[1] - w[0] < 1e-9 {
