@@ -175,7 +175,9 @@ impl GpuMapper {
         self.info.backend.to_string()
     }
 
-    /// True for a CPU implementation (lavapipe, SwiftShader, WARP): correct, not fast.
+    /// True for a CPU implementation (lavapipe, SwiftShader, WARP): correct, not fast
+    /// (the native `--compute auto` passes over one; the page asks for WebGPU's adapter).
+    #[cfg(not(target_arch = "wasm32"))]
     pub(crate) fn is_software(&self) -> bool {
         self.info.device_type == wgpu::DeviceType::Cpu
     }
