@@ -515,7 +515,8 @@ async function main() {
   boot.ready = true;
   boot.readyAt = performance.now();
   if (lessonLink) ui.lessons.openLink(lessonLink);
-  else ui.guide.showIfNew();
+  // A new visitor's tour, unless a lesson is already open (Lessons clicked during the load).
+  else if (!ui.lessons.isOpen) ui.guide.showIfNew();
   document.documentElement.dataset.ready = '1';
   registerServiceWorker(controls, (what) => ui.lessons.own.mayLeave(what));
 }
