@@ -5,7 +5,7 @@
 #   wasm-bindgen crate pinned in crate/Cargo.toml, Debian's Chromium for the browser tests,
 #   Debian's mesa-vulkan-drivers (lavapipe, a Vulkan device on the CPU, for the GPU
 #   tests), playwright-core, binaryen (wasm-opt for the page's build; Debian's breaks
-#   the wasm) and terser (the page's JavaScript minified) from npm (package-lock.json).
+#   the wasm) and esbuild (the page's JavaScript bundled and minified) from npm (package-lock.json).
 #   No tool is downloaded from outside the package registries.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -45,7 +45,7 @@ if ! dpkg-query -W -f='${Status}' mesa-vulkan-drivers 2>/dev/null | grep -q "ins
   apt-get install -y -q mesa-vulkan-drivers
 fi
 
-if [ ! -d node_modules/playwright-core ] || [ ! -x node_modules/.bin/wasm-opt ] || [ ! -d node_modules/terser ]; then
-  say "installing playwright-core, binaryen's wasm-opt and terser (npm ci; no browser download)"
+if [ ! -d node_modules/playwright-core ] || [ ! -x node_modules/.bin/wasm-opt ] || [ ! -d node_modules/esbuild ]; then
+  say "installing playwright-core, binaryen's wasm-opt and esbuild (npm ci; no browser download)"
   npm ci --no-audit --no-fund
 fi

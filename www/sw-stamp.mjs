@@ -2,15 +2,15 @@
 // the staging directory, so each build has its own offline cache and a new build
 // replaces the old one. The id is a SHA-256 over every file of the build (paths and
 // contents, sw.js left out), so it changes exactly when something the page loads does.
-// First it minifies the page's scripts (www/minify.mjs), then lists the first screen's
-// modules and wasm as preloads in index.html, so the browser fetches them at once
-// instead of discovering each import after its parent.
+// It also lists the first screen's modules and wasm as preloads in index.html, so the
+// browser fetches them at once instead of discovering each import after its parent. The
+// build's hook, www/bundle.mjs, bundles the scripts first and then stamps; run alone
+// (a test's next build), this stamps a build as it is.
 //   node www/sw-stamp.mjs [DIR]      (DIR defaults to $TRUNK_STAGING_DIR)
 import crypto from 'node:crypto';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { minifyScripts } from './minify.mjs';
 
 /** The files of the build in `dir` (paths relative to it, '/' separated, sorted), sw.js left out. */
 export function buildFiles(dir) {
@@ -88,12 +88,11 @@ export function addPreloads(dir) {
   return tags.length;
 }
 
-if (process.argv[1] === fileURLToPath(import.meta.url)) {
-  const dir = process.argv[2] || process.env.TRUNK_STAGING_DIR;
-  if (!dir) throw new Error('sw-stamp: give the build directory (or run as a Trunk hook)');
-  // The scripts minified first: the id below hashes what the page fetches.
-  const small = await minifyScripts(dir);
-  console.log(`sw-stamp: ${small.files} scripts minified, ${small.before} -> ${small.after} bytes`);
+/**
+ * Stamps the build in `dir`: the first screen's preloads into index.html (once), the
+ * build's id and file list into sw.js (whose placeholders must still be there).
+ */
+export function stamp(dir) {
   const preloads = addPreloads(dir);
   const sw = path.join(dir, 'sw.js');
   const text = fs.readFileSync(sw, 'utf8');
@@ -105,4 +104,10 @@ if (process.argv[1] === fileURLToPath(import.meta.url)) {
   const id = buildId(dir);
   fs.writeFileSync(sw, text.replace("'__RIDELAB_BUILD__'", `'${id}'`).replace("['__RIDELAB_FILES__']", JSON.stringify(files)));
   console.log(`sw-stamp: ${preloads} preloads; build ${id}, ${files.length} files cached for offline use`);
+}
+
+if (process.argv[1] === fileURLToPath(import.meta.url)) {
+  const dir = process.argv[2] || process.env.TRUNK_STAGING_DIR;
+  if (!dir) throw new Error('sw-stamp: give the build directory (or run as a Trunk hook)');
+  stamp(dir);
 }

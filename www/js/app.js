@@ -32,7 +32,7 @@ import { installTestHooks } from './testhooks.js';
 import { pathText, computeMode } from './gpupath.js';
 import { keepDesign, renderCompare, savedEntry, MAX_SAVED } from './compare.js';
 import { isLessonHash } from './urlstate.js';
-import { RobustPanel, withLoadCases } from './robustpanel.js';
+import { withLoadCases } from './robustcases.js';
 import { registerServiceWorker } from './offline.js';
 
 /** ISO 8608 wording of the classes. */
@@ -44,7 +44,7 @@ const $ = (id) => document.getElementById(id);
 
 /** The buttons js/panels.js wires (a click on one before it has is made again after). */
 const EARLY_BUTTONS = ['#lessons-open', '#tour', '#car-apply', '#car-export', '#cf-make', '#cf-copy', '#cf-apply', '#cf-clear', '#tp-run', '#tp-play',
-  '#panel-export button', '#lesson button', '#road-box button'].join(', ');
+  '#panel-export button', '#lesson button', '#road-box button', '#robust button'].join(', ');
 
 /** Start-up milestones (ms since navigation), read by the tests. */
 const boot = { marks: { start: performance.now() }, ready: false, interactiveAt: null, readyAt: null };
@@ -446,22 +446,6 @@ async function main() {
     }),
     adaptiveChart: new Plot($('ad-chart'), { aspect: 0.5 }),
     uncertainty: new UncertaintyPanel({ box: $('ad-unc-box'), select: $('ad-unc-crit'), maps: $('ad-unc-map'), caption: $('ad-unc-caption') }, mapHooks),
-    robust: new RobustPanel({
-      load: $('rb-load'), operating: $('rb-op'), addLoad: $('rb-add-load'), addOp: $('rb-add-op'), combine: $('rb-combine'),
-      text: $('rb-text'), apply: $('rb-apply'), pending: $('rb-pending'), clear: $('rb-clear'), caseSelect: $('rb-case'), msg: $('msg-cases'), count: $('rb-count'),
-    }, {
-      // The core's own limits, on the state as it is with these cases.
-      check: (text) => compute.checkState({ ...store.state, cases: text, case: null }).then(() => null, (e) => e),
-      // A refused text leaves the last good state; the core's message names the field.
-      apply: async (text) => {
-        let failure = null;
-        await controller.changeScenario({ cases: text, case: null }, 'cases', { onFail: (e) => (failure = e) });
-        return failure;
-      },
-      pickCase: (c) => controller.changeScenario({ case: c === 'robust' ? null : c }, 'case', {
-        onFail: (e) => ($('msg-cases').textContent = plainWords(e.message)),
-      }),
-    }),
   };
   const render = new Render(store, ui);
   const redraw = () => requestAnimationFrame(() => render.redrawAll());

@@ -111,29 +111,24 @@ export class Compute {
    * surrogate, plus the design, except the maps: LoFi reports, the surrogate (fitted
    * once, then kept by the core), the objective plane's feasible set, STM front (`{error}`
    * when none is feasible) and the design's criteria (`plane: {model, design}`), on the
-   * plane's model (`planeModel`). Rejects with `{message, field}` on a bad state.
+   * plane's model (`planeModel`). With `plane` false the feasible set and the front are
+   * left out (`cloud` and `front` null: `planeParts` computes them). Rejects with
+   * `{message, field}` on a bad state.
    */
-  async scenario(s) {
+  async scenario(s, { plane: withPlane = true } = {}) {
     const main = this.main;
     const desc = await main.call('describe', s);
     const ds = { ...s, ks: desc.datumKs, cs: desc.datumCs };
     const plane = planeModel(s);
-    const [datum, design, sDatum, sDesign, cloud, pDesign, mapDesign] = await Promise.all([
+    const [datum, design, sDatum, sDesign, pDesign, mapDesign] = await Promise.all([
       main.call('analyse', ds, 'lofi'),
       main.call('analyse', s, 'lofi'),
       main.call('criteria', ds, 'surrogate'),
       main.call('criteria', s, 'surrogate'),
-      main.call('maps', s, plane, CLOUD_GRID.nx, CLOUD_GRID.ny),
       plane === 'surrogate' ? null : main.call('criteria', s, plane),
       mapDesignOf(main, s),
     ]);
-    let front;
-    try {
-      front = await this.front(s, 'stm');
-    } catch (e) {
-      // Not a bad input (the state passed describe): no feasible design, or a numerical failure.
-      front = { error: e.message || String(e) };
-    }
+    const { cloud, front } = withPlane ? await this.planeParts(s) : { cloud: null, front: null };
     const row = (c) => ({ ...c, dtl_relative: c.dtl / desc.staticWheelLoad });
     return {
       desc,
@@ -144,6 +139,22 @@ export class Compute {
       plane: { model: plane, design: pDesign || sDesign },
       mapDesign,
     };
+  }
+
+  /**
+   * The objective plane's feasible set (`cloud`: the criteria on CLOUD_GRID by the
+   * plane's model) and STM front (`{error}` when none is feasible) of scenario `s`.
+   */
+  async planeParts(s) {
+    const cloud = await this.main.call('maps', s, planeModel(s), CLOUD_GRID.nx, CLOUD_GRID.ny);
+    let front;
+    try {
+      front = await this.front(s, 'stm');
+    } catch (e) {
+      // Not a bad input (the state passed describe): no feasible design, or a numerical failure.
+      front = { error: e.message || String(e) };
+    }
+    return { cloud, front };
   }
 
   /**

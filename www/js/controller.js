@@ -63,6 +63,9 @@ export class Controller {
     this.onFirstMap = () => {};
     /** True once the page's first maps are drawn (`counters.firstMapAt`: when they were on the screen). */
     this.firstMapsDrawn = false;
+    /** True once `load` showed a scenario; `planeDeferred`: the plane waits for the maps. */
+    this.scenarioShown = false;
+    this.planeDeferred = false;
     this.counters = { frontDraws: 0, frontDrawnAt: 0, nsgaRuns: 0, nsgaDropped: 0, nsgaLog: [], firstMapAt: null, adaptiveDropped: 0 };
     /** True while the adaptive loop runs (its buttons are disabled). */
     this.adaptiveBusy = false;
@@ -188,9 +191,14 @@ export class Controller {
     }
   }
 
-  /** Redraws what a new scenario changes and starts what it needs from the workers. */
-  scenarioChanged() {
-    this.render.scenario();
+  /**
+   * Redraws what a new scenario changes and starts what it needs from the workers.
+   * `planeLater`: the objective plane is drawn once the maps are on the screen
+   * (`drawDeferredPlane`; the page's first scenario, see `load`).
+   */
+  scenarioChanged({ planeLater = false } = {}) {
+    this.planeDeferred = planeLater;
+    this.render.scenario({ plane: !planeLater });
     this.render.adaptive(this.adaptiveBusy);
     this.counters.frontDrawnAt = performance.now();
     this.counters.frontDraws++;
@@ -200,6 +208,28 @@ export class Controller {
     this.requestFit();
     this.refreshKept();
     this.designChanged();
+  }
+
+  /**
+   * The objective plane, when the first scenario left it for after its maps: its
+   * feasible set and front computed first if the scenario came without them.
+   */
+  drawDeferredPlane() {
+    if (!this.planeDeferred) return;
+    this.planeDeferred = false;
+    this.enqueue(async () => {
+      const st = this.store;
+      if (!st.front) {
+        const s = st.state;
+        const parts = await this.compute.planeParts(s);
+        if (scenarioKey(st.state) !== scenarioKey(s)) return; // a newer scenario brought its own
+        st.cloud = parts.cloud;
+        st.front = parts.front;
+      }
+      this.render.scenario();
+      this.render.markers();
+      this.onViewsChanged();
+    });
   }
 
   /** Redraws what a new design changes. */
@@ -373,7 +403,10 @@ export class Controller {
           const shown = st.shownMaps();
           // HiFi and error maps come from the worker; their arrival draws them.
           if (!shown) {
-            if (st.view.model === 'hifi' || st.view.model === 'error') return;
+            if (st.view.model === 'hifi' || st.view.model === 'error') {
+              this.drawDeferredPlane();
+              return;
+            }
             continue;
           }
           let current = true;
@@ -396,6 +429,7 @@ export class Controller {
             // The first map counts once it is on the screen: after the frame that paints it.
             afterPaint().then(() => {
               this.counters.firstMapAt = performance.now();
+              this.drawDeferredPlane();
               this.onFirstMap();
             });
           }
@@ -405,6 +439,7 @@ export class Controller {
       })()
         .catch((e) => {
           this.controls.banner(`The maps failed: ${e.message || e}`, 'error');
+          this.drawDeferredPlane();
           this.onFirstMap();
         })
         .finally(() => {
@@ -634,9 +669,13 @@ export class Controller {
   async load({ state, view, kept = null, problems = [] }, origin = 'link') {
     const st = this.store;
     const what = origin === 'session' ? 'This session file' : 'This link';
+    // The page's first scenario on LoFi or surrogate maps: the maps are computed and drawn
+    // in this task, the plane's feasible set and front once they are on the screen, so
+    // the first maps paint sooner (issue #29).
+    const planeLater = !this.scenarioShown && ['lofi', 'surrogate'].includes({ ...DEFAULT_VIEW, ...view }.model);
     let r;
     try {
-      r = await this.compute.scenario(state);
+      r = await this.compute.scenario(state, { plane: !planeLater });
     } catch (e) {
       const why = plainWords(e.message || String(e));
       if (st.state) {
@@ -645,7 +684,7 @@ export class Controller {
       }
       problems = [...problems, `it cannot be computed (${why}), so the default view is shown`];
       [state, view, kept] = [{ ...st.defaults }, {}, null];
-      r = await this.compute.scenario(state);
+      r = await this.compute.scenario(state, { plane: !planeLater });
     }
     if (state.car === 'custom') st.custom = { json: state.carJson, ks: r.desc.datumKs, cs: r.desc.datumCs, origin, name: r.desc.car.name };
     const projector = st.view.projector;
@@ -655,7 +694,8 @@ export class Controller {
     this.adopt(state, r);
     this.controls.clearAll();
     if (st.view.projector !== projector) this.render.projector();
-    this.scenarioChanged();
+    this.scenarioShown = true;
+    this.scenarioChanged({ planeLater });
     this.requestHifi(performance.now());
     const failed = kept ? await this.restoreKept(kept) : [];
     const said = [...problems, ...failed.map((f) => `kept design ${f}: cannot be evaluated (left out)`)];

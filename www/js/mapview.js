@@ -265,7 +265,16 @@ export class MapView {
         `and damper rate Cs ${box.cs_min / CS_UNIT} to ${box.cs_max / CS_UNIT} kNs/m; ` +
         `values ${fmt(lo)} to ${fmt(hi)} ${this.data.unit}.`,
     );
-    if (draw) this.drawBase();
+    if (draw) this.drawAtSize();
+  }
+
+  /**
+   * Draws the base at the box's size now: the box may have changed since the
+   * ResizeObserver last reported (the page's first state fills the readout in the same
+   * task), and a resize redraws base and overlay, so the map is drawn once, not twice.
+   */
+  drawAtSize() {
+    if (!this.resize()) this.drawBase();
   }
 
   /** The caption's title of `this.crit`: "BAcc: RMS body acceleration". */

@@ -1,6 +1,6 @@
 // The page's panels beyond the first screen (issue #29), loaded with `import()` once the
 // first map is drawn, so the first screen fetches, parses and runs none of their code:
-// the drawer's spectra, time, car editor, road, export and class-front panels, the tour and
+// the drawer's spectra, time, car editor, load cases, road, export and class-front panels, the tour and
 // the lesson panel (with their own modules: lessons, the lesson book and author, the class
 // code, the SVG and PNG exports). `startPanels` builds them into `ui` and wires their
 // controls; js/app.js waits for it before the page says it is ready.
@@ -18,6 +18,7 @@ import { RoadPanel } from './roadpanel.js';
 import { fromSession } from './restore.js';
 import { wireTime } from './timecontrols.js';
 import { adaptivePlane } from './chartspecs.js';
+import { RobustPanel } from './robustpanel.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -27,7 +28,7 @@ function stamp(state) {
 }
 
 /**
- * Builds the panels into `ui` (`spectra`, `time`, `damper`, `carEditor`, `road`, `guide`,
+ * Builds the panels into `ui` (`spectra`, `time`, `damper`, `carEditor`, `robust`, `road`, `guide`,
  * `lessons`, `classFront`) and wires their controls. `hooks` are the maps' pick, key and
  * contour callbacks (the road panel's maps use them too); `exportData()` the data of the
  * chart exports; `redraw()` redraws the charts after a resize of the lesson panel.
@@ -41,6 +42,23 @@ export function startPanels({ store, controller, compute, render, controls, ui, 
   });
   ui.damper = new DamperChart($('tp-fv'));
   ui.carEditor = new CarEditor($('car-fields'));
+  ui.robust = new RobustPanel({
+    load: $('rb-load'), operating: $('rb-op'), addLoad: $('rb-add-load'), addOp: $('rb-add-op'), combine: $('rb-combine'),
+    text: $('rb-text'), apply: $('rb-apply'), pending: $('rb-pending'), clear: $('rb-clear'), caseSelect: $('rb-case'), msg: $('msg-cases'), count: $('rb-count'),
+  }, {
+    // The core's own limits, on the state as it is with these cases.
+    check: (text) => compute.checkState({ ...store.state, cases: text, case: null }).then(() => null, (e) => e),
+    // A refused text leaves the last good state; the core's message names the field.
+    apply: async (text) => {
+      let failure = null;
+      await controller.changeScenario({ cases: text, case: null }, 'cases', { onFail: (e) => (failure = e) });
+      return failure;
+    },
+    pickCase: (c) => controller.changeScenario({ case: c === 'robust' ? null : c }, 'case', {
+      onFail: (e) => ($('msg-cases').textContent = plainWords(e.message)),
+    }),
+  });
+  ui.robust.show({ cases: store.state.cases, mapCase: store.state.case, desc: store.desc });
   ui.guide = new Guide($('tour-card'));
   ui.lessons = new LessonPanel({ root: $('lesson'), bench: $('app'), store, controller, compute, onResize: redraw });
   const ids = { name: 'cf-name', make: 'cf-make', code: 'cf-code', copy: 'cf-copy', text: 'cf-text', file: 'cf-file', apply: 'cf-apply', clear: 'cf-clear', status: 'cf-status', problems: 'cf-problems', table: 'cf-table', drop: 'cf-drop' };

@@ -13,7 +13,7 @@ import { GRID } from './compute.js';
 import { fmt, fmtInput, fmtPct, inPageUnits, roadWords } from './format.js';
 import { pathText } from './gpupath.js';
 import { currentHifiFront, hifiFrontLine, hifiFrontTitle, renderHifiFront } from './hififront.js';
-import { renderCasePicks, robustMapLabel, robustPlaneLabel } from './robustpanel.js';
+import { renderCasePicks, robustMapLabel, robustPlaneLabel } from './robustcases.js';
 import { classMarks } from './classmarks.js';
 
 const $ = (id) => document.getElementById(id);
@@ -68,15 +68,18 @@ export class Render {
     $('sws-limit').value = fmtInput(mm, 4);
   }
 
-  /** What a new scenario changes besides the maps: the car editor, the plane, the pick. */
-  scenario() {
+  /**
+   * What a new scenario changes besides the maps: the car editor, the plane (unless
+   * `plane` is false: the controller draws it later), the pick.
+   */
+  scenario({ plane = true } = {}) {
     const st = this.store;
     // The car editor follows the datum car (only a scenario change can change it), but
     // edits in progress survive changes of road, box or objectives.
     const ed = this.ui.carEditor;
     if (ed && JSON.stringify(ed.car) !== JSON.stringify(st.desc.car)) ed.show(st.desc.car);
     this.criteriaLabels();
-    this.plane();
+    if (plane) this.plane();
     renderPick($('op-pick'), st.front);
     renderHifiFront($('op-hifi'), currentHifiFront(st), st.front);
     if (this.ui.robust) this.ui.robust.show({ cases: st.state.cases, mapCase: st.state.case, desc: st.desc });
@@ -183,7 +186,7 @@ export class Render {
   }
 
   mapDraw(k) {
-    this.ui.maps[k].drawBase();
+    this.ui.maps[k].drawAtSize();
   }
 
   /** Every map from `shown` (`store.shownMaps()`), its status line and markers. */

@@ -17,7 +17,7 @@
 // the page evaluates them again on the link's car and road.
 
 import { MAX_SAVED } from './compare.js';
-import { compactCases } from './robustpanel.js';
+import { compactCases } from './robustcases.js';
 
 const NUMBERS = { ks: 'ks', cs: 'cs', speed: 'speed', dm: 'dtlMargin' };
 
