@@ -687,7 +687,7 @@ fn optimize_json_equals_the_library() {
 /// runs on the surrogate refitted here to exactly those samples.
 #[test]
 fn adaptive_json_equals_the_library_and_lists_the_samples_in_order() {
-    use ridelab::study::adaptive::{self, AdaptiveOptions};
+    use ridelab::study::adaptive::AdaptiveOptions;
     use ridelab::study::SurrogateRequest;
     let (car, road, b) = (Car::datum(), Road::default(), ridelab::DesignBox::default());
     let hifi = HiFi::new(&car, &road).unwrap();
@@ -771,7 +771,7 @@ fn adaptive_json_equals_the_library_and_lists_the_samples_in_order() {
         plan: ae5,
         ..OptimizeRequest::new(&car, &road, b, method.clone(), DesignObjectives::default())
     };
-    let lib = adaptive::optimize_report(&request, options).unwrap();
+    let lib = request.run_adaptive(options).unwrap();
     assert_same_json(&v, &to_json(&lib), "optimize --adaptive");
     let mut samples = initial;
     for a in &lib.adaptive.added {
@@ -1580,7 +1580,7 @@ fn optimize_meets_the_tyre_load_margin_and_the_travel_budget() {
 #[test]
 fn optimize_pick_rules_equal_the_library() {
     use ridelab::optimize::PickRule;
-    use ridelab::study::{optimize_report, EvaluatorSpec};
+    use ridelab::study::EvaluatorSpec;
     for rule in ["knee", "asf:0.8"] {
         let v = json(&[
             "optimize",
@@ -1592,15 +1592,18 @@ fn optimize_pick_rules_equal_the_library() {
         ]);
         let car = Car::datum();
         let road = Road::default();
-        let mut lib = optimize_report(
-            &car,
-            &road,
-            &ridelab::DesignBox::default(),
-            EvaluatorSpec::Model(ModelKind::Quarter),
-            PlanSpec::parse("ae:10").unwrap(),
-            &Method::Stm(StmParams::default()),
-            ridelab::dos::DesignObjectives::default(),
-        )
+        let mut lib = OptimizeRequest {
+            evaluator: EvaluatorSpec::Model(ModelKind::Quarter),
+            plan: PlanSpec::parse("ae:10").unwrap(),
+            ..OptimizeRequest::new(
+                &car,
+                &road,
+                ridelab::DesignBox::default(),
+                Method::Stm(StmParams::default()),
+                ridelab::dos::DesignObjectives::default(),
+            )
+        }
+        .run_cpu()
         .unwrap();
         lib.repick(
             rule.parse::<PickRule>().unwrap(),
@@ -1735,7 +1738,7 @@ fn comfort_bacc_is_the_output_without_the_option() {
 fn optimize_comfort_wk_picks_and_rechecks_with_the_weighted_measure() {
     use ridelab::comfort::Comfort;
     use ridelab::criteria::bacc_wk_spectral;
-    use ridelab::study::{optimize_report_with, EvaluatorSpec};
+    use ridelab::study::EvaluatorSpec;
     let car = Car::datum();
     let road = Road::default();
     let wk_of = |ks: f64, cs: f64| {
@@ -1752,19 +1755,22 @@ fn optimize_comfort_wk_picks_and_rechecks_with_the_weighted_measure() {
         let args = ["optimize", "--evaluator", kind, "--grid", "41", "--json"];
         let wk = json(&[&args[..], &["--comfort", "wk"]].concat());
         let plain = json(&args);
-        let lib = optimize_report_with(
-            &car,
-            &road,
-            &ridelab::DesignBox::default(),
-            EvaluatorSpec::Model(model),
-            PlanSpec::parse("ae:10").unwrap(),
-            &Method::Stm(StmParams {
-                grid: 41,
-                ..StmParams::default()
-            }),
-            DesignObjectives::default(),
-            Comfort::Wk,
-        )
+        let lib = OptimizeRequest {
+            evaluator: EvaluatorSpec::Model(model),
+            plan: PlanSpec::parse("ae:10").unwrap(),
+            comfort: Comfort::Wk,
+            ..OptimizeRequest::new(
+                &car,
+                &road,
+                ridelab::DesignBox::default(),
+                Method::Stm(StmParams {
+                    grid: 41,
+                    ..StmParams::default()
+                }),
+                DesignObjectives::default(),
+            )
+        }
+        .run_cpu()
         .unwrap();
         assert_same_json(&wk, &to_json(&lib), &format!("optimize {kind} wk"));
         assert_eq!(wk["comfort"], "wk");

@@ -334,7 +334,7 @@ fn the_compact_car_report_builds_with_fronts() {
 #[test]
 fn the_adaptive_section_is_the_cli_loop_beside_the_plan() {
     use ridelab::optimize::{Method, StmParams};
-    use ridelab::study::adaptive::{optimize_report, AdaptiveOptions};
+    use ridelab::study::adaptive::AdaptiveOptions;
     use ridelab::study::{EvaluatorSpec, OptimizeRequest};
     use ridelab::surrogate::{PlanSpec, SurrogateSpec};
     let r = sedan();
@@ -360,7 +360,7 @@ fn the_adaptive_section_is_the_cli_loop_beside_the_plan() {
         runs: 5,
         ..AdaptiveOptions::default()
     };
-    let cli = optimize_report(&request, options).unwrap();
+    let cli = request.run_adaptive(options).unwrap();
     assert_eq!(run, &cli, "the report's loop is the CLI's");
     assert_eq!(run.adaptive.added.len(), 5);
     assert_eq!(

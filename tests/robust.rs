@@ -10,9 +10,9 @@ use ridelab::gpu::Compute;
 use ridelab::maps::Grid;
 use ridelab::optimize::{non_dominated, Method, PickRule, StmParams};
 use ridelab::robust::{CaseSet, Combine, LoadCase, Operating};
-use ridelab::study::{case_map_report, robust_map_report, robust_optimize_report};
+use ridelab::study::{case_map_report, robust_map_report};
 use ridelab::study::{map_report, MapSettings};
-use ridelab::study::{optimize_report_with, EvaluatorSpec};
+use ridelab::study::{EvaluatorSpec, OptimizeRequest};
 use ridelab::surrogate::PlanSpec;
 use ridelab::{Car, Evaluator, HiFi, LoFi, Road, RoadClass};
 use serde_json::Value;
@@ -262,27 +262,34 @@ fn robust_optimize_of_one_case_and_feasibility_in_every_case() {
     .unwrap();
     let spec = EvaluatorSpec::Model(ModelKind::Quarter);
     let plan = PlanSpec::parse("ae:10").unwrap();
-    let r = robust_optimize_report(
-        &one,
-        &DesignBox::default(),
-        spec,
+    let r = OptimizeRequest {
+        evaluator: spec,
         plan,
-        &method,
-        objectives.clone(),
-        Comfort::Bacc,
-        PickRule::MinMax,
-    )
+        comfort: Comfort::Bacc,
+        pick: PickRule::MinMax,
+        ..OptimizeRequest::new(
+            &car,
+            &road,
+            DesignBox::default(),
+            method.clone(),
+            objectives.clone(),
+        )
+    }
+    .run_robust(&one)
     .unwrap();
-    let single = optimize_report_with(
-        &one.cases[0].car,
-        &road,
-        &DesignBox::default(),
-        spec,
+    let single = OptimizeRequest {
+        evaluator: spec,
         plan,
-        &method,
-        objectives.clone(),
-        Comfort::Bacc,
-    )
+        comfort: Comfort::Bacc,
+        ..OptimizeRequest::new(
+            &one.cases[0].car,
+            &road,
+            DesignBox::default(),
+            method.clone(),
+            objectives.clone(),
+        )
+    }
+    .run_cpu()
     .unwrap();
     assert_eq!(r.study.front, single.study.front);
     assert_eq!(r.study.pick, single.study.pick);
@@ -301,16 +308,20 @@ fn robust_optimize_of_one_case_and_feasibility_in_every_case() {
         Combine::Worst,
     )
     .unwrap();
-    let r = robust_optimize_report(
-        &two,
-        &DesignBox::default(),
-        spec,
+    let r = OptimizeRequest {
+        evaluator: spec,
         plan,
-        &method,
-        objectives.clone(),
-        Comfort::Bacc,
-        PickRule::Knee,
-    )
+        comfort: Comfort::Bacc,
+        pick: PickRule::Knee,
+        ..OptimizeRequest::new(
+            &car,
+            &road,
+            DesignBox::default(),
+            method.clone(),
+            objectives.clone(),
+        )
+    }
+    .run_robust(&two)
     .unwrap();
     assert_eq!(r.cases.len(), 4);
     let datums: Vec<_> = two

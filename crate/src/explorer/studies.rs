@@ -19,8 +19,7 @@ use crate::optimize::{
 };
 use crate::robust::{CaseSet, Combine};
 use crate::study::robust::optimize::CasePick;
-use crate::study::robust_optimize_report;
-use crate::study::EvaluatorSpec;
+use crate::study::{EvaluatorSpec, OptimizeRequest};
 use crate::time_domain::{simulate, Damper, TimeOptions, TimeResponse};
 use serde::Serialize;
 
@@ -90,7 +89,7 @@ pub struct RobustFront {
 
 /// The robust front of the scenario's cases on `kind` (the quarter car for the plane, the
 /// full car for the HiFi's own) by `method_name`, with the scenario's box, objectives,
-/// comfort measure and pick rule: exactly [`robust_optimize_report`]'s front, pick and
+/// comfort measure and pick rule: exactly [`OptimizeRequest::run_robust`]'s front, pick and
 /// per-case re-checks (`ridelab optimize --cases --evaluator quarter|full`), the datum
 /// its robust (HiFi, case 0's) datum.
 pub(crate) fn robust_front(
@@ -100,16 +99,14 @@ pub(crate) fn robust_front(
     kind: ModelKind,
 ) -> Result<FrontResult> {
     let m = method(method_name)?;
-    let r = robust_optimize_report(
-        set,
-        &s.dbox,
-        EvaluatorSpec::Model(kind),
-        s.plan,
-        &m,
-        s.objectives.clone(),
-        s.comfort,
-        s.pick,
-    )?;
+    let r = OptimizeRequest {
+        evaluator: EvaluatorSpec::Model(kind),
+        plan: s.plan,
+        comfort: s.comfort,
+        pick: s.pick,
+        ..OptimizeRequest::new(&s.datum, &s.road, s.dbox, m, s.objectives.clone())
+    }
+    .run_robust(set)?;
     let weights = normalised_distances(&r.study.front, &r.datum)
         .into_iter()
         .map(pseudo_weights)

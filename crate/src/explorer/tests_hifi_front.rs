@@ -8,7 +8,7 @@ use crate::gpu::ComputePath;
 use crate::maps::Grid;
 use crate::optimize::{Method, StmParams};
 use crate::study::adaptive::{front_check, Decision, HifiFront};
-use crate::study::{optimize_report, EvaluatorSpec};
+use crate::study::{EvaluatorSpec, OptimizeRequest};
 use crate::surrogate::PlanSpec;
 
 const PAGE_STM: StmParams = StmParams {
@@ -33,15 +33,18 @@ fn hifi_front_is_optimize_on_the_full_car() {
         let mut x = Session::new(st).unwrap();
         let view = x.hifi_front(None).unwrap();
         let s = x.scenario().clone();
-        let cli = optimize_report(
-            &s.datum,
-            &s.road,
-            &s.dbox,
-            EvaluatorSpec::Model(ModelKind::Full),
-            PlanSpec::AudzeEglais(10),
-            &Method::Stm(PAGE_STM),
-            s.objectives.clone(),
-        )
+        let cli = OptimizeRequest {
+            evaluator: EvaluatorSpec::Model(ModelKind::Full),
+            plan: PlanSpec::AudzeEglais(10),
+            ..OptimizeRequest::new(
+                &s.datum,
+                &s.road,
+                s.dbox,
+                Method::Stm(PAGE_STM),
+                s.objectives.clone(),
+            )
+        }
+        .run_cpu()
         .unwrap();
         let f = &view.front.study;
         assert_eq!(f.front.len(), cli.study.front.len());

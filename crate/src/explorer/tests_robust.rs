@@ -8,8 +8,8 @@ use crate::gpu::Compute;
 use crate::maps::Grid;
 use crate::optimize::{Method, StmParams};
 use crate::robust::CaseSet;
-use crate::study::EvaluatorSpec;
-use crate::study::{case_map_report, robust_map_report, robust_optimize_report};
+use crate::study::{case_map_report, robust_map_report};
+use crate::study::{EvaluatorSpec, OptimizeRequest};
 use crate::study::{MapReport, MapSettings};
 
 /// Two load cases at three operating points: six cases.
@@ -159,7 +159,7 @@ fn one_case_is_the_plain_map() {
 }
 
 /// The robust front on the page's settings (STM, `STM_GRID` levels `STM_LEVELS`, the
-/// quarter car) is `robust_optimize_report`'s: front, hypervolume, pick, robust HiFi
+/// quarter car) is `OptimizeRequest::run_robust`'s: front, hypervolume, pick, robust HiFi
 /// re-check and each case's prediction, re-check and broken objectives, exactly. The
 /// robust criteria the page gives the design at the pick are the pick's (the plane's
 /// design marker and the front agree), and the plane's feasible set has the pick's cell
@@ -173,19 +173,23 @@ fn robust_front_is_the_clis() {
     .unwrap();
     let sc = s.scenario().clone();
     let set = sc.cases.clone().unwrap();
-    let want = robust_optimize_report(
-        &set,
-        &sc.dbox,
-        EvaluatorSpec::Model(ModelKind::Quarter),
-        sc.plan,
-        &Method::Stm(StmParams {
-            grid: studies::STM_GRID,
-            levels: studies::STM_LEVELS,
-        }),
-        sc.objectives.clone(),
-        sc.comfort,
-        sc.pick,
-    )
+    let want = OptimizeRequest {
+        evaluator: EvaluatorSpec::Model(ModelKind::Quarter),
+        plan: sc.plan,
+        comfort: sc.comfort,
+        pick: sc.pick,
+        ..OptimizeRequest::new(
+            &sc.datum,
+            &sc.road,
+            sc.dbox,
+            Method::Stm(StmParams {
+                grid: studies::STM_GRID,
+                levels: studies::STM_LEVELS,
+            }),
+            sc.objectives.clone(),
+        )
+    }
+    .run_robust(&set)
     .unwrap();
     for model in [Model::Robust, Model::LoFi] {
         let got = s.front("stm", model).unwrap();
@@ -199,16 +203,20 @@ fn robust_front_is_the_clis() {
     }
     // The page's NSGA-II (population 60, 60 generations, seed 1) with cases is
     // `ridelab optimize --cases --method nsga2`'s.
-    let nsga = robust_optimize_report(
-        &set,
-        &sc.dbox,
-        EvaluatorSpec::Model(ModelKind::Quarter),
-        sc.plan,
-        &studies::method("nsga2").unwrap(),
-        sc.objectives.clone(),
-        sc.comfort,
-        sc.pick,
-    )
+    let nsga = OptimizeRequest {
+        evaluator: EvaluatorSpec::Model(ModelKind::Quarter),
+        plan: sc.plan,
+        comfort: sc.comfort,
+        pick: sc.pick,
+        ..OptimizeRequest::new(
+            &sc.datum,
+            &sc.road,
+            sc.dbox,
+            studies::method("nsga2").unwrap(),
+            sc.objectives.clone(),
+        )
+    }
+    .run_robust(&set)
     .unwrap();
     let got = s.front("nsga2", Model::LoFi).unwrap();
     assert_eq!(got.study, nsga.study);
@@ -445,16 +453,20 @@ fn robust_hifi_front_is_optimize_cases_on_the_full_car() {
     let view = s.hifi_front(None).unwrap();
     let sc = s.scenario().clone();
     let set = sc.cases.clone().unwrap();
-    let want = robust_optimize_report(
-        &set,
-        &sc.dbox,
-        EvaluatorSpec::Model(ModelKind::Full),
-        sc.plan,
-        &studies::method("stm").unwrap(),
-        sc.objectives.clone(),
-        sc.comfort,
-        sc.pick,
-    )
+    let want = OptimizeRequest {
+        evaluator: EvaluatorSpec::Model(ModelKind::Full),
+        plan: sc.plan,
+        comfort: sc.comfort,
+        pick: sc.pick,
+        ..OptimizeRequest::new(
+            &sc.datum,
+            &sc.road,
+            sc.dbox,
+            studies::method("stm").unwrap(),
+            sc.objectives.clone(),
+        )
+    }
+    .run_robust(&set)
     .unwrap();
     assert_eq!(view.front.study, want.study);
     assert_eq!(view.front.datum, want.datum);

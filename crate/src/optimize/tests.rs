@@ -7,7 +7,7 @@ use super::*;
 use crate::design::DesignBox;
 use crate::dos::{DesignObjectives, DosContext};
 use crate::evaluate::{Criteria, Evaluator};
-use crate::study::{optimize_report, EvaluatorSpec};
+use crate::study::{EvaluatorSpec, OptimizeRequest};
 
 fn context() -> DosContext {
     DosContext {
@@ -481,15 +481,18 @@ fn lofi_pick_is_also_judged_against_the_lofi_datum() {
         levels: 1,
     });
     let run = |kind| {
-        optimize_report(
-            &car,
-            &road,
-            &DesignBox::default(),
-            EvaluatorSpec::Model(kind),
-            PlanSpec::AudzeEglais(10),
-            &stm,
-            DesignObjectives::default(),
-        )
+        OptimizeRequest {
+            evaluator: EvaluatorSpec::Model(kind),
+            plan: PlanSpec::AudzeEglais(10),
+            ..OptimizeRequest::new(
+                &car,
+                &road,
+                DesignBox::default(),
+                stm.clone(),
+                DesignObjectives::default(),
+            )
+        }
+        .run_cpu()
         .unwrap()
     };
     let r = run(ModelKind::Quarter);

@@ -14,10 +14,8 @@ use crate::gpu::Compute;
 use crate::optimize::PickRule;
 use crate::road::Road;
 use crate::road_profile::RoadScenario;
-use crate::study::adaptive::{
-    optimize_report as adaptive_optimize_report, AdaptiveOptimizeReport, AdaptiveOptions,
-};
-use crate::study::{map_report, optimize_report, study_in, surrogate_report_in};
+use crate::study::adaptive::{AdaptiveOptimizeReport, AdaptiveOptions};
+use crate::study::{map_report, study_in, surrogate_report_in};
 use crate::study::{MapReport, MapSettings, OptimizeReport, OptimizeRequest};
 use crate::study::{StudyReport, SurrogateReport};
 use crate::surrogate::{PlanSpec, SurrogateSpec};
@@ -97,15 +95,18 @@ impl SectionRoad for IsoRoad<'_> {
     }
 
     fn optimize(&self, r: &OptimizeRequest) -> Result<OptimizeReport> {
-        optimize_report(
-            r.car,
-            self.0,
-            &r.design_box,
-            r.evaluator,
-            r.plan,
-            &r.method,
-            r.objectives.clone(),
-        )
+        OptimizeRequest {
+            evaluator: r.evaluator,
+            plan: r.plan,
+            ..OptimizeRequest::new(
+                r.car,
+                self.0,
+                r.design_box,
+                r.method.clone(),
+                r.objectives.clone(),
+            )
+        }
+        .run_cpu()
     }
 
     fn hifi(&self, car: &Car) -> Result<Box<dyn Evaluator + '_>> {
@@ -127,6 +128,6 @@ impl SectionRoad for IsoRoad<'_> {
         request: &OptimizeRequest,
         options: AdaptiveOptions,
     ) -> Result<AdaptiveOptimizeReport> {
-        adaptive_optimize_report(request, options)
+        request.run_adaptive(options)
     }
 }

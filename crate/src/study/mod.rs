@@ -39,11 +39,10 @@ pub use map::{
     MapReport, MapSettings, MaskBit, Units, LAYOUT,
 };
 pub use optimize::{
-    optimize_model, optimize_model_with, optimize_on_models, optimize_report, optimize_report_on,
-    optimize_report_with, EvaluatorSpec, OptimizeReport, OptimizeRequest, SameModel,
+    optimize_model, optimize_on_models, EvaluatorSpec, OptimizeReport, OptimizeRequest, SameModel,
 };
 pub use robust::{
-    case_map_report, robust_map_report, robust_optimize_report, CaseInfo, CaseMapReport,
-    RobustMapReport, RobustOptimizeReport, RobustProblem,
+    case_map_report, robust_map_report, CaseInfo, CaseMapReport, RobustMapReport,
+    RobustOptimizeReport, RobustProblem,
 };
 pub use surrogate::SurrogateRequest;

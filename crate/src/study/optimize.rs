@@ -106,7 +106,7 @@ pub struct OptimizeReport {
     #[serde(skip_serializing_if = "Comfort::is_bacc")]
     pub comfort: Comfort,
     /// The path that evaluated the HiFi designs, `"gpu"` or `"cpu"` (the GPU evaluates
-    /// STM's grid on the full car, [`optimize_report_on`]): there when a path was asked
+    /// STM's grid on the full car, [`OptimizeRequest::run`]): there when a path was asked
     /// for or the GPU ran, so the default output stays as it was on the CPU.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub compute: Option<ComputePath>,
@@ -174,82 +174,10 @@ impl OptimizeReport {
     }
 }
 
-/// Optimises `car`'s front spring and damper on `road` over `design_box` by `method` on
-/// `evaluator` (a surrogate fitted at `plan`) under `objectives`.
-pub fn optimize_report(
-    car: &Car,
-    road: &Road,
-    design_box: &DesignBox,
-    evaluator: EvaluatorSpec,
-    plan: PlanSpec,
-    method: &Method,
-    objectives: DesignObjectives,
-) -> Result<OptimizeReport> {
-    optimize_report_with(
-        car,
-        road,
-        design_box,
-        evaluator,
-        plan,
-        method,
-        objectives,
-        Comfort::Bacc,
-    )
-}
-
-/// [`optimize_report`] with the comfort measure `comfort` on the front's BAcc axis, in
-/// the datum's criteria (so "BAcc no worse than the datum" compares like with like) and
-/// in the HiFi re-check. Wk comfort needs the LoFi or the HiFi: the surrogates are fitted
-/// to the unweighted BAcc, and asking one for Wk is an error naming `comfort`.
-#[allow(clippy::too_many_arguments)]
-pub fn optimize_report_with(
-    car: &Car,
-    road: &Road,
-    design_box: &DesignBox,
-    evaluator: EvaluatorSpec,
-    plan: PlanSpec,
-    method: &Method,
-    objectives: DesignObjectives,
-    comfort: Comfort,
-) -> Result<OptimizeReport> {
-    // On the CPU, as this entry point always ran; its report leaves `compute` out.
-    OptimizeRequest {
-        evaluator,
-        plan,
-        comfort,
-        compute: Some(Compute::Cpu),
-        ..OptimizeRequest::new(car, road, *design_box, method.clone(), objectives)
-    }
-    .run()
-    .map(|mut r| {
-        r.compute = None;
-        r
-    })
-}
-
-/// [`optimize_report`] on an evaluator built already (the adaptive loop's surrogate).
+/// The optimisation on an evaluator built already (the adaptive loop's surrogate), where
+/// `model` gives the comfort measure `comfort` in its BAcc slot: the datum and the pick's
+/// re-check use the HiFi of `car` on `road` with the same measure.
 pub fn optimize_model(
-    car: &Car,
-    road: &Road,
-    design_box: &DesignBox,
-    model: Box<dyn Evaluator + Sync>,
-    method: &Method,
-    objectives: DesignObjectives,
-) -> Result<OptimizeReport> {
-    optimize_model_with(
-        car,
-        road,
-        design_box,
-        model,
-        method,
-        objectives,
-        Comfort::Bacc,
-    )
-}
-
-/// [`optimize_model`] where `model` gives the comfort measure `comfort` in its BAcc slot:
-/// the datum and the re-check use the HiFi with the same measure.
-pub fn optimize_model_with(
     car: &Car,
     road: &Road,
     design_box: &DesignBox,
@@ -298,30 +226,6 @@ pub fn optimize_on_models(
         compute: None,
         adapter: None,
     })
-}
-
-/// [`optimize_report_with`] with the HiFi on the path `compute` asks for (`None`: auto,
-/// unreported): [`OptimizeRequest::run`].
-#[allow(clippy::too_many_arguments)]
-pub fn optimize_report_on(
-    car: &Car,
-    road: &Road,
-    design_box: &DesignBox,
-    evaluator: EvaluatorSpec,
-    plan: PlanSpec,
-    method: &Method,
-    objectives: DesignObjectives,
-    comfort: Comfort,
-    compute: Option<Compute>,
-) -> Result<OptimizeReport> {
-    OptimizeRequest {
-        evaluator,
-        plan,
-        comfort,
-        compute,
-        ..OptimizeRequest::new(car, road, *design_box, method.clone(), objectives)
-    }
-    .run()
 }
 
 /// One optimisation as `ridelab optimize` asks for it: the front of `car`'s front spring
@@ -444,6 +348,18 @@ impl<'a> OptimizeRequest<'a> {
         }
         r.compute = path;
         r.adapter = adapter;
+        Ok(r)
+    }
+
+    /// Runs it on the CPU whatever GPU the machine has, the report's `compute` left out:
+    /// the same report on every machine (the study report's fronts, a library caller's).
+    pub fn run_cpu(&self) -> Result<OptimizeReport> {
+        let mut r = OptimizeRequest {
+            compute: Some(Compute::Cpu),
+            ..self.clone()
+        }
+        .run()?;
+        r.compute = None;
         Ok(r)
     }
 }

@@ -20,7 +20,7 @@ use ridelab::road_profile::RoadScenario;
 use ridelab::robust::LoadCase;
 use ridelab::study::adaptive;
 use ridelab::study::measured::{check_measured_request, optimize_measured};
-use ridelab::study::{robust_optimize_report, RobustOptimizeReport};
+use ridelab::study::RobustOptimizeReport;
 use ridelab::study::{EvaluatorSpec, OptimizeReport, OptimizeRequest};
 use ridelab::surrogate::PlanSpec;
 use std::path::Path;
@@ -119,16 +119,14 @@ pub(crate) fn optimize(a: OptimizeArgs) -> Result<String> {
                 "the adaptive loop runs on one case: leave out --cases (and the car file's load_cases)",
             ));
         }
-        let out = robust_optimize_report(
-            &set,
-            &design_box,
-            a.evaluator,
-            a.plan,
-            &method,
-            objectives,
-            a.comfort,
-            a.pick,
-        )?;
+        let out = OptimizeRequest {
+            evaluator: a.evaluator,
+            plan: a.plan,
+            comfort: a.comfort,
+            pick: a.pick,
+            ..OptimizeRequest::new(&car, &road, design_box, method, objectives)
+        }
+        .run_robust(&set)?;
         if let Some(path) = &svg {
             ridelab::finite::check(&out)?;
             let mut chart = front_chart(&out.study, &out.datum, Some(&out.hifi_recheck));
@@ -168,7 +166,7 @@ pub(crate) fn optimize(a: OptimizeArgs) -> Result<String> {
             ))
         }
         Some(options) => {
-            let r = adaptive::optimize_report(&request, options)?;
+            let r = request.run_adaptive(options)?;
             let mut out = r.optimize;
             out.compute = a.compute.map(|_| ComputePath::Cpu);
             (out, Some(r.adaptive))

@@ -27,7 +27,7 @@ mod reports;
 mod study;
 
 pub use check::{front_check, FrontCheck, HifiFront, HIFI_FEASIBILITY_TOLERANCE};
-pub use reports::{optimize_report, AdaptiveOptimizeReport};
+pub use reports::AdaptiveOptimizeReport;
 pub use study::{adaptive_study, adaptive_study_on, AdaptiveStudy, StudyOptions, StudyRow};
 
 use crate::car::Car;

@@ -3,7 +3,7 @@
 //! design objectives hold in every case; the pick on the robust front, its numbers in
 //! each case, and each case re-checked on that case's HiFi.
 //!
-//! As in [`crate::study::optimize_report_with`], every case's datum is the datum
+//! As in [`crate::study::OptimizeRequest::run`], every case's datum is the datum
 //! design's **HiFi** criteria in that case (with the chosen comfort measure), whatever the
 //! evaluator the front is found on.
 
@@ -15,7 +15,7 @@ use crate::dos::{DesignObjectives, DosContext, Objective};
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::optimize::hypervolume::{hypervolume, reference_point};
-use crate::optimize::minmax::{change_percent, pick, recheck, PickRule, Recheck};
+use crate::optimize::minmax::{change_percent, pick, recheck, Recheck};
 use crate::optimize::problem::{Eval, Problem};
 use crate::optimize::study::REFERENCE_MARGIN;
 use crate::optimize::suspension::LeastViolation;
@@ -23,8 +23,7 @@ use crate::optimize::trust::{pick_warnings, Warning};
 use crate::optimize::{nsga2, stm, FrontPoint, Method, Study};
 use crate::robust::cases::CaseSet;
 use crate::robust::objective::{robust_constraints, CaseRun, Combination, RobustEvaluator};
-use crate::study::EvaluatorSpec;
-use crate::surrogate::PlanSpec;
+use crate::study::{EvaluatorSpec, OptimizeRequest};
 use serde::Serialize;
 use std::cell::{Cell, RefCell};
 
@@ -189,7 +188,7 @@ pub(crate) fn case_contexts(set: &CaseSet, datums: &[Criteria]) -> Vec<DosContex
         .collect()
 }
 
-/// The combination of the robust optimisation ([`robust_optimize_report`]): the cases'
+/// The combination of the robust optimisation ([`OptimizeRequest::run_robust`]): the cases'
 /// criteria scaled to their HiFi datums (with the `comfort` measure), the set's rule
 /// and probabilities; also the HiFi datums. What the front's robust objective of a
 /// design is, `combination.apply(per-case criteria)`.
@@ -204,28 +203,26 @@ pub(crate) fn hifi_combination(
     ))
 }
 
-/// The robust optimisation of `set` over `design_box` by `method` on `evaluator` (a
-/// surrogate per case, fitted to that case's HiFi at `plan`), picked by `rule`.
-#[allow(clippy::too_many_arguments)]
-pub fn robust_optimize_report(
-    set: &CaseSet,
-    design_box: &DesignBox,
-    evaluator: EvaluatorSpec,
-    plan: PlanSpec,
-    method: &Method,
-    objectives: DesignObjectives,
-    comfort: Comfort,
-    rule: PickRule,
-) -> Result<RobustOptimizeReport> {
-    objectives.validate()?;
-    match method {
-        Method::Stm(p) => p.check_runs(set.cases.len())?,
-        Method::Nsga2(p) => p.check_runs(set.cases.len())?,
-    }
-    let mut models = Vec::with_capacity(set.cases.len());
-    let mut hifis = Vec::with_capacity(set.cases.len());
-    for c in &set.cases {
-        models.push(match (comfort, evaluator) {
+impl OptimizeRequest<'_> {
+    /// The robust optimisation: this request run over the cases of `set` (built from the
+    /// request's car and road: each case brings its loaded car and its road) and combined
+    /// by the set's rule. Over the request's design box by its method on its evaluator (a
+    /// surrogate per case, fitted to that case's HiFi at the request's plan), with its
+    /// objectives and comfort measure, picked by its pick rule; on the CPU (the request's
+    /// `compute` is not read).
+    pub fn run_robust(&self, set: &CaseSet) -> Result<RobustOptimizeReport> {
+        let (design_box, method, evaluator, plan) =
+            (&self.design_box, &self.method, self.evaluator, self.plan);
+        let (objectives, comfort, rule) = (self.objectives.clone(), self.comfort, self.pick);
+        objectives.validate()?;
+        match method {
+            Method::Stm(p) => p.check_runs(set.cases.len())?,
+            Method::Nsga2(p) => p.check_runs(set.cases.len())?,
+        }
+        let mut models = Vec::with_capacity(set.cases.len());
+        let mut hifis = Vec::with_capacity(set.cases.len());
+        for c in &set.cases {
+            models.push(match (comfort, evaluator) {
             (Comfort::Bacc, _) => Run::One(evaluator.build(&c.car, &c.road, design_box, plan)?),
             (Comfort::Wk, EvaluatorSpec::Model(kind)) => {
                 Run::One(comfort.evaluator(kind, &c.car, &c.road)?)
@@ -237,85 +234,86 @@ pub fn robust_optimize_report(
                 ))
             }
         });
-        hifis.push(comfort.evaluator(ModelKind::Full, &c.car, &c.road)?);
-    }
-    // The HiFi front: the cases of one loaded car together (the same criteria bit for
-    // bit, the road-independent work once a design).
-    if (comfort, evaluator) == (Comfort::Bacc, EvaluatorSpec::Model(ModelKind::Full)) {
-        models = set
-            .car_runs()
-            .into_iter()
-            .map(|run| {
-                let roads: Vec<_> = set.cases[run.clone()].iter().map(|c| c.road).collect();
-                Ok(Run::Roads(HiFiRoads::new(
-                    &set.cases[run.start].car,
-                    &roads,
-                )?))
-            })
-            .collect::<Result<_>>()?;
-    }
-    let datums = datums_on(set, &hifis)?;
-    let combination = Combination::new(set.combine, &datums, &set.probabilities())?;
-    let ctxs = case_contexts(set, &datums);
-    let problem = RobustProblem::new(
-        RobustEvaluator {
-            cases: models,
-            combination: combination.clone(),
-        },
-        *design_box,
-        objectives.clone(),
-        ctxs.clone(),
-    )?;
-    let solutions = match method {
-        Method::Stm(p) => stm(&problem, p)?,
-        Method::Nsga2(p) => nsga2(&problem, p)?,
-    };
-    let front = FrontPoint::from_solutions(&solutions);
-    let f: Vec<[f64; 2]> = front.iter().map(|p| [p.bacc, p.dtl]).collect();
-    let reference = reference_point(&f, REFERENCE_MARGIN);
-    let datum = combination.datum;
-    let picked = pick(&front, &datum, rule)?;
-    let study = Study {
-        method: method.clone(),
-        evaluator: problem.evaluator.name(),
-        front,
-        reference_point: reference,
-        reference_rule: format!("nadir + {REFERENCE_MARGIN} (nadir - ideal) of this front"),
-        hypervolume: hypervolume(&f, reference),
-        pick: picked.clone(),
-        evaluations: problem.runs(),
-    };
-    let robust_hifi = RobustEvaluator {
-        cases: hifis,
-        combination,
-    };
-    let hifi_recheck = recheck(&picked, &robust_hifi, &datum)?;
-    let predicted = problem.evaluator.evaluate_cases(picked.ks, picked.cs)?;
-    let mut cases = Vec::with_capacity(set.cases.len());
-    for (k, (hifi, c)) in robust_hifi.cases.iter().zip(&predicted).enumerate() {
-        let case_pick = crate::optimize::Pick {
-            criteria: *c,
-            change_percent: change_percent(c, &datums[k]),
-            ..picked.clone()
+            hifis.push(comfort.evaluator(ModelKind::Full, &c.car, &c.road)?);
+        }
+        // The HiFi front: the cases of one loaded car together (the same criteria bit for
+        // bit, the road-independent work once a design).
+        if (comfort, evaluator) == (Comfort::Bacc, EvaluatorSpec::Model(ModelKind::Full)) {
+            models = set
+                .car_runs()
+                .into_iter()
+                .map(|run| {
+                    let roads: Vec<_> = set.cases[run.clone()].iter().map(|c| c.road).collect();
+                    Ok(Run::Roads(HiFiRoads::new(
+                        &set.cases[run.start].car,
+                        &roads,
+                    )?))
+                })
+                .collect::<Result<_>>()?;
+        }
+        let datums = datums_on(set, &hifis)?;
+        let combination = Combination::new(set.combine, &datums, &set.probabilities())?;
+        let ctxs = case_contexts(set, &datums);
+        let problem = RobustProblem::new(
+            RobustEvaluator {
+                cases: models,
+                combination: combination.clone(),
+            },
+            *design_box,
+            objectives.clone(),
+            ctxs.clone(),
+        )?;
+        let solutions = match method {
+            Method::Stm(p) => stm(&problem, p)?,
+            Method::Nsga2(p) => nsga2(&problem, p)?,
         };
-        let check = recheck(&case_pick, &**hifi, &datums[k])?;
-        let broken = objectives.broken(&ctxs[k], picked.ks, picked.cs, &check.rechecked);
-        cases.push(CasePick {
-            case: CaseInfo::new(set, k, datums[k]),
-            hifi_recheck: check,
-            broken,
-        });
+        let front = FrontPoint::from_solutions(&solutions);
+        let f: Vec<[f64; 2]> = front.iter().map(|p| [p.bacc, p.dtl]).collect();
+        let reference = reference_point(&f, REFERENCE_MARGIN);
+        let datum = combination.datum;
+        let picked = pick(&front, &datum, rule)?;
+        let study = Study {
+            method: method.clone(),
+            evaluator: problem.evaluator.name(),
+            front,
+            reference_point: reference,
+            reference_rule: format!("nadir + {REFERENCE_MARGIN} (nadir - ideal) of this front"),
+            hypervolume: hypervolume(&f, reference),
+            pick: picked.clone(),
+            evaluations: problem.runs(),
+        };
+        let robust_hifi = RobustEvaluator {
+            cases: hifis,
+            combination,
+        };
+        let hifi_recheck = recheck(&picked, &robust_hifi, &datum)?;
+        let predicted = problem.evaluator.evaluate_cases(picked.ks, picked.cs)?;
+        let mut cases = Vec::with_capacity(set.cases.len());
+        for (k, (hifi, c)) in robust_hifi.cases.iter().zip(&predicted).enumerate() {
+            let case_pick = crate::optimize::Pick {
+                criteria: *c,
+                change_percent: change_percent(c, &datums[k]),
+                ..picked.clone()
+            };
+            let check = recheck(&case_pick, &**hifi, &datums[k])?;
+            let broken = objectives.broken(&ctxs[k], picked.ks, picked.cs, &check.rechecked);
+            cases.push(CasePick {
+                case: CaseInfo::new(set, k, datums[k]),
+                hifi_recheck: check,
+                broken,
+            });
+        }
+        Ok(RobustOptimizeReport {
+            warnings: pick_warnings(&picked, &hifi_recheck, design_box),
+            study,
+            datum,
+            hifi_recheck,
+            comfort,
+            combine: set.combine,
+            normalisation: NORMALISATION,
+            cases,
+        })
     }
-    Ok(RobustOptimizeReport {
-        warnings: pick_warnings(&picked, &hifi_recheck, design_box),
-        study,
-        datum,
-        hifi_recheck,
-        comfort,
-        combine: set.combine,
-        normalisation: NORMALISATION,
-        cases,
-    })
 }
 
 /// The front evaluator of a run of cases: one case's, or the HiFi of one loaded car on
