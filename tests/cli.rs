@@ -9,7 +9,7 @@ use ridelab::maps::{Grid, Scale};
 use ridelab::optimize::{recheck, run_study, Method, Nsga2Params, StmParams, SuspensionProblem};
 use ridelab::road::Road;
 use ridelab::study::{map_csv, map_report, MapSettings};
-use ridelab::study::{study, surrogate_report, OptimizeRequest};
+use ridelab::study::{study, OptimizeRequest, SurrogateRequest};
 use ridelab::surrogate::{sample_plan, LmOptions, PlanSpec, Setting, SurrogateSpec};
 use ridelab::time_domain::{simulate, TimeOptions};
 use ridelab::{Car, Evaluator, HiFi, LoFi};
@@ -920,7 +920,12 @@ fn surrogate_json_equals_the_library() {
             speed: 15.0,
             ..Road::default()
         };
-        let lib = surrogate_report(approach, plan, &Car::datum(), &road, Some(4)).unwrap();
+        let lib = SurrogateRequest {
+            predict_grid: Some(4),
+            ..SurrogateRequest::parse(approach, plan).unwrap()
+        }
+        .report(&Car::datum(), &road)
+        .unwrap();
         let want = to_json(&lib);
         assert_same_json(&v, &want, &format!("surrogate {approach}"));
         // Metrics and tuning are part of it; spelled out so a renamed key cannot slip by.
@@ -934,7 +939,12 @@ fn surrogate_json_equals_the_library() {
 fn study_json_equals_the_library_and_its_rows_the_single_fits() {
     // The whole study is about 2 s in the test profile (300 fits on 400 + 155 HiFi runs).
     let v = json(&["study", "--json"]);
-    let lib = study(&Car::datum(), &Road::default()).unwrap();
+    let lib = study(
+        &Car::datum(),
+        &Road::default(),
+        &ridelab::DesignBox::default(),
+    )
+    .unwrap();
     assert_same_json(&v, &to_json(&lib), "study");
     // A few rows again through `ridelab surrogate`'s library route (the same plan, fit and
     // 20 x 20 validation grid): the same metrics.
@@ -950,8 +960,9 @@ fn study_json_equals_the_library_and_its_rows_the_single_fits() {
             .find(|r| r["surrogate"] == approach && r["plan"] == plan)
             .unwrap_or_else(|| panic!("{approach} {plan} missing"));
         assert_eq!(row["outcome"]["status"], "fitted", "{approach} {plan}");
-        let single =
-            surrogate_report(approach, plan, &Car::datum(), &Road::default(), None).unwrap();
+        let single = SurrogateRequest::parse(approach, plan)
+            .and_then(|r| r.report(&Car::datum(), &Road::default()))
+            .unwrap();
         assert_same_json(
             &row["outcome"]["metrics"],
             &to_json(&single.metrics),

@@ -48,7 +48,7 @@ fn surrogates(c: &mut Criterion) {
     let mut slow = c.benchmark_group("study");
     slow.sample_size(10);
     slow.bench_function("fidelity study (all approaches x schemes x plans)", |b| {
-        b.iter(|| study(black_box(&car), &road).unwrap())
+        b.iter(|| study(black_box(&car), &road, &design_box).unwrap())
     });
     slow.finish();
 }

@@ -182,14 +182,12 @@ fn the_fit_report_on_the_kept_fit_is_the_clis_without_a_second_fit() {
         let kept = x.fit_report(6).unwrap();
         assert_eq!(x.fit_count(), 1, "{sur}: the report reuses the fit");
         let s = x.scenario();
-        let fresh = crate::study::surrogate_report_in(
-            s.surrogate,
-            s.plan,
-            &s.datum,
-            &s.road,
-            &s.dbox,
-            Some(6),
-        )
+        let fresh = crate::study::SurrogateRequest {
+            design_box: s.dbox,
+            predict_grid: Some(6),
+            ..crate::study::SurrogateRequest::new(s.surrogate, s.plan)
+        }
+        .report(&s.datum, &s.road)
         .unwrap();
         assert_eq!(kept, fresh, "{sur} on {plan}");
         assert_eq!(kept.hifi_evaluations, kept.samples.len() + 36);

@@ -22,7 +22,7 @@ use crate::road_profile::{
 };
 use crate::study::adaptive::{AdaptiveOptimizeReport, AdaptiveOptions};
 use crate::study::measured::optimize_measured;
-use crate::study::{map_report_with, study_on, surrogate_report_on};
+use crate::study::{map_report_with, study_on, SurrogateRequest};
 use crate::study::{MapReport, MapSettings, OptimizeReport, OptimizeRequest};
 use crate::study::{StudyReport, SurrogateReport};
 use crate::surrogate::{PlanSpec, Setting, SurrogateSpec};
@@ -218,10 +218,14 @@ impl SectionRoad for OnRoad<'_> {
         &self,
         spec: SurrogateSpec,
         plan: PlanSpec,
-        _car: &Car,
+        car: &Car,
         _design_box: &DesignBox,
     ) -> Result<SurrogateReport> {
-        let mut r = surrogate_report_on(spec, plan, &self.setting, self.hifi.clone(), None)?;
+        let request = SurrogateRequest {
+            design_box: self.setting.design_box,
+            ..SurrogateRequest::new(spec, plan)
+        };
+        let mut r = request.report_on(car, &self.setting, self.hifi.clone())?;
         r.road = self.scenario();
         Ok(r)
     }

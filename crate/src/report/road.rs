@@ -15,7 +15,7 @@ use crate::optimize::PickRule;
 use crate::road::Road;
 use crate::road_profile::RoadScenario;
 use crate::study::adaptive::{AdaptiveOptimizeReport, AdaptiveOptions};
-use crate::study::{map_report, study_in, surrogate_report_in};
+use crate::study::{map_report, study, SurrogateRequest};
 use crate::study::{MapReport, MapSettings, OptimizeReport, OptimizeRequest};
 use crate::study::{StudyReport, SurrogateReport};
 use crate::surrogate::{PlanSpec, SurrogateSpec};
@@ -81,7 +81,7 @@ impl SectionRoad for IsoRoad<'_> {
     }
 
     fn study(&self, car: &Car, design_box: &DesignBox) -> Result<StudyReport> {
-        study_in(car, self.0, design_box)
+        study(car, self.0, design_box)
     }
 
     fn surrogate(
@@ -91,7 +91,11 @@ impl SectionRoad for IsoRoad<'_> {
         car: &Car,
         design_box: &DesignBox,
     ) -> Result<SurrogateReport> {
-        surrogate_report_in(spec, plan, car, self.0, design_box, None)
+        SurrogateRequest {
+            design_box: *design_box,
+            ..SurrogateRequest::new(spec, plan)
+        }
+        .report(car, self.0)
     }
 
     fn optimize(&self, r: &OptimizeRequest) -> Result<OptimizeReport> {

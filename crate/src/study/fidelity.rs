@@ -79,53 +79,13 @@ pub struct SurrogateReport {
     pub predictions: Option<GridPredictions>,
 }
 
-/// Fits the surrogate `approach` (e.g. `vba-qts`) to HiFi samples of `car` on `road` at
-/// `plan` (e.g. `ae:10`) over the default design box and validates it on the default
-/// `20 x 20` HiFi grid. `predict_grid = Some(n)` validates on an `n x n` grid instead and
-/// includes the predictions there. Errors name `approach`, `plan` or `predict-grid`.
-pub fn surrogate_report(
-    approach: &str,
-    plan: &str,
-    car: &Car,
-    road: &Road,
-    predict_grid: Option<usize>,
-) -> Result<SurrogateReport> {
-    let spec = SurrogateSpec::parse(approach)?;
-    let plan_spec = PlanSpec::parse(plan)?;
-    surrogate_report_in(
-        spec,
-        plan_spec,
-        car,
-        road,
-        &DesignBox::default(),
-        predict_grid,
-    )
-}
-
-/// [`surrogate_report`] over any design box (the plan, the normalisation and the
-/// validation grid all span `design_box`).
-pub fn surrogate_report_in(
-    spec: SurrogateSpec,
-    plan_spec: PlanSpec,
-    car: &Car,
-    road: &Road,
-    design_box: &DesignBox,
-    predict_grid: Option<usize>,
-) -> Result<SurrogateReport> {
-    let setting = Setting::new(car, road, design_box)?;
-    surrogate_report_on(
-        spec,
-        plan_spec,
-        &setting,
-        HiFi::new(car, road)?,
-        predict_grid,
-    )
-}
-
-/// [`surrogate_report_in`] in any setting (an ISO class or a measured road,
-/// [`Setting::measured`]) with its HiFi `hifi` (the full car on that road); the report's
-/// `road` is the setting's ISO road, which the caller replaces for a measured one.
-pub fn surrogate_report_on<E: Evaluator>(
+/// Fits the surrogate `spec` to samples of `hifi` (the full car in `setting`: an ISO class
+/// or a measured road, [`Setting::measured`]) at `plan_spec` over the setting's box and
+/// validates it on the default `20 x 20` HiFi grid, or with `predict_grid = Some(n)` on an
+/// `n x n` grid with the predictions there ([`crate::study::SurrogateRequest`]'s plain
+/// fit). The report's `road` is the setting's ISO road, which the caller replaces for a
+/// measured one.
+pub(super) fn surrogate_report_on<E: Evaluator>(
     spec: SurrogateSpec,
     plan_spec: PlanSpec,
     setting: &Setting,
@@ -390,14 +350,10 @@ pub fn best_per_budget(rows: &[StudyRow]) -> Vec<BudgetBest> {
         .collect()
 }
 
-/// The whole study for `car` on `road`: the default design box, [`study_specs`], the plans
-/// of [`PlanSpec::study`], the `20 x 20` validation grid, default fit options.
-pub fn study(car: &Car, road: &Road) -> Result<StudyReport> {
-    study_in(car, road, &DesignBox::default())
-}
-
-/// [`study`] over any design box (plans, normalisation and validation grid span it).
-pub fn study_in(car: &Car, road: &Road, design_box: &DesignBox) -> Result<StudyReport> {
+/// The whole study for `car` on the ISO `road` over `design_box` (plans, normalisation and
+/// validation grid span it): [`study_specs`], the plans of [`PlanSpec::study`], the
+/// `20 x 20` validation grid, default fit options.
+pub fn study(car: &Car, road: &Road, design_box: &DesignBox) -> Result<StudyReport> {
     let setting = Setting::new(car, road, design_box)?;
     study_on(
         car,
@@ -407,7 +363,7 @@ pub fn study_in(car: &Car, road: &Road, design_box: &DesignBox) -> Result<StudyR
     )
 }
 
-/// [`study_in`] on `setting` (an ISO class or a measured road: its LoFi and box) with
+/// [`study`] on `setting` (an ISO class or a measured road: its LoFi and box) with
 /// `hifi` the full car of `car` there; `road` is recorded.
 pub fn study_on<E: Evaluator>(
     car: &Car,

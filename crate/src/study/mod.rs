@@ -30,10 +30,7 @@ pub mod optimize;
 pub mod robust;
 pub mod surrogate;
 
-pub use fidelity::{
-    study, study_in, study_on, surrogate_report, surrogate_report_in, surrogate_report_on,
-    StudyReport, SurrogateReport,
-};
+pub use fidelity::{study, study_on, StudyReport, SurrogateReport};
 pub use map::{
     map_csv, map_report, map_report_from, map_report_with, CriteriaContours, Feasibility,
     MapReport, MapSettings, MaskBit, Units, LAYOUT,

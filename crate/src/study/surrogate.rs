@@ -47,6 +47,15 @@ impl SurrogateRequest {
         }
     }
 
+    /// `approach` (e.g. `vba-qts`) on `plan` (e.g. `ae:10`) as `ridelab surrogate` names
+    /// them, with [`Self::new`]'s defaults; errors name `approach` or `plan`.
+    pub fn parse(approach: &str, plan: &str) -> Result<SurrogateRequest> {
+        Ok(SurrogateRequest::new(
+            SurrogateSpec::parse(approach)?,
+            PlanSpec::parse(plan)?,
+        ))
+    }
+
     /// The report of `car` on the ISO `road` (the HiFi the full car there). Errors name
     /// the request's field at fault (`plan`, `predict-grid`, the loop's fields, an
     /// objective).

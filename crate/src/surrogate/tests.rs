@@ -7,7 +7,7 @@ use crate::analysis::quarter_criteria;
 use crate::doe::{audze_eglais, full_factorial};
 use crate::model::quarter_car;
 use crate::study::fidelity::{study_specs, FittedRow, Outcome, StudyRow};
-use crate::study::{study, surrogate_report, surrogate_report_in, surrogate_report_on};
+use crate::study::{study, SurrogateRequest};
 
 /// A "HiFi" that is a quarter car made by `f(ks, cs)`: a LoFi with known tuning.
 struct Manufactured<F> {
@@ -364,12 +364,21 @@ fn too_few_samples_and_bad_inputs_are_field_errors() {
         ("vba-qts", "lhs:10", "plan"),
         ("vba-qts", "ae:0", "plan"),
     ] {
-        let e = surrogate_report(a, p, &car, &road, None)
+        let e = SurrogateRequest::parse(a, p)
+            .and_then(|r| r.report(&car, &road))
             .unwrap_err()
             .to_string();
         assert!(e.starts_with(&format!("{field}: ")), "{e}");
     }
-    let e = surrogate_report("vba-lts", "ae:3", &car, &road, Some(1)).unwrap_err();
+    let e = SurrogateRequest::parse("vba-lts", "ae:3")
+        .and_then(|r| {
+            SurrogateRequest {
+                predict_grid: Some(1),
+                ..r
+            }
+            .report(&car, &road)
+        })
+        .unwrap_err();
     assert!(e.to_string().starts_with("predict-grid: "), "{e}");
 }
 
@@ -392,7 +401,12 @@ fn vba_guard_keeps_transformed_design_positive() {
 fn surrogate_report_is_serialisable_and_attachable() {
     let car = Car::datum();
     let road = Road::default();
-    let r = surrogate_report("vba-qts", "ae:10", &car, &road, Some(4)).unwrap();
+    let r = SurrogateRequest {
+        predict_grid: Some(4),
+        ..SurrogateRequest::parse("vba-qts", "ae:10").unwrap()
+    }
+    .report(&car, &road)
+    .unwrap();
     assert_eq!(r.hifi_evaluations, 10 + 16);
     assert_eq!(r.samples.len(), 10);
     assert_eq!(r.tuning.len(), 6);
@@ -437,7 +451,7 @@ fn surrogate_report_is_serialisable_and_attachable() {
 /// leave a margin of about 1.3 to 2 on each figure (1 - R^2 for R^2).
 #[test]
 fn fidelity_study_on_the_real_hifi() {
-    let report = study(&Car::datum(), &Road::default()).unwrap();
+    let report = study(&Car::datum(), &Road::default(), &DesignBox::default()).unwrap();
     let n_rows = study_specs().len() * PlanSpec::study().len();
     assert_eq!(report.rows.len(), n_rows);
     // HiFi runs: the validation grid once plus every plan's samples once.
@@ -597,9 +611,14 @@ fn a_surrogate_on_a_shaped_iso_road_is_the_iso_surrogate() {
     ] {
         let spec = SurrogateSpec::parse(name).unwrap();
         let plan = PlanSpec::parse("ae:10").unwrap();
-        let iso = surrogate_report_in(spec, plan, &car, &road, &b, Some(6)).unwrap();
+        let request = SurrogateRequest {
+            design_box: b,
+            predict_grid: Some(6),
+            ..SurrogateRequest::new(spec, plan)
+        };
+        let iso = request.report(&car, &road).unwrap();
         let hifi = MeasuredModel::new(ModelKind::Full, &car, shaped.clone());
-        let on = surrogate_report_on(spec, plan, &measured, hifi, Some(6)).unwrap();
+        let on = request.report_on(&car, &measured, hifi).unwrap();
         assert_eq!(iso.tuning.len(), on.tuning.len(), "{name}");
         for (a, b) in iso.tuning.iter().zip(&on.tuning) {
             assert_eq!(a.name, b.name);

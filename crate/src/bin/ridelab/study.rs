@@ -9,7 +9,7 @@ use ridelab::error::{Result, RideError};
 use ridelab::optimize::StmParams;
 use ridelab::road_profile::{MeasuredModel, MeasuredRoad, RoadScenario};
 use ridelab::study::adaptive::{adaptive_study, adaptive_study_on, AdaptiveStudy, StudyOptions};
-use ridelab::study::{study_in, study_on, StudyReport};
+use ridelab::study::{study, study_on, StudyReport};
 use ridelab::surrogate::Setting;
 use ridelab::surrogate::SurrogateSpec;
 
@@ -68,7 +68,7 @@ pub(crate) fn study_cmd(a: StudyArgs) -> Result<String> {
         let r = adaptive_study(&car, &road, spec, &study_options(&a)?).map_err(option_name)?;
         return output(&a, &r, r.to_markdown());
     }
-    let r = study_in(&car, &road, &a.design_box.design_box()?)?;
+    let r = study(&car, &road, &a.design_box.design_box()?)?;
     output(&a, &r, r.to_markdown())
 }
 
