@@ -3,7 +3,6 @@
 
 use ridelab::analysis::{quarter_criteria, ModelKind};
 use ridelab::car::QuarterCar;
-use ridelab::comfort::Comfort;
 use ridelab::design::DesignBox;
 use ridelab::dos::{DesignObjectives, DosContext};
 use ridelab::gpu::Compute;
@@ -262,11 +261,10 @@ fn robust_optimize_of_one_case_and_feasibility_in_every_case() {
     .unwrap();
     let spec = EvaluatorSpec::Model(ModelKind::Quarter);
     let plan = PlanSpec::parse("ae:10").unwrap();
-    let r = OptimizeRequest {
+    // One request, run over the cases of a set or on one car.
+    let request = OptimizeRequest {
         evaluator: spec,
         plan,
-        comfort: Comfort::Bacc,
-        pick: PickRule::MinMax,
         ..OptimizeRequest::new(
             &car,
             &road,
@@ -274,20 +272,11 @@ fn robust_optimize_of_one_case_and_feasibility_in_every_case() {
             method.clone(),
             objectives.clone(),
         )
-    }
-    .run_robust(&one)
-    .unwrap();
+    };
+    let r = request.run_robust(&one).unwrap();
     let single = OptimizeRequest {
-        evaluator: spec,
-        plan,
-        comfort: Comfort::Bacc,
-        ..OptimizeRequest::new(
-            &one.cases[0].car,
-            &road,
-            DesignBox::default(),
-            method.clone(),
-            objectives.clone(),
-        )
+        car: &one.cases[0].car,
+        ..request.clone()
     }
     .run_cpu()
     .unwrap();
@@ -309,17 +298,8 @@ fn robust_optimize_of_one_case_and_feasibility_in_every_case() {
     )
     .unwrap();
     let r = OptimizeRequest {
-        evaluator: spec,
-        plan,
-        comfort: Comfort::Bacc,
         pick: PickRule::Knee,
-        ..OptimizeRequest::new(
-            &car,
-            &road,
-            DesignBox::default(),
-            method.clone(),
-            objectives.clone(),
-        )
+        ..request.clone()
     }
     .run_robust(&two)
     .unwrap();

@@ -18,6 +18,18 @@ const SIX: &str = r#"{"load_cases": [{"name": "driver only", "mass": 0},
   "operating": [{"class": "B", "speed": 20}, {"class": "B", "speed": 30, "weight": 3},
   {"class": "A", "speed": 35}], "combine": "COMBINE"}"#;
 
+/// `ridelab optimize --cases` on the scenario's car, road, box, plan, objectives, comfort
+/// and pick, by `method` on `kind`: what the page's robust fronts are checked against.
+fn cli_front(sc: &Scenario, kind: ModelKind, method: Method) -> OptimizeRequest<'_> {
+    OptimizeRequest {
+        evaluator: EvaluatorSpec::Model(kind),
+        plan: sc.plan,
+        comfort: sc.comfort,
+        pick: sc.pick,
+        ..OptimizeRequest::new(&sc.datum, &sc.road, sc.dbox, method, sc.objectives.clone())
+    }
+}
+
 fn cases(combine: &str) -> String {
     SIX.replace("COMBINE", combine)
 }
@@ -173,22 +185,14 @@ fn robust_front_is_the_clis() {
     .unwrap();
     let sc = s.scenario().clone();
     let set = sc.cases.clone().unwrap();
-    let want = OptimizeRequest {
-        evaluator: EvaluatorSpec::Model(ModelKind::Quarter),
-        plan: sc.plan,
-        comfort: sc.comfort,
-        pick: sc.pick,
-        ..OptimizeRequest::new(
-            &sc.datum,
-            &sc.road,
-            sc.dbox,
-            Method::Stm(StmParams {
-                grid: studies::STM_GRID,
-                levels: studies::STM_LEVELS,
-            }),
-            sc.objectives.clone(),
-        )
-    }
+    let want = cli_front(
+        &sc,
+        ModelKind::Quarter,
+        Method::Stm(StmParams {
+            grid: studies::STM_GRID,
+            levels: studies::STM_LEVELS,
+        }),
+    )
     .run_robust(&set)
     .unwrap();
     for model in [Model::Robust, Model::LoFi] {
@@ -203,21 +207,9 @@ fn robust_front_is_the_clis() {
     }
     // The page's NSGA-II (population 60, 60 generations, seed 1) with cases is
     // `ridelab optimize --cases --method nsga2`'s.
-    let nsga = OptimizeRequest {
-        evaluator: EvaluatorSpec::Model(ModelKind::Quarter),
-        plan: sc.plan,
-        comfort: sc.comfort,
-        pick: sc.pick,
-        ..OptimizeRequest::new(
-            &sc.datum,
-            &sc.road,
-            sc.dbox,
-            studies::method("nsga2").unwrap(),
-            sc.objectives.clone(),
-        )
-    }
-    .run_robust(&set)
-    .unwrap();
+    let nsga = cli_front(&sc, ModelKind::Quarter, studies::method("nsga2").unwrap())
+        .run_robust(&set)
+        .unwrap();
     let got = s.front("nsga2", Model::LoFi).unwrap();
     assert_eq!(got.study, nsga.study);
     assert_eq!(got.robust.as_ref().unwrap().cases, nsga.cases);
@@ -453,21 +445,9 @@ fn robust_hifi_front_is_optimize_cases_on_the_full_car() {
     let view = s.hifi_front(None).unwrap();
     let sc = s.scenario().clone();
     let set = sc.cases.clone().unwrap();
-    let want = OptimizeRequest {
-        evaluator: EvaluatorSpec::Model(ModelKind::Full),
-        plan: sc.plan,
-        comfort: sc.comfort,
-        pick: sc.pick,
-        ..OptimizeRequest::new(
-            &sc.datum,
-            &sc.road,
-            sc.dbox,
-            studies::method("stm").unwrap(),
-            sc.objectives.clone(),
-        )
-    }
-    .run_robust(&set)
-    .unwrap();
+    let want = cli_front(&sc, ModelKind::Full, studies::method("stm").unwrap())
+        .run_robust(&set)
+        .unwrap();
     assert_eq!(view.front.study, want.study);
     assert_eq!(view.front.datum, want.datum);
     assert_eq!(view.hifi_runs, want.study.evaluations + 6);
