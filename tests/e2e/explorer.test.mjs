@@ -143,6 +143,22 @@ test('loads clean: no console errors, no other hosts (load timing and wasm size 
   await context.close();
 });
 
+test('a link to the HiFi or error maps starts the workers once its first screen is painted, not at the 5 s fallback', { timeout: TIMEOUT }, async () => {
+  for (const model of ['hifi', 'error']) {
+    const { page, context, log } = await open(`#model=${model}`);
+    await page.waitForFunction((m) => window.__ridelab.modelMaps?.model === m, model, { timeout: 30_000 });
+    const r = await page.evaluate(() => ({ by: window.__ridelab.firstScreenBy, firstMapAt: window.__ridelab.firstMapAt }));
+    assert.equal(r.by, 'page', `${model}: the workers started with the page's first screen`);
+    assert.equal(r.firstMapAt, null, `${model}: no LoFi map was drawn first`);
+    assertClean(log);
+    await context.close();
+  }
+  // The default view starts them with its first map.
+  const { page, context } = await open();
+  assert.equal(await page.evaluate(() => window.__ridelab.firstScreenBy), 'page');
+  await context.close();
+});
+
 test('the three maps draw colour maps, hatching, axes and markers', { timeout: TIMEOUT }, async () => {
   const { page, context, log } = await open();
   for (const key of ['bacc', 'dtl', 'sws']) {

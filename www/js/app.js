@@ -47,7 +47,7 @@ const EARLY_BUTTONS = ['#lessons-open', '#tour', '#car-apply', '#car-export', '#
   '#panel-export button', '#lesson button', '#road-box button', '#robust button'].join(', ');
 
 /** Start-up milestones (ms since navigation), read by the tests. */
-const boot = { marks: { start: performance.now() }, ready: false, interactiveAt: null, readyAt: null };
+const boot = { marks: { start: performance.now() }, ready: false, interactiveAt: null, readyAt: null, firstScreenBy: null };
 
 function fatal(controls, text) {
   controls.banner(text, 'error');
@@ -377,11 +377,19 @@ async function main() {
   });
   // Two workers: one answers the HiFi readout of each design (a few ms) and is never busy
   // with long jobs; the other runs those, so a slider move never waits behind them. They
-  // start once the first map is drawn (or the maps fail, or 5 s after the module is up),
-  // so this thread's module loads and compiles alone; their calls wait until then.
+  // start once the first screen is painted (the first map drawn, or the maps fail; with
+  // HiFi or error maps, which only they draw, the plane and readout), or 5 s after the
+  // module is up, so this thread's module loads and compiles alone; their calls wait until
+  // then. `boot.firstScreenBy` says which came first ('page' or 'timeout').
+
   // A crashed worker is replaced and its requests run again (js/engine.js); the page says so.
   let firstScreenDone;
-  const firstScreen = new Promise((resolve) => (firstScreenDone = resolve));
+  const firstScreen = new Promise((resolve) => {
+    firstScreenDone = (by) => {
+      boot.firstScreenBy ??= by;
+      resolve();
+    };
+  });
   const onRestart = (name) => ({ reason, retried, failed }) => controls.banner(
     `The ${name} worker stopped (${reason}) and was restarted.` +
     `${retried ? ` ${retried} request${retried === 1 ? ' was' : 's were'} run again.` : ''}` +
@@ -398,7 +406,7 @@ async function main() {
     fatal(controls, `The ride models (WebAssembly) failed to load: ${e && e.message ? e.message : e}`);
     return;
   }
-  setTimeout(firstScreenDone, 5000);
+  setTimeout(() => firstScreenDone('timeout'), 5000);
   boot.marks.wasm = performance.now();
   const store = new Store();
   let compute;
@@ -450,7 +458,7 @@ async function main() {
   const render = new Render(store, ui);
   const redraw = () => requestAnimationFrame(() => render.redrawAll());
   controller = new Controller(store, compute, render, controls);
-  controller.onFirstMap = firstScreenDone;
+  controller.onFirstMap = () => firstScreenDone('page');
   const bench = new Workbench({
     bench: $('app'),
     drawer: $('drawer'),

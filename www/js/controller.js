@@ -59,7 +59,10 @@ export class Controller {
      * Counters of what was done: fronts drawn, NSGA-II runs and the stale answers dropped,
      * and `nsgaLog` (per accepted NSGA-II answer: the scenario it was for and the one shown).
      */
-    /** Called when the first map is drawn, or the maps fail (the page starts its workers then). */
+    /**
+     * Called when the first screen is painted: the first map drawn, or the maps failed, or
+     * with HiFi or error maps the plane and readout (the page starts its workers then).
+     */
     this.onFirstMap = () => {};
     /** True once the page's first maps are drawn (`counters.firstMapAt`: when they were on the screen). */
     this.firstMapsDrawn = false;
@@ -672,7 +675,8 @@ export class Controller {
     // The page's first scenario on LoFi or surrogate maps: the maps are computed and drawn
     // in this task, the plane's feasible set and front once they are on the screen, so
     // the first maps paint sooner (issue #29).
-    const planeLater = !this.scenarioShown && ['lofi', 'surrogate'].includes({ ...DEFAULT_VIEW, ...view }.model);
+    const first = !this.scenarioShown;
+    const planeLater = first && ['lofi', 'surrogate'].includes({ ...DEFAULT_VIEW, ...view }.model);
     let r;
     try {
       r = await this.compute.scenario(state, { plane: !planeLater });
@@ -696,6 +700,9 @@ export class Controller {
     if (st.view.projector !== projector) this.render.projector();
     this.scenarioShown = true;
     this.scenarioChanged({ planeLater });
+    // With HiFi or error maps (the workers draw them) the first screen is the plane and
+    // readout drawn here: the workers start after this paint, not after maps only they draw.
+    if (first && !planeLater) afterPaint().then(() => this.onFirstMap());
     this.requestHifi(performance.now());
     const failed = kept ? await this.restoreKept(kept) : [];
     const said = [...problems, ...failed.map((f) => `kept design ${f}: cannot be evaluated (left out)`)];

@@ -15,6 +15,10 @@ export function installTestHooks({ store, controller, compute, ui, boot, exportD
     get readyAt() {
       return boot.readyAt;
     },
+    /** What started the workers: 'page' (its first screen painted) or 'timeout' (the 5 s fallback). */
+    get firstScreenBy() {
+      return boot.firstScreenBy;
+    },
     /** When the first map was drawn, ms since navigation. */
     get firstMapAt() {
       return controller.counters.firstMapAt;
