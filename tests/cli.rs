@@ -4,11 +4,10 @@
 use ridelab::analysis::{report, ModelKind};
 use ridelab::car::PRESETS;
 use ridelab::dos::{DesignObjectives, DosContext};
-use ridelab::gpu::Compute;
 use ridelab::maps::{Grid, Scale};
 use ridelab::optimize::{recheck, run_study, Method, Nsga2Params, StmParams, SuspensionProblem};
 use ridelab::road::Road;
-use ridelab::study::{map_csv, map_report, MapSettings};
+use ridelab::study::{map_csv, MapRequest, MapSettings};
 use ridelab::study::{study, OptimizeRequest, SurrogateRequest};
 use ridelab::surrogate::{sample_plan, LmOptions, PlanSpec, Setting, SurrogateSpec};
 use ridelab::time_domain::{simulate, TimeOptions};
@@ -332,7 +331,9 @@ fn map_json_and_csv_equal_the_library() {
                 speed: 25.0,
                 ..Road::default()
             };
-            let lib = map_report(kind, &Car::datum(), &road, &settings, Compute::Cpu).unwrap();
+            let lib = MapRequest::new(kind, &Car::datum(), &road, settings)
+                .run()
+                .unwrap();
             let mut json_args = args.clone();
             json_args.push("--json");
             let v = json(&json_args);
@@ -1379,13 +1380,13 @@ fn map_and_optimize_write_svg_charts_and_print_the_same() {
         grid: ridelab::maps::Grid::parse("10000:40000:21", "500:4000:15").unwrap(),
         ..Default::default()
     };
-    let report = ridelab::study::map_report(
+    let report = MapRequest::new(
         ModelKind::Quarter,
         &Car::datum(),
         &Road::default(),
-        &settings,
-        Compute::Cpu,
+        settings,
     )
+    .run()
     .unwrap();
     for ((key, chart), unit) in ridelab::chart::map_report_charts(&report).into_iter().zip([
         "BAcc [m/s^2]",

@@ -9,9 +9,8 @@ use ridelab::gpu::Compute;
 use ridelab::maps::Grid;
 use ridelab::optimize::{non_dominated, Method, PickRule, StmParams};
 use ridelab::robust::{CaseSet, Combine, LoadCase, Operating};
-use ridelab::study::{case_map_report, robust_map_report};
-use ridelab::study::{map_report, MapSettings};
 use ridelab::study::{EvaluatorSpec, OptimizeRequest};
+use ridelab::study::{MapRequest, MapSettings};
 use ridelab::surrogate::PlanSpec;
 use ridelab::{Car, Evaluator, HiFi, LoFi, Road, RoadClass};
 use serde_json::Value;
@@ -157,15 +156,18 @@ fn the_robust_map_of_one_case_is_that_case() {
             )
             .unwrap();
             let c = &set.cases[0];
-            let single = map_report(model, &c.car, &c.road, &s, Compute::Cpu).unwrap();
-            let r = robust_map_report(model, &car, &road, &set, &s, Compute::Cpu).unwrap();
+            let single = MapRequest::new(model, &c.car, &c.road, s.clone())
+                .run()
+                .unwrap();
+            let request = MapRequest::new(model, &car, &road, s.clone());
+            let r = request.run_robust(&set).unwrap();
             assert_eq!(r.map.bacc, single.bacc);
             assert_eq!(r.map.dtl, single.dtl);
             assert_eq!(r.map.sws, single.sws);
             assert_eq!(r.map.datum, single.datum);
             assert_eq!(r.map.feasibility, single.feasibility);
             assert_eq!(r.map.contours, single.contours);
-            let k = case_map_report(model, &set, 0, &s, Compute::Cpu).unwrap();
+            let k = request.run_case(&set, 0).unwrap();
             assert_eq!(k.map, single);
         }
     }
@@ -197,10 +199,9 @@ fn the_robust_front_lies_on_or_above_every_case_front() {
         Combine::Worst,
     )
     .unwrap();
-    let r = robust_map_report(ModelKind::Quarter, &car, &road, &set, &s, Compute::Cpu).unwrap();
-    let cases: Vec<_> = (0..6)
-        .map(|k| case_map_report(ModelKind::Quarter, &set, k, &s, Compute::Cpu).unwrap())
-        .collect();
+    let request = MapRequest::new(ModelKind::Quarter, &car, &road, s);
+    let r = request.run_robust(&set).unwrap();
+    let cases: Vec<_> = (0..6).map(|k| request.run_case(&set, k).unwrap()).collect();
     let d0 = cases[0].map.datum.criteria.to_array();
     let front_of = |bacc: &[f64], dtl: &[f64], mask: &[u8]| -> Vec<usize> {
         let idx: Vec<usize> = (0..mask.len()).filter(|&k| mask[k] == 0).collect();
@@ -480,16 +481,16 @@ fn default_outputs_unchanged_and_robust_json_is_the_library() {
     assert_eq!((c1, c2), (0, 0));
     assert_eq!(plain, from_file);
     assert!(!plain.contains("robust"));
-    let lib = ridelab::study::map_report(
+    let lib = MapRequest::new(
         ModelKind::Quarter,
         &Car::datum(),
         &Road::default(),
-        &MapSettings {
+        MapSettings {
             grid: Grid::parse("10000:40000:7", "500:4000:6").unwrap(),
             ..MapSettings::default()
         },
-        Compute::Cpu,
     )
+    .run()
     .unwrap();
     assert_eq!(
         without_units(&plain),
@@ -504,17 +505,19 @@ fn default_outputs_unchanged_and_robust_json_is_the_library() {
     let (code, out, err) = ridelab(&robust);
     assert_eq!(code, 0, "{err}");
     let set = CaseSet::from_json(cases, &Car::datum(), &[], &Road::default()).unwrap();
-    let lib = robust_map_report(
-        ModelKind::Quarter,
-        &Car::datum(),
-        &Road::default(),
-        &set,
-        &MapSettings {
-            grid: Grid::parse("10000:40000:7", "500:4000:6").unwrap(),
-            ..MapSettings::default()
-        },
-        Compute::Auto,
-    )
+    let lib = MapRequest {
+        compute: Compute::Auto,
+        ..MapRequest::new(
+            ModelKind::Quarter,
+            &Car::datum(),
+            &Road::default(),
+            MapSettings {
+                grid: Grid::parse("10000:40000:7", "500:4000:6").unwrap(),
+                ..MapSettings::default()
+            },
+        )
+    }
+    .run_robust(&set)
     .unwrap();
     assert_eq!(
         without_units(&out),

@@ -8,11 +8,9 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use ridelab::analysis::ModelKind;
 use ridelab::design::DesignBox;
-use ridelab::gpu::Compute;
 use ridelab::maps::Grid;
 use ridelab::robust::{CaseSet, Combine, LoadCase, Operating};
-use ridelab::study::robust_map_report;
-use ridelab::study::{map_report, MapSettings};
+use ridelab::study::{MapRequest, MapSettings};
 use ridelab::{Car, Road, RoadClass};
 use std::hint::black_box;
 
@@ -48,20 +46,29 @@ fn robust(c: &mut Criterion) {
             name,
             n,
             || {
-                map_report(model, &car, &road, &settings, Compute::Cpu).unwrap();
+                MapRequest::new(model, &car, &road, settings.clone())
+                    .run()
+                    .unwrap();
             },
             || {
-                robust_map_report(model, &car, &road, &set, &settings, Compute::Cpu).unwrap();
+                MapRequest::new(model, &car, &road, settings.clone())
+                    .run_robust(&set)
+                    .unwrap();
             },
         );
         let mut g = c.benchmark_group(format!("robust {name} {n}x{n}"));
         g.sample_size(10);
         g.bench_function("single case", |b| {
-            b.iter(|| map_report(model, black_box(&car), &road, &settings, Compute::Cpu).unwrap())
+            b.iter(|| {
+                MapRequest::new(model, black_box(&car), &road, settings.clone())
+                    .run()
+                    .unwrap()
+            })
         });
         g.bench_function("2 load cases x 3 speeds", |b| {
             b.iter(|| {
-                robust_map_report(model, black_box(&car), &road, &set, &settings, Compute::Cpu)
+                MapRequest::new(model, black_box(&car), &road, settings.clone())
+                    .run_robust(&set)
                     .unwrap()
             })
         });

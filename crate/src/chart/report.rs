@@ -154,9 +154,8 @@ mod tests {
     use super::super::svgcheck::{all, parse, texts};
     use super::super::{line_chart_svg, map_chart_svg};
     use super::*;
-    use crate::gpu::Compute;
     use crate::maps::Grid;
-    use crate::study::{map_report, MapSettings};
+    use crate::study::{MapRequest, MapSettings};
     use crate::{Car, ModelKind, Road};
 
     #[test]
@@ -165,13 +164,13 @@ mod tests {
             grid: Grid::parse("10000:40000:16", "500:4000:12").unwrap(),
             ..MapSettings::default()
         };
-        let r = map_report(
+        let r = MapRequest::new(
             ModelKind::Quarter,
             &Car::datum(),
             &Road::default(),
-            &settings,
-            Compute::Cpu,
+            settings,
         )
+        .run()
         .unwrap();
         let charts = map_report_charts(&r);
         assert_eq!(

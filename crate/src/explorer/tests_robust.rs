@@ -4,13 +4,11 @@
 
 use super::*;
 use crate::analysis::ModelKind;
-use crate::gpu::Compute;
 use crate::maps::Grid;
 use crate::optimize::{Method, StmParams};
 use crate::robust::CaseSet;
-use crate::study::{case_map_report, robust_map_report};
 use crate::study::{EvaluatorSpec, OptimizeRequest};
-use crate::study::{MapReport, MapSettings};
+use crate::study::{MapReport, MapRequest, MapSettings};
 
 /// Two load cases at three operating points: six cases.
 const SIX: &str = r#"{"load_cases": [{"name": "driver only", "mass": 0},
@@ -90,7 +88,7 @@ fn assert_map_eq(got: &ModelMap, want: &MapReport, tol: f64, what: &str) {
     }
 }
 
-/// The page's robust LoFi map is `robust_map_report`'s, cell for cell and bit for bit,
+/// The page's robust LoFi map is `MapRequest::run_robust`'s, cell for cell and bit for bit,
 /// for the worst case and the weighted mean; its HiFi map to 1e-12 relative (the CLI's
 /// HiFi grid route against the session's point evaluator); the mask is the OR of the
 /// cases' masks (a case with fewer feasible cells than the robust map would be wrong).
@@ -106,7 +104,8 @@ fn robust_maps_are_the_clis() {
         ] {
             let (set, settings) = cli_setting(&s, nx, ny);
             let sc = s.scenario().clone();
-            let want = robust_map_report(kind, &sc.datum, &sc.road, &set, &settings, Compute::Cpu)
+            let want = MapRequest::new(kind, &sc.datum, &sc.road, settings)
+                .run_robust(&set)
                 .unwrap();
             let got = s.map(model, nx, ny).unwrap();
             assert_map_eq(&got, &want.map, tol, &format!("{combine} {model:?}"));
@@ -134,7 +133,10 @@ fn case_k_map_is_that_cases_map() {
         .unwrap();
         assert_eq!(s.scenario().case, Some(k));
         let (set, settings) = cli_setting(&s, 20, 15);
-        let want = case_map_report(ModelKind::Quarter, &set, k, &settings, Compute::Cpu).unwrap();
+        let sc = s.scenario();
+        let want = MapRequest::new(ModelKind::Quarter, &sc.datum, &sc.road, settings)
+            .run_case(&set, k)
+            .unwrap();
         let got = s.map(Model::LoFi, 20, 15).unwrap();
         assert_map_eq(&got, &want.map, 0.0, &format!("case {k}"));
     }
@@ -395,15 +397,9 @@ fn a_car_files_load_cases_are_the_cases_default() {
         objectives: sc.objectives.clone(),
         ..MapSettings::default()
     };
-    let map = robust_map_report(
-        ModelKind::Quarter,
-        &cli.car,
-        &sc.road,
-        &want,
-        &settings,
-        Compute::Cpu,
-    )
-    .unwrap();
+    let map = MapRequest::new(ModelKind::Quarter, &cli.car, &sc.road, settings)
+        .run_robust(&want)
+        .unwrap();
     assert_map_eq(
         &s.map(Model::LoFi, 16, 12).unwrap(),
         &map.map,

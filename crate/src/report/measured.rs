@@ -22,8 +22,8 @@ use crate::road_profile::{
 };
 use crate::study::adaptive::{AdaptiveOptimizeReport, AdaptiveOptions};
 use crate::study::measured::optimize_measured;
-use crate::study::{map_report_with, study_on, SurrogateRequest};
-use crate::study::{MapReport, MapSettings, OptimizeReport, OptimizeRequest};
+use crate::study::{study_on, SurrogateRequest};
+use crate::study::{MapReport, MapRequest, MapSettings, OptimizeReport, OptimizeRequest};
 use crate::study::{StudyReport, SurrogateReport};
 use crate::surrogate::{PlanSpec, Setting, SurrogateSpec};
 use crate::time_domain::{simulate_playback, TimeOptions, MAX_STEPS};
@@ -205,7 +205,7 @@ impl SectionRoad for OnRoad<'_> {
             ModelKind::Quarter => &self.lofi,
             ModelKind::Full => &self.hifi,
         };
-        let mut r = map_report_with(model, car, &Road::default(), settings)?;
+        let mut r = MapRequest::new(kind, car, &Road::default(), settings.clone()).run_on(model)?;
         r.road = self.scenario();
         Ok(r)
     }

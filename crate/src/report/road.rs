@@ -10,13 +10,12 @@ use crate::car::Car;
 use crate::design::DesignBox;
 use crate::error::Result;
 use crate::evaluate::Evaluator;
-use crate::gpu::Compute;
 use crate::optimize::PickRule;
 use crate::road::Road;
 use crate::road_profile::RoadScenario;
 use crate::study::adaptive::{AdaptiveOptimizeReport, AdaptiveOptions};
-use crate::study::{map_report, study, SurrogateRequest};
-use crate::study::{MapReport, MapSettings, OptimizeReport, OptimizeRequest};
+use crate::study::{study, SurrogateRequest};
+use crate::study::{MapReport, MapRequest, MapSettings, OptimizeReport, OptimizeRequest};
 use crate::study::{StudyReport, SurrogateReport};
 use crate::surrogate::{PlanSpec, SurrogateSpec};
 
@@ -77,7 +76,7 @@ impl SectionRoad for IsoRoad<'_> {
     }
 
     fn map(&self, kind: ModelKind, car: &Car, settings: &MapSettings) -> Result<MapReport> {
-        map_report(kind, car, self.0, settings, Compute::Cpu)
+        MapRequest::new(kind, car, self.0, settings.clone()).run()
     }
 
     fn study(&self, car: &Car, design_box: &DesignBox) -> Result<StudyReport> {

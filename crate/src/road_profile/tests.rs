@@ -481,10 +481,9 @@ fn the_quarter_cars_closed_form_on_shaped_roads_is_the_lyapunov_route() {
 #[test]
 fn a_map_on_a_dropped_road_agrees_with_its_iso_class() {
     use crate::analysis::ModelKind;
-    use crate::gpu::Compute;
     use crate::maps::{Axis, Grid};
     use crate::study::measured::measured_map;
-    use crate::study::{map_report, MapSettings};
+    use crate::study::{MapRequest, MapSettings};
     let profile = class_c_profile();
     let car = Car::datum();
     let shaped = ShapedRoad::from_profile(&profile, 20.0, ProfileTracks::Correlated).unwrap();
@@ -506,7 +505,9 @@ fn a_map_on_a_dropped_road_agrees_with_its_iso_class() {
         &settings,
     )
     .unwrap();
-    let want = map_report(ModelKind::Full, &car, &road, &settings, Compute::Cpu).unwrap();
+    let want = MapRequest::new(ModelKind::Full, &car, &road, settings.clone())
+        .run()
+        .unwrap();
     for (name, g, w) in [
         ("bacc", &got.bacc, &want.bacc),
         ("dtl", &got.dtl, &want.dtl),

@@ -171,169 +171,183 @@ pub struct MapReport {
     pub adapter: Option<String>,
 }
 
-/// The map of `car` on `road` by the LoFi (`quarter`) or HiFi (`full`) model on the CPU;
-/// the datum design is the car's front spring and damper.
-fn cpu_map_report(
-    model: ModelKind,
-    car: &Car,
-    road: &Road,
-    settings: &MapSettings,
-) -> Result<MapReport> {
-    car.validate()?;
-    road.validate()?;
-    match (settings.comfort, model) {
-        (Comfort::Bacc, ModelKind::Quarter) => {
-            map_report_with(&LoFi::new(car, road), car, road, settings)
-        }
-        (Comfort::Bacc, ModelKind::Full) => {
-            map_report_with(&HiFi::new(car, road)?, car, road, settings)
-        }
-        (comfort, model) => {
-            map_report_with(&*comfort.evaluator(model, car, road)?, car, road, settings)
+/// One map as `ridelab map` asks for it: the criteria of `car`'s front spring and damper
+/// over `settings.grid` on `road` by `model`, the datum design the car's own front spring
+/// and damper, with the feasibility mask of `settings.objectives` against the datum and
+/// contour lines, in `settings.scale`. [`Self::run`] maps it on the model itself,
+/// [`Self::run_on`] on an evaluator built already; [`Self::run_case`] and
+/// [`Self::run_robust`] map it over load cases.
+#[derive(Debug, Clone)]
+pub struct MapRequest<'a> {
+    /// The LoFi (`quarter`) or the HiFi (`full`).
+    pub model: ModelKind,
+    /// The datum car (its front spring and damper are the datum design).
+    pub car: &'a Car,
+    /// The road.
+    pub road: &'a Road,
+    /// The grid, the scale, the design objectives, the contour levels and the comfort
+    /// measure.
+    pub settings: MapSettings,
+    /// The HiFi fields' path ([`HiFiGrid::compute`]).
+    pub compute: Compute,
+}
+
+impl<'a> MapRequest<'a> {
+    /// The HiFi fields on the CPU: the same report on every machine (`ridelab map` sets
+    /// `compute` from `--compute`).
+    pub fn new(model: ModelKind, car: &'a Car, road: &'a Road, settings: MapSettings) -> Self {
+        MapRequest {
+            model,
+            car,
+            road,
+            settings,
+            compute: Compute::Cpu,
         }
     }
-}
 
-/// The map report on any evaluator (a surrogate, say) that models `car` on `road`; `car`
-/// gives the datum design and the DOS context, `road` is recorded; `settings.comfort`
-/// only labels the report (the evaluator gives the comfort measure it was built with).
-pub fn map_report_with<E: Evaluator + Sync + ?Sized>(
-    evaluator: &E,
-    car: &Car,
-    road: &Road,
-    settings: &MapSettings,
-) -> Result<MapReport> {
-    settings.validate()?;
-    let grid = settings.grid;
-    let abs = Dcs::compute(
-        evaluator,
-        &grid,
-        (car.front.spring, car.front.damper),
-        Scale::Absolute,
-    )?;
-    let ctx = DosContext::new(car, abs.datum.criteria);
-    let dos = DosMap::new(&abs, &settings.objectives, &ctx)?;
-    map_report_from(&abs, dos, car, road, settings)
-}
+    /// Runs it: the HiFi fields on the path `compute` asks for ([`HiFiGrid::compute`]:
+    /// `Auto` takes a hardware GPU when there is one, `Compute::Cpu` the CPU); the report's
+    /// `compute` says which ran. The LoFi has no GPU path: `Compute::Gpu` with
+    /// [`ModelKind::Quarter`] is an error naming `compute`, `Auto` maps on the CPU; the
+    /// Wk-weighted comfort is computed on the CPU, `Compute::Gpu` with it an error naming
+    /// `comfort`. A grid with a corner outside the car's design domain
+    /// ([`crate::car::DesignDomain`]) is an error naming `ks-range` or `cs-range`.
+    pub fn run(&self) -> Result<MapReport> {
+        let (car, road, settings) = (self.car, self.road, &self.settings);
+        settings.grid.design_box().check_on(&car.design_domain())?;
+        match (self.model, self.compute) {
+            (ModelKind::Quarter, Compute::Gpu) => Err(RideError::field(
+                "compute",
+                "gpu: the GPU path maps the full model only (use --compute cpu or auto with the quarter car)",
+            )),
+            (ModelKind::Quarter, _) => self.run_model_on_cpu(),
+            // The exact Wk route runs on the CPU (the GPU route has no Wk filter).
+            (ModelKind::Full, Compute::Gpu) if settings.comfort == Comfort::Wk => Err(RideError::field(
+                "comfort",
+                "wk: the Wk-weighted comfort is computed on the CPU (use --compute cpu or auto)",
+            )),
+            (ModelKind::Full, _) if settings.comfort == Comfort::Wk => self.run_model_on_cpu(),
+            (ModelKind::Full, _) => {
+                settings.validate()?;
+                let hifi = HiFiGrid::compute(
+                    HiFi::new(car, road)?,
+                    &settings.grid,
+                    self.compute,
+                    default_threads(),
+                )?;
+                let mut r = self.run_on(&hifi)?;
+                r.compute = hifi.path();
+                r.adapter = hifi.adapter().map(str::to_string);
+                Ok(r)
+            }
+        }
+    }
 
-/// The map report of absolute criteria `abs` with the feasibility mask `dos` (both over
-/// `settings.grid`): the fields in `settings.scale`, contours and the feasible outline;
-/// `car` names the car, `road` is recorded (the robust map of issue #16 builds its own
-/// fields and mask and reports them through this).
-pub fn map_report_from(
-    abs: &Dcs,
-    dos: DosMap,
-    car: &Car,
-    road: &Road,
-    settings: &MapSettings,
-) -> Result<MapReport> {
-    let grid = settings.grid;
-    let map = abs.to_scale(settings.scale);
-    let lines = |k: usize| -> Result<Vec<Contour>> {
-        let f = map.field(k);
-        contours(&grid, f, &auto_levels(f, settings.contour_levels))
-    };
-    let units = match settings.scale {
-        Scale::Absolute => Units {
-            ks: "N/m",
-            cs: "N s/m",
-            bacc: "m/s^2",
-            dtl: "N",
-            sws: "m",
-        },
-        Scale::Relative => Units {
-            ks: "N/m",
-            cs: "N s/m",
-            bacc: "-",
-            dtl: "-",
-            sws: "-",
-        },
-    };
-    let contours = CriteriaContours {
-        bacc: lines(0)?,
-        dtl: lines(1)?,
-        sws: lines(2)?,
-    };
-    let outline = contour(&grid, &dos.feasible_field(), 0.5)?;
-    let legend = dos
-        .active
-        .iter()
-        .map(|&o| MaskBit {
-            objective: o,
-            bit: objective_bit(o),
-            label: o.label(),
+    /// The map by the request's model (with `settings.comfort` in the BAcc slot) on the
+    /// CPU.
+    fn run_model_on_cpu(&self) -> Result<MapReport> {
+        let (car, road) = (self.car, self.road);
+        car.validate()?;
+        road.validate()?;
+        match (self.settings.comfort, self.model) {
+            (Comfort::Bacc, ModelKind::Quarter) => self.run_on(&LoFi::new(car, road)),
+            (Comfort::Bacc, ModelKind::Full) => self.run_on(&HiFi::new(car, road)?),
+            (comfort, model) => self.run_on(&*comfort.evaluator(model, car, road)?),
+        }
+    }
+
+    /// The map on `evaluator` (a surrogate, a measured road's model, the HiFi's values on
+    /// the grid, say) in place of the request's model, which should model `car` on `road`:
+    /// `car` gives the datum design, the DOS context and the report's car name, `road` is
+    /// recorded, `settings` as in [`Self::run`]. `model` and `compute` are not read: the
+    /// report's evaluator is `evaluator`'s name, its `compute` the CPU (a caller that maps
+    /// elsewhere sets it); `settings.comfort` only labels the report (the evaluator gives
+    /// the comfort measure it was built with).
+    pub fn run_on<E: Evaluator + Sync + ?Sized>(&self, evaluator: &E) -> Result<MapReport> {
+        let (car, settings) = (self.car, &self.settings);
+        settings.validate()?;
+        let abs = Dcs::compute(
+            evaluator,
+            &settings.grid,
+            (car.front.spring, car.front.damper),
+            Scale::Absolute,
+        )?;
+        let ctx = DosContext::new(car, abs.datum.criteria);
+        let dos = DosMap::new(&abs, &settings.objectives, &ctx)?;
+        self.report_from(&abs, dos)
+    }
+
+    /// The map report of absolute criteria `abs` with the feasibility mask `dos` (both over
+    /// `settings.grid`): the fields in `settings.scale`, contours and the feasible outline;
+    /// `car` names the car, `road` is recorded, `model` and `compute` are not read (the
+    /// report's `compute` is the CPU). The robust map builds its own fields and mask and
+    /// reports them through this.
+    pub(crate) fn report_from(&self, abs: &Dcs, dos: DosMap) -> Result<MapReport> {
+        let settings = &self.settings;
+        let grid = settings.grid;
+        let map = abs.to_scale(settings.scale);
+        let lines = |k: usize| -> Result<Vec<Contour>> {
+            let f = map.field(k);
+            contours(&grid, f, &auto_levels(f, settings.contour_levels))
+        };
+        let units = match settings.scale {
+            Scale::Absolute => Units {
+                ks: "N/m",
+                cs: "N s/m",
+                bacc: "m/s^2",
+                dtl: "N",
+                sws: "m",
+            },
+            Scale::Relative => Units {
+                ks: "N/m",
+                cs: "N s/m",
+                bacc: "-",
+                dtl: "-",
+                sws: "-",
+            },
+        };
+        let contours = CriteriaContours {
+            bacc: lines(0)?,
+            dtl: lines(1)?,
+            sws: lines(2)?,
+        };
+        let outline = contour(&grid, &dos.feasible_field(), 0.5)?;
+        let legend = dos
+            .active
+            .iter()
+            .map(|&o| MaskBit {
+                objective: o,
+                bit: objective_bit(o),
+                label: o.label(),
+            })
+            .collect();
+        Ok(MapReport {
+            evaluator: map.evaluator.clone(),
+            car: self.car.name.clone(),
+            road: RoadScenario::Iso(*self.road),
+            scale: settings.scale,
+            grid,
+            ks_values: grid.ks.values(),
+            cs_values: grid.cs.values(),
+            layout: LAYOUT,
+            units,
+            comfort: settings.comfort,
+            datum: map.datum,
+            feasibility: Feasibility {
+                objectives: dos.objectives,
+                legend,
+                mask: dos.mask,
+                summary: dos.summary,
+                feasible_set: dos.feasible_set,
+                outline,
+            },
+            contours,
+            bacc: map.bacc,
+            dtl: map.dtl,
+            sws: map.sws,
+            compute: ComputePath::Cpu,
+            adapter: None,
         })
-        .collect();
-    Ok(MapReport {
-        evaluator: map.evaluator.clone(),
-        car: car.name.clone(),
-        road: RoadScenario::Iso(*road),
-        scale: settings.scale,
-        grid,
-        ks_values: grid.ks.values(),
-        cs_values: grid.cs.values(),
-        layout: LAYOUT,
-        units,
-        comfort: settings.comfort,
-        datum: map.datum,
-        feasibility: Feasibility {
-            objectives: dos.objectives,
-            legend,
-            mask: dos.mask,
-            summary: dos.summary,
-            feasible_set: dos.feasible_set,
-            outline,
-        },
-        contours,
-        bacc: map.bacc,
-        dtl: map.dtl,
-        sws: map.sws,
-        compute: ComputePath::Cpu,
-        adapter: None,
-    })
-}
-
-/// The map of `car` on `road` by the LoFi (`quarter`) or HiFi (`full`) model (the datum
-/// design is the car's front spring and damper), the HiFi fields on the path `compute`
-/// asks for ([`HiFiGrid::compute`]: `Auto` takes a hardware GPU when there is one,
-/// `Compute::Cpu` the CPU); the report's `compute` says which ran. The LoFi has no GPU
-/// path: `Compute::Gpu` with [`ModelKind::Quarter`] is an error naming `compute`, `Auto`
-/// maps on the CPU.
-pub fn map_report(
-    model: ModelKind,
-    car: &Car,
-    road: &Road,
-    settings: &MapSettings,
-    compute: Compute,
-) -> Result<MapReport> {
-    settings.grid.design_box().check_on(&car.design_domain())?;
-    match (model, compute) {
-        (ModelKind::Quarter, Compute::Gpu) => Err(RideError::field(
-            "compute",
-            "gpu: the GPU path maps the full model only (use --compute cpu or auto with the quarter car)",
-        )),
-        (ModelKind::Quarter, _) => cpu_map_report(model, car, road, settings),
-        // The exact Wk route runs on the CPU (the GPU route has no Wk filter).
-        (ModelKind::Full, Compute::Gpu) if settings.comfort == Comfort::Wk => Err(RideError::field(
-            "comfort",
-            "wk: the Wk-weighted comfort is computed on the CPU (use --compute cpu or auto)",
-        )),
-        (ModelKind::Full, _) if settings.comfort == Comfort::Wk => {
-            cpu_map_report(model, car, road, settings)
-        }
-        (ModelKind::Full, _) => {
-            settings.validate()?;
-            let hifi = HiFiGrid::compute(
-                HiFi::new(car, road)?,
-                &settings.grid,
-                compute,
-                default_threads(),
-            )?;
-            let mut r = map_report_with(&hifi, car, road, settings)?;
-            r.compute = hifi.path();
-            r.adapter = hifi.adapter().map(str::to_string);
-            Ok(r)
-        }
     }
 }
 
@@ -393,7 +407,9 @@ mod tests {
         let car = Car::datum();
         let road = Road::default();
         let s = settings(21, 15);
-        let r = map_report(ModelKind::Quarter, &car, &road, &s, Compute::Cpu).unwrap();
+        let r = MapRequest::new(ModelKind::Quarter, &car, &road, s)
+            .run()
+            .unwrap();
         assert_eq!(r.evaluator, "quarter");
         assert_eq!(r.bacc.len(), 21 * 15);
         assert_eq!(r.datum.ks, car.front.spring);
@@ -468,7 +484,9 @@ mod tests {
         };
         let mut s = settings(5, 4);
         s.scale = Scale::Relative;
-        let r = map_report(ModelKind::Full, &car, &road, &s, Compute::Cpu).unwrap();
+        let r = MapRequest::new(ModelKind::Full, &car, &road, s)
+            .run()
+            .unwrap();
         assert_eq!(r.evaluator, "full");
         assert_eq!(r.units.dtl, "-");
         let hifi = HiFi::new(&car, &road).unwrap();
@@ -496,15 +514,17 @@ mod tests {
         let car = Car::datum();
         let mut s = MapSettings::default();
         s.grid.cs.n = 1;
-        let e =
-            map_report(ModelKind::Quarter, &car, &Road::default(), &s, Compute::Cpu).unwrap_err();
+        let e = MapRequest::new(ModelKind::Quarter, &car, &Road::default(), s)
+            .run()
+            .unwrap_err();
         assert!(e.to_string().starts_with("cs-range: "), "{e}");
         let s = MapSettings {
             contour_levels: 51,
             ..MapSettings::default()
         };
-        let e =
-            map_report(ModelKind::Quarter, &car, &Road::default(), &s, Compute::Cpu).unwrap_err();
+        let e = MapRequest::new(ModelKind::Quarter, &car, &Road::default(), s)
+            .run()
+            .unwrap_err();
         assert!(e.to_string().starts_with("contour_levels: "), "{e}");
         let s: MapSettings = serde_json::from_str(r#"{"scale": "relative"}"#).unwrap();
         assert_eq!(s.grid, Grid::default());

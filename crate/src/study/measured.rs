@@ -6,7 +6,7 @@
 //! full car on the road. The maps on a measured road ([`measured_map`]) are here too.
 
 use super::adaptive::{run, AdaptiveOptions, AdaptiveReport, Decision};
-use super::map::{map_report_with, MapReport, MapSettings};
+use super::map::{MapReport, MapRequest, MapSettings};
 use super::{optimize_on_models, EvaluatorSpec, OptimizeReport, OptimizeRequest};
 use crate::analysis::ModelKind;
 use crate::car::Car;
@@ -108,7 +108,7 @@ pub fn measured_map(
 ) -> Result<MapReport> {
     let model = MeasuredModel::new(kind, car, road.clone()).with_comfort(settings.comfort);
     // The ISO road is only recorded by the report: it is replaced by the measured one.
-    let mut r = map_report_with(&model, car, &Road::default(), settings)?;
+    let mut r = MapRequest::new(kind, car, &Road::default(), settings.clone()).run_on(&model)?;
     r.road = RoadScenario::Measured(MeasuredRoad::of(file, road, tracks));
     r.compute = ComputePath::Cpu;
     Ok(r)

@@ -32,14 +32,11 @@ pub mod surrogate;
 
 pub use fidelity::{study, study_on, StudyReport, SurrogateReport};
 pub use map::{
-    map_csv, map_report, map_report_from, map_report_with, CriteriaContours, Feasibility,
-    MapReport, MapSettings, MaskBit, Units, LAYOUT,
+    map_csv, CriteriaContours, Feasibility, MapReport, MapRequest, MapSettings, MaskBit, Units,
+    LAYOUT,
 };
 pub use optimize::{
     optimize_model, optimize_on_models, EvaluatorSpec, OptimizeReport, OptimizeRequest, SameModel,
 };
-pub use robust::{
-    case_map_report, robust_map_report, CaseInfo, CaseMapReport, RobustMapReport,
-    RobustOptimizeReport, RobustProblem,
-};
+pub use robust::{CaseInfo, CaseMapReport, RobustMapReport, RobustOptimizeReport, RobustProblem};
 pub use surrogate::SurrogateRequest;

@@ -14,8 +14,7 @@ use ridelab::gpu::Compute;
 use ridelab::maps::{Axis, Grid, Scale};
 use ridelab::robust::LoadCase;
 use ridelab::robust::{CaseSet, Combine};
-use ridelab::study::{case_map_report, robust_map_report};
-use ridelab::study::{map_csv, map_report, MapReport, MapSettings};
+use ridelab::study::{map_csv, MapReport, MapRequest, MapSettings};
 use std::path::{Path, PathBuf};
 
 #[derive(Args)]
@@ -87,9 +86,13 @@ pub(crate) fn map_cmd(a: MapArgs) -> Result<String> {
             "gpu: the robust maps' cases are evaluated on the CPU; use --compute cpu or auto",
         ));
     }
+    let request = MapRequest {
+        compute: a.compute,
+        ..MapRequest::new(a.model, &car, &road, settings)
+    };
     let (r, json_text) = match (set, a.case) {
         (None, None) => {
-            let r = map_report(a.model, &car, &road, &settings, a.compute)?;
+            let r = request.run()?;
             let text = if a.json { json(&r)? } else { String::new() };
             (r, text)
         }
@@ -98,12 +101,12 @@ pub(crate) fn map_cmd(a: MapArgs) -> Result<String> {
                 Some(s) => s,
                 None => CaseSet::new(&car, &road, &[], &[], Combine::Worst)?,
             };
-            let r = case_map_report(a.model, &set, k, &settings, a.compute)?;
+            let r = request.run_case(&set, k)?;
             let text = if a.json { json(&r)? } else { String::new() };
             (r.map, text)
         }
         (Some(set), None) => {
-            let r = robust_map_report(a.model, &car, &road, &set, &settings, a.compute)?;
+            let r = request.run_robust(&set)?;
             let text = if a.json { json(&r)? } else { String::new() };
             (r.map, text)
         }

@@ -4,17 +4,16 @@
 //! case's own map (`--case K`).
 
 use crate::analysis::{HiFi, HiFiRoads, ModelKind};
-use crate::car::Car;
 use crate::comfort::Comfort;
 use crate::dos::{DesignObjectives, Objective};
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
-use crate::gpu::{Compute, ComputePath, HiFiGrid};
+use crate::gpu::{ComputePath, HiFiGrid};
 use crate::maps::{default_threads, map_grid, DatumPoint, Dcs, DosMap, FeasiblePoint, Grid, Scale};
 use crate::road::Road;
 use crate::robust::cases::{Case, CaseSet, Combine};
 use crate::robust::objective::Combination;
-use crate::study::{map_report, map_report_from, map_report_with, MapReport, MapSettings};
+use crate::study::{MapReport, MapRequest, MapSettings};
 use serde::Serialize;
 
 /// One case as a report lists it.
@@ -106,30 +105,6 @@ pub struct CaseMapReport {
     pub case: CaseInfo,
 }
 
-/// The map of case `index` of `set` alone (as `ridelab map` on that loaded car and
-/// road); an index past the cases is an error naming `case`.
-pub fn case_map_report(
-    model: ModelKind,
-    set: &CaseSet,
-    index: usize,
-    settings: &MapSettings,
-    compute: Compute,
-) -> Result<CaseMapReport> {
-    let case = set.cases.get(index).ok_or_else(|| {
-        RideError::field(
-            "case",
-            format!(
-                "{index} is not a case: there are {} (0..{})",
-                set.cases.len(),
-                set.cases.len() - 1
-            ),
-        )
-    })?;
-    let map = map_report(model, &case.car, &case.road, settings, compute)?;
-    let info = CaseInfo::new(set, index, map.datum.criteria);
-    Ok(CaseMapReport { map, case: info })
-}
-
 /// One case's absolute criteria on the map's grid and its feasibility mask (judged
 /// against that case's own datum), as [`robust_fields`] combines them.
 #[derive(Debug, Clone, Copy)]
@@ -218,93 +193,125 @@ pub(crate) fn robust_fields(
     Ok((abs, dos))
 }
 
-/// The robust map of `set` by `model` (each case's map on `compute`, as
-/// [`map_report`], see [`case_maps`]); `car` names the report and gives the datum design (the front
-/// spring and damper every case shares), `road` is recorded.
-pub fn robust_map_report(
-    model: ModelKind,
-    car: &Car,
-    road: &Road,
-    set: &CaseSet,
-    settings: &MapSettings,
-    compute: Compute,
-) -> Result<RobustMapReport> {
-    settings.validate()?;
-    let (nx, ny) = (settings.grid.ks.n, settings.grid.cs.n);
-    crate::budget::check(
-        (nx as u64) * (ny as u64) * set.cases.len() as u64,
-        "ks-range",
-        &format!("a {nx} x {ny} map over {} cases", set.cases.len()),
-        "the points of --ks-range and --cs-range, or the cases",
-    )?;
-    // Each case's absolute fields and mask, without its own contours.
-    let per_case = MapSettings {
-        scale: Scale::Absolute,
-        contour_levels: 0,
-        ..settings.clone()
-    };
-    let maps = case_maps(model, set, &per_case, compute)?;
-    let fields: Vec<CaseField> = maps
-        .iter()
-        .map(|m| CaseField {
-            evaluator: &m.evaluator,
-            datum: m.datum,
-            bacc: &m.bacc,
-            dtl: &m.dtl,
-            sws: &m.sws,
-            mask: &m.feasibility.mask,
-        })
-        .collect();
-    let active = maps[0]
-        .feasibility
-        .legend
-        .iter()
-        .map(|b| b.objective)
-        .collect();
-    let (abs, dos) = robust_fields(set, settings.grid, &settings.objectives, active, &fields)?;
-    let datums: Vec<Criteria> = maps.iter().map(|m| m.datum.criteria).collect();
-    let first = &maps[0];
-    let mut map = map_report_from(&abs, dos, car, road, settings)?;
-    map.compute = first.compute;
-    map.adapter = first.adapter.clone();
-    let robust = RobustInfo {
-        combine: set.combine,
-        normalisation: NORMALISATION,
-        cases: datums
+impl MapRequest<'_> {
+    /// The map of case `index` of `set` alone, as [`Self::run`] maps that case's loaded
+    /// car on its road (its own datum) with the request's model, settings and path: the
+    /// request's `car` and `road` are not read (the case brings them). An index past the
+    /// cases is an error naming `case`.
+    pub fn run_case(&self, set: &CaseSet, index: usize) -> Result<CaseMapReport> {
+        let case = set.cases.get(index).ok_or_else(|| {
+            RideError::field(
+                "case",
+                format!(
+                    "{index} is not a case: there are {} (0..{})",
+                    set.cases.len(),
+                    set.cases.len() - 1
+                ),
+            )
+        })?;
+        let map = MapRequest {
+            car: &case.car,
+            road: &case.road,
+            ..self.clone()
+        }
+        .run()?;
+        let info = CaseInfo::new(set, index, map.datum.criteria);
+        Ok(CaseMapReport { map, case: info })
+    }
+
+    /// The robust map of `set` (built from the request's car and road: each case brings
+    /// its loaded car and its road): each case's map by the request's model on its path,
+    /// as [`Self::run`] (see [`case_maps`]), combined by the set's rule into the robust
+    /// fields and mask, reported in `settings.scale` with contours. The request's `car`
+    /// names the report and gives the datum design (the front spring and damper every case
+    /// shares), `road` is recorded. More grid points over all the cases than the run
+    /// budget ([`crate::budget::check`]) is an error naming `ks-range`.
+    pub fn run_robust(&self, set: &CaseSet) -> Result<RobustMapReport> {
+        let settings = &self.settings;
+        settings.validate()?;
+        let (nx, ny) = (settings.grid.ks.n, settings.grid.cs.n);
+        crate::budget::check(
+            (nx as u64) * (ny as u64) * set.cases.len() as u64,
+            "ks-range",
+            &format!("a {nx} x {ny} map over {} cases", set.cases.len()),
+            "the points of --ks-range and --cs-range, or the cases",
+        )?;
+        // Each case's absolute fields and mask, without its own contours.
+        let per_case = MapRequest {
+            settings: MapSettings {
+                scale: Scale::Absolute,
+                contour_levels: 0,
+                ..settings.clone()
+            },
+            ..self.clone()
+        };
+        let maps = case_maps(&per_case, set)?;
+        let fields: Vec<CaseField> = maps
             .iter()
-            .enumerate()
-            .map(|(k, d)| CaseInfo::new(set, k, *d))
-            .collect(),
-        feasible_per_case: maps
+            .map(|m| CaseField {
+                evaluator: &m.evaluator,
+                datum: m.datum,
+                bacc: &m.bacc,
+                dtl: &m.dtl,
+                sws: &m.sws,
+                mask: &m.feasibility.mask,
+            })
+            .collect();
+        let active = maps[0]
+            .feasibility
+            .legend
             .iter()
-            .map(|m| m.feasibility.summary.feasible)
-            .collect(),
-    };
-    Ok(RobustMapReport { map, robust })
+            .map(|b| b.objective)
+            .collect();
+        let (abs, dos) = robust_fields(set, settings.grid, &settings.objectives, active, &fields)?;
+        let datums: Vec<Criteria> = maps.iter().map(|m| m.datum.criteria).collect();
+        let first = &maps[0];
+        let mut map = self.report_from(&abs, dos)?;
+        map.compute = first.compute;
+        map.adapter = first.adapter.clone();
+        let robust = RobustInfo {
+            combine: set.combine,
+            normalisation: NORMALISATION,
+            cases: datums
+                .iter()
+                .enumerate()
+                .map(|(k, d)| CaseInfo::new(set, k, *d))
+                .collect(),
+            feasible_per_case: maps
+                .iter()
+                .map(|m| m.feasibility.summary.feasible)
+                .collect(),
+        };
+        Ok(RobustMapReport { map, robust })
+    }
 }
 
-/// Every case's map report as [`map_report`] gives it (`settings` as the robust map
-/// sets them), in case order. On the HiFi's CPU path (unweighted BAcc) the cases of one
-/// loaded car ([`CaseSet::car_runs`]) are mapped together by one [`HiFiRoads`]: the same
-/// values bit for bit, the road-independent work done once a grid point (for 2 load
-/// cases x 3 speeds about 2 single maps' work instead of 6). Cases the GPU maps stay on
-/// it; where anything fails, the run's cases are mapped one by one, so errors are
-/// those of [`map_report`] too.
-fn case_maps(
-    model: ModelKind,
-    set: &CaseSet,
-    settings: &MapSettings,
-    compute: Compute,
-) -> Result<Vec<MapReport>> {
-    let one = |c: &Case| map_report(model, &c.car, &c.road, settings, compute);
-    if model != ModelKind::Full || settings.comfort != Comfort::Bacc {
+/// Every case's map report as [`MapRequest::run`] gives it for `request` on that case's
+/// loaded car and road (`request`'s settings as the robust map sets them), in case order.
+/// On the HiFi's CPU path (unweighted BAcc) the cases of one loaded car
+/// ([`CaseSet::car_runs`]) are mapped together by one [`HiFiRoads`]: the same values bit
+/// for bit, the road-independent work done once a grid point (for 2 load cases x 3 speeds
+/// about 2 single maps' work instead of 6). Cases the GPU maps stay on it; where anything
+/// fails, the run's cases are mapped one by one, so errors are those of
+/// [`MapRequest::run`] too.
+fn case_maps(request: &MapRequest, set: &CaseSet) -> Result<Vec<MapReport>> {
+    let one = |c: &Case| {
+        MapRequest {
+            car: &c.car,
+            road: &c.road,
+            ..request.clone()
+        }
+        .run()
+    };
+    let settings = &request.settings;
+    if request.model != ModelKind::Full || settings.comfort != Comfort::Bacc {
         return set.cases.iter().map(one).collect();
     }
     settings.validate()?;
     let mut maps = Vec::with_capacity(set.cases.len());
     for run in set.car_runs() {
         let cases = &set.cases[run];
-        match shared_maps(cases, settings, compute) {
+        match shared_maps(request, cases) {
             Some(m) => maps.extend(m),
             None => {
                 for c in cases {
@@ -316,14 +323,15 @@ fn case_maps(
     Ok(maps)
 }
 
-/// The maps of `cases` (one loaded car): each on the GPU where [`HiFiGrid::on_gpu`] takes
-/// it, the others by one [`HiFiRoads`] over the grid; `None` where anything fails.
-fn shared_maps(cases: &[Case], settings: &MapSettings, compute: Compute) -> Option<Vec<MapReport>> {
-    let grid = &settings.grid;
+/// The maps of `cases` (one loaded car) by `request`'s settings: each on the GPU where
+/// [`HiFiGrid::on_gpu`] takes it (on `request`'s path), the others by one [`HiFiRoads`]
+/// over the grid; `None` where anything fails.
+fn shared_maps(request: &MapRequest, cases: &[Case]) -> Option<Vec<MapReport>> {
+    let grid = &request.settings.grid;
     let mut hifis: Vec<Option<HiFiGrid>> = Vec::with_capacity(cases.len());
     for c in cases {
         let hifi = HiFi::new(&c.car, &c.road).ok()?;
-        hifis.push(HiFiGrid::on_gpu(&hifi, grid, compute).ok()?);
+        hifis.push(HiFiGrid::on_gpu(&hifi, grid, request.compute).ok()?);
     }
     let cpu: Vec<usize> = (0..cases.len()).filter(|&k| hifis[k].is_none()).collect();
     if !cpu.is_empty() {
@@ -344,7 +352,13 @@ fn shared_maps(cases: &[Case], settings: &MapSettings, compute: Compute) -> Opti
         .zip(hifis)
         .map(|(c, h)| {
             let h = h?;
-            let mut r = map_report_with(&h, &c.car, &c.road, settings).ok()?;
+            let mut r = MapRequest {
+                car: &c.car,
+                road: &c.road,
+                ..request.clone()
+            }
+            .run_on(&h)
+            .ok()?;
             r.compute = h.path();
             r.adapter = h.adapter().map(str::to_string);
             Some(r)

@@ -4,5 +4,5 @@
 pub mod map;
 pub mod optimize;
 
-pub use map::{case_map_report, robust_map_report, CaseInfo, CaseMapReport, RobustMapReport};
+pub use map::{CaseInfo, CaseMapReport, RobustMapReport};
 pub use optimize::{RobustOptimizeReport, RobustProblem};
