@@ -169,11 +169,6 @@ impl LinearModel {
             dw,
         })
     }
-
-    /// Natural frequencies and damping ratios of the model (eigenvalues of `A`).
-    pub fn modes(&self) -> Result<Vec<Mode>> {
-        modes::modes(self)
-    }
 }
 
 /// State-space matrices of a [`LinearModel`] (see [`LinearModel::state_space`]).

@@ -1,6 +1,7 @@
 //! Modes of a linear model: natural frequency and damping ratio of each eigenvalue
 //! pair of the state matrix, labelled by the coordinate that dominates its shape, one
-//! coordinate per oscillatory mode (see [`modes`]).
+//! coordinate per oscillatory mode (see [`modes`]), and [`LinearModel::modes`], which
+//! asks a model for them.
 
 use super::LinearModel;
 use crate::error::{Result, RideError};
@@ -78,6 +79,13 @@ pub fn modes(model: &LinearModel) -> Result<Vec<Mode>> {
         .collect();
     crate::order::sort_by_f64_key(&mut out, |m| m.frequency);
     Ok(out)
+}
+
+impl LinearModel {
+    /// Natural frequencies and damping ratios of the model (eigenvalues of `A`).
+    pub fn modes(&self) -> Result<Vec<Mode>> {
+        modes(self)
+    }
 }
 
 /// Kinetic-energy share of each coordinate in a mode shape, `m_ii |phi_i|^2` normalised

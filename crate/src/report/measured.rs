@@ -6,8 +6,8 @@
 //! frequency route on the raw Welch PSD and against the profile itself played back under
 //! the wheels.
 
-use super::road::SectionRoad;
-use super::{comfort_rows, frfs, rows, Verification};
+use super::{build_with, comfort_rows, frfs, rows, validate, Verification};
+use super::{MethodReport, ReportInputs, SectionRoad};
 use crate::analysis::ModelKind;
 use crate::car::Car;
 use crate::design::DesignBox;
@@ -38,6 +38,18 @@ pub struct MeasuredInputs {
     pub profile: Profile,
     /// One track on both wheels (correlated), on independent tracks, or two measured ones.
     pub tracks: ProfileTracks,
+}
+
+/// [`build`](super::build) on the measured road `measured` at `inputs.road`'s speed (its
+/// class is not used): `ridelab report --road FILE` (this module).
+pub fn build_on(
+    inputs: &ReportInputs,
+    measured: &MeasuredInputs,
+    progress: impl FnMut(usize),
+) -> Result<MethodReport> {
+    validate(inputs)?;
+    let on = OnRoad::new(&inputs.car, measured, inputs.road.speed, &inputs.design_box)?;
+    build_with(inputs, &on, progress)
 }
 
 /// The measured road shaped at the scenario's speed, with its models.

@@ -18,6 +18,10 @@
 //!    Audze-Eglais plan and the other half chosen one by one where the expected
 //!    hypervolume improvement of the feasible front is largest, against the plan itself.
 //!
+//! This module holds the report's data ([`MethodReport`]) and builds its sections once for
+//! either road ([`SectionRoad`]): [`build`] on an ISO 8608 class ([`road`]), [`build_on`]
+//! on a measured road ([`measured`]); [`MethodReport::documents`] renders it ([`render`]).
+//!
 //! Deterministic for given inputs (seeded); nothing in it depends on the clock.
 
 pub mod document;
@@ -25,11 +29,12 @@ pub mod figures;
 pub mod html;
 pub mod markdown;
 mod measured;
+mod render;
 mod road;
 
-pub use measured::MeasuredInputs;
-use measured::OnRoad;
-use road::{IsoRoad, SectionRoad};
+pub use measured::{build_on, MeasuredInputs};
+pub use render::Documents;
+pub use road::build;
 
 use crate::analysis::ModelKind;
 use crate::car::{Car, QuarterCar};
@@ -373,24 +378,6 @@ pub const SECTIONS: [&str; 6] = [
     "6 adaptive sampling",
 ];
 
-/// Builds the report; `progress(k)` is called as section `k` of [`SECTIONS`] starts and
-/// with `SECTIONS.len()` at the end (the CLI times the sections with it).
-pub fn build(inputs: &ReportInputs, progress: impl FnMut(usize)) -> Result<MethodReport> {
-    build_with(inputs, &IsoRoad(&inputs.road), progress)
-}
-
-/// [`build`] on the measured road `measured` at `inputs.road`'s speed (its class is not
-/// used): `ridelab report --road FILE` (the module [`measured`]).
-pub fn build_on(
-    inputs: &ReportInputs,
-    measured: &MeasuredInputs,
-    progress: impl FnMut(usize),
-) -> Result<MethodReport> {
-    validate(inputs)?;
-    let on = OnRoad::new(&inputs.car, measured, inputs.road.speed, &inputs.design_box)?;
-    build_with(inputs, &on, progress)
-}
-
 fn validate(inputs: &ReportInputs) -> Result<()> {
     inputs.car.validate()?;
     inputs.road.validate()?;
@@ -398,7 +385,51 @@ fn validate(inputs: &ReportInputs) -> Result<()> {
     inputs.objectives.validate()
 }
 
-/// The sections on `on`, either road (the module [`road`]).
+/// What the report's sections need of the road they run on: an ISO 8608 class
+/// ([`road::IsoRoad`]) or a measured road ([`measured::OnRoad`]). Each section asks it for
+/// its models' results, so the sections are written once ([`build`] and [`build_on`] are
+/// the same code on either road, [`build_with`]), and the page's wasm, which builds ISO
+/// reports only, carries the ISO road's code alone.
+trait SectionRoad {
+    /// The road as the reports record it.
+    fn scenario(&self) -> RoadScenario;
+    /// The ISO road's velocity PSD, m^2/s^2/Hz (none on a measured road).
+    fn velocity_psd(&self) -> Option<f64>;
+    /// Section 1 at the datum design of `car`.
+    fn verify(&self, car: &Car, seed: u64) -> Result<Verification>;
+    /// Section 2: `kind`'s map of `car`.
+    fn map(&self, kind: ModelKind, car: &Car, settings: &MapSettings) -> Result<MapReport>;
+    /// Section 4: the fidelity study over `design_box`.
+    fn study(&self, car: &Car, design_box: &DesignBox) -> Result<StudyReport>;
+    /// Section 4: the chosen surrogate's report.
+    fn surrogate(
+        &self,
+        spec: SurrogateSpec,
+        plan: PlanSpec,
+        car: &Car,
+        design_box: &DesignBox,
+    ) -> Result<SurrogateReport>;
+    /// Section 5: one optimisation (the request's road is this one).
+    fn optimize(&self, request: &OptimizeRequest) -> Result<OptimizeReport>;
+    /// Section 5: the full car of `car` on this road.
+    fn hifi(&self, car: &Car) -> Result<Box<dyn Evaluator + '_>>;
+    /// Section 5: `r` picked again by `rule`, re-checked on the HiFi.
+    fn repick(
+        &self,
+        r: &mut OptimizeReport,
+        rule: PickRule,
+        car: &Car,
+        design_box: &DesignBox,
+    ) -> Result<()>;
+    /// Section 6: the adaptive loop's optimisation.
+    fn adaptive(
+        &self,
+        request: &OptimizeRequest,
+        options: AdaptiveOptions,
+    ) -> Result<AdaptiveOptimizeReport>;
+}
+
+/// The sections on `on`, either road ([`SectionRoad`]).
 fn build_with<R: SectionRoad>(
     inputs: &ReportInputs,
     on: &R,
@@ -497,18 +528,6 @@ fn build_with<R: SectionRoad>(
     })
 }
 
-/// The report's documents: the HTML file, its Markdown twin and the figures (the
-/// Markdown links to them as `figures/<key>.svg`).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Documents {
-    /// The self-contained HTML file.
-    pub html: String,
-    /// The Markdown twin.
-    pub markdown: String,
-    /// The figures, in order.
-    pub figures: Vec<figures::Figure>,
-}
-
 impl MethodReport {
     /// The report's title.
     pub fn title(&self) -> String {
@@ -523,18 +542,6 @@ impl MethodReport {
                 s.car.name, m.file, m.speed
             ),
         }
-    }
-
-    /// Renders the HTML and Markdown documents and the figures.
-    pub fn documents(&self) -> Result<Documents> {
-        let figs = figures::figures(self)?;
-        let all: Vec<figures::Figure> = figs.iter().flat_map(|(_, f)| f.clone()).collect();
-        let blocks = document::blocks(self, figs);
-        Ok(Documents {
-            html: html::render(&self.title(), &blocks),
-            markdown: markdown::render(&blocks),
-            figures: all,
-        })
     }
 }
 

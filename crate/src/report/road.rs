@@ -1,10 +1,8 @@
-//! The road a report's sections run on: an ISO 8608 class ([`IsoRoad`]) or a measured
-//! road ([`super::measured::OnRoad`]). Each section asks it for its models' results, so
-//! the sections are written once ([`super::build`] and [`super::build_on`] are the same
-//! code on either road), and the page's wasm, which builds ISO reports only, carries the
-//! ISO road's code alone.
+//! The report on an ISO 8608 class ([`build`]): the road its sections run on, [`IsoRoad`]
+//! (the sections need of the road what [`super::SectionRoad`] says; the module
+//! [`super::measured`] has the measured road's).
 
-use super::{verify, Verification};
+use super::{build_with, verify, MethodReport, ReportInputs, SectionRoad, Verification};
 use crate::analysis::{HiFi, ModelKind};
 use crate::car::Car;
 use crate::design::DesignBox;
@@ -19,44 +17,11 @@ use crate::study::{MapReport, MapRequest, MapSettings, OptimizeReport, OptimizeR
 use crate::study::{StudyReport, SurrogateReport};
 use crate::surrogate::{PlanSpec, SurrogateSpec};
 
-/// What the report's sections need of the road (see the module doc).
-pub(super) trait SectionRoad {
-    /// The road as the reports record it.
-    fn scenario(&self) -> RoadScenario;
-    /// The ISO road's velocity PSD, m^2/s^2/Hz (none on a measured road).
-    fn velocity_psd(&self) -> Option<f64>;
-    /// Section 1 at the datum design of `car`.
-    fn verify(&self, car: &Car, seed: u64) -> Result<Verification>;
-    /// Section 2: `kind`'s map of `car`.
-    fn map(&self, kind: ModelKind, car: &Car, settings: &MapSettings) -> Result<MapReport>;
-    /// Section 4: the fidelity study over `design_box`.
-    fn study(&self, car: &Car, design_box: &DesignBox) -> Result<StudyReport>;
-    /// Section 4: the chosen surrogate's report.
-    fn surrogate(
-        &self,
-        spec: SurrogateSpec,
-        plan: PlanSpec,
-        car: &Car,
-        design_box: &DesignBox,
-    ) -> Result<SurrogateReport>;
-    /// Section 5: one optimisation (the request's road is this one).
-    fn optimize(&self, request: &OptimizeRequest) -> Result<OptimizeReport>;
-    /// Section 5: the full car of `car` on this road.
-    fn hifi(&self, car: &Car) -> Result<Box<dyn Evaluator + '_>>;
-    /// Section 5: `r` picked again by `rule`, re-checked on the HiFi.
-    fn repick(
-        &self,
-        r: &mut OptimizeReport,
-        rule: PickRule,
-        car: &Car,
-        design_box: &DesignBox,
-    ) -> Result<()>;
-    /// Section 6: the adaptive loop's optimisation.
-    fn adaptive(
-        &self,
-        request: &OptimizeRequest,
-        options: AdaptiveOptions,
-    ) -> Result<AdaptiveOptimizeReport>;
+/// Builds the report; `progress(k)` is called as section `k` of
+/// [`SECTIONS`](super::SECTIONS) starts and with `SECTIONS.len()` at the end (the CLI times
+/// the sections with it).
+pub fn build(inputs: &ReportInputs, progress: impl FnMut(usize)) -> Result<MethodReport> {
+    build_with(inputs, &IsoRoad(&inputs.road), progress)
 }
 
 /// An ISO 8608 road.

@@ -18,11 +18,12 @@
 //! Every surrogate has an uncertainty estimate over the box ([`uncertainty`]: leave-one-out
 //! errors spread by a Kriging-variance shape, or the GP's own variance); [`infill`] picks
 //! the next HiFi run for the decision (expected hypervolume improvement of the feasible
-//! front) and [`adaptive`] runs the loop and compares it with fixed Audze-Eglais plans.
+//! front); the adaptive loop that uses them, and compares itself with fixed Audze-Eglais
+//! plans, is a study ([`crate::study::adaptive`]).
 //!
 //! VBA and PBA fit their tuning by Levenberg-Marquardt on relative errors ([`fit`]);
-//! [`metrics`] scores a surrogate on a validation grid and [`study`] runs every approach,
-//! scheme and plan of the seed's fidelity study.
+//! [`metrics`] scores a surrogate on a validation grid; the seed's fidelity study, every
+//! approach, scheme and plan, is in [`crate::study::fidelity`].
 //!
 //! Coordinates: `u = (ks - ks_min) / (ks_max - ks_min)`, `v = (cs - cs_min) / (cs_max - cs_min)`
 //! ([`DesignBox::normalize`]); criteria index `k`: 0 BAcc (m/s^2), 1 DTL (N), 2 SWS (m).

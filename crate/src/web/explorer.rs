@@ -2,7 +2,8 @@
 //! view's scenario, its fitted surrogate and the kept maps. The page moves it with the
 //! small setters (`setDesign(ks, cs)` on a slider move, `setState(state)` when anything
 //! else changes) and asks it; a setter that fails leaves it at its last good state.
-//! Every method's numbers are [`Session`]'s, which the native tests check.
+//! Every method's numbers are [`Session`]'s, which the native tests check. A state is
+//! checked here too (`checkState`, [`check_state`]): by the scenario a session would build.
 
 use super::{js_error, parse_state, to_js};
 use crate::analysis::ModelKind;
@@ -30,6 +31,14 @@ pub(super) fn scenario_of(state: &State) -> crate::error::Result<Scenario> {
         Some(r) => state.scenario_on(&r),
         None => state.scenario(),
     }
+}
+
+/// Checks a state; returns the normalised state or an error naming the field.
+#[wasm_bindgen(js_name = checkState)]
+pub fn check_state(state: JsValue) -> Result<JsValue, JsValue> {
+    let s = parse_state(state)?;
+    scenario_of(&s).map_err(js_error)?;
+    to_js(&s)
 }
 
 /// The explorer session (see the module documentation).

@@ -20,7 +20,7 @@ mod on_demand;
 #[cfg(feature = "on-demand")]
 mod road;
 mod screen;
-pub use explorer::Explorer;
+pub use explorer::{check_state, Explorer};
 #[cfg(feature = "gpu")]
 pub use gpu::GpuMaps;
 #[cfg(feature = "on-demand")]
@@ -270,14 +270,6 @@ pub fn parse_car(json: &str) -> Result<JsValue, JsValue> {
         cs,
         load_cases,
     })
-}
-
-/// Checks a state; returns the normalised state or an error naming the field.
-#[wasm_bindgen(js_name = checkState)]
-pub fn check_state(state: JsValue) -> Result<JsValue, JsValue> {
-    let s = parse_state(state)?;
-    explorer::scenario_of(&s).map_err(js_error)?;
-    to_js(&s)
 }
 
 /// The surrogate names the state's `surrogate` field takes (`ridelab surrogate` names).
