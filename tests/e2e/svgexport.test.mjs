@@ -227,7 +227,12 @@ test('on-screen charts: plotters draws them on the canvas at the core layout; ba
     };
     const map = { unit: 'u [m]', nx: 2, ny: 2, values: [1, 2, 3, 4], designBox: { ks_min: 1e4, ks_max: 4e4, cs_min: 500, cs_max: 4000 }, width: 400, height: 300 };
     const mapPlaced = api.drawMapFrame(c, map, 1);
+    // The frame's contour lines are contourSegments' on the spec's values at its levels.
+    const lines = (xs) => Array.from(xs, (a) => Array.from(a));
+    mapPlaced.contours = lines(mapPlaced.contours);
+    const segments = lines(api.contourSegments(new Float64Array(map.values), 2, 2, new Float64Array(mapPlaced.levels)));
     return {
+      segments,
       placed,
       corner: rgb(2, 2),
       mid,
@@ -254,6 +259,11 @@ test('on-screen charts: plotters draws them on the canvas at the core layout; ba
   assert.deepEqual([res.mapPlaced.bar.top, res.mapPlaced.bar.bottom], [20, 239]);
   // At most one tick per 36 px of bar: 219 px, 6 ticks at most, so a step of 1 over 1..4.
   assert.deepEqual(res.mapPlaced.barTicks, [1, 2, 3, 4]);
+  // The contour levels: the ticks strictly inside the colour range 1..4; a line each, the
+  // one contourSegments traces on the same values (one way: the values went once).
+  assert.deepEqual(res.mapPlaced.levels, [2, 3]);
+  assert.deepEqual(res.mapPlaced.contours, res.segments);
+  assert.ok(res.segments.every((s) => s.length >= 4), `a segment per level: ${JSON.stringify(res.segments)}`);
   assert.equal(res.layer.field, 'layer');
   assert.equal(res.scale.field, 'scale');
   assert.equal(res.colour.field, 'series[0].colour');

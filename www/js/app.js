@@ -400,6 +400,29 @@ async function main() {
   const heavy = kind === 'worker' ? afterFirstScreen({ gpu: computeMode(location.search), onRestart: onRestart('background') }) : null;
   worker?.catch(() => {}); // handled by deferredEngine (falls back to the main thread)
   heavy?.catch(() => {});
+  // The page's objects that need no core are built while the wasm downloads, the three map
+  // views among them: their figures are laid out then, not in the task that draws the first
+  // maps (on a slow link the wasm is the last file to arrive).
+  const store = new Store();
+  let compute;
+  let controller = null;
+  const datumOf = () => ({ ks: store.desc.datumKs, cs: store.desc.datumCs });
+  const onMapKey = (ev) => {
+    const next = keyStep(ev, controller.targetDesign(), datumOf(), store.desc.designBox);
+    if (!next) return false;
+    controller.changeDesign(next.ks, next.cs, 'ks', ev.timeStamp);
+    return true;
+  };
+  // The callbacks of every map view (the three maps, the uncertainty map, the road panel's).
+  const mapHooks = {
+    onPick: (ks, cs) => controller.changeDesign(Math.round(ks / 10) * 10, Math.round(cs / 5) * 5, 'ks'),
+    onKey: onMapKey,
+    contours: (field, nx, ny, levels) => compute.contours(field, nx, ny, levels),
+    get objectives() {
+      return store.objectives;
+    },
+  };
+  const maps = CRITERIA.map((c) => new MapView($('map-grid'), c, mapHooks));
   try {
     await init({ module_or_path: new URL('../ridelab-first_bg.wasm', import.meta.url) });
   } catch (e) {
@@ -408,8 +431,6 @@ async function main() {
   }
   setTimeout(() => firstScreenDone('timeout'), 5000);
   boot.marks.wasm = performance.now();
-  const store = new Store();
-  let compute;
   try {
     const main = await createEngine(api, 'main', { loadOnDemand });
     const hifi = worker ? deferredEngine(worker, main) : main;
@@ -428,26 +449,10 @@ async function main() {
     return;
   }
   buildSelects(store);
-  let controller = null;
-  const datumOf = () => ({ ks: store.desc.datumKs, cs: store.desc.datumCs });
-  const onMapKey = (ev) => {
-    const next = keyStep(ev, controller.targetDesign(), datumOf(), store.desc.designBox);
-    if (!next) return false;
-    controller.changeDesign(next.ks, next.cs, 'ks', ev.timeStamp);
-    return true;
-  };
-  const grid = $('map-grid');
-  // The callbacks of every map view (the three maps, the uncertainty map, the road panel's).
-  const mapHooks = {
-    onPick: (ks, cs) => controller.changeDesign(Math.round(ks / 10) * 10, Math.round(cs / 5) * 5, 'ks'),
-    onKey: onMapKey,
-    contours: (field, nx, ny, levels) => compute.contours(field, nx, ny, levels),
-    objectives: store.objectives,
-  };
   const ui = {
     controls,
     tables: loadTables((name) => compute.colourTable(name)),
-    maps: CRITERIA.map((c) => new MapView(grid, c, mapHooks)),
+    maps,
     plane: new ObjectivePlane({ base: $('op-base'), overlay: $('op-overlay'), wrap: $('op-wrap'), msg: $('op-msg') }, (p, sel) => {
       controller.changeDesign(p.ks, p.cs, 'ks');
       $('op-status').textContent = frontPointText(store.front, sel.index);

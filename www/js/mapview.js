@@ -7,7 +7,7 @@
 // and the keyboard (arrows move the design a step). The view is handed plain data
 // (`setData`, `setMarkers`); it never reads the page's state.
 
-import { paint } from './colormap.js';
+import { colourIndex, pixels } from './colormap.js';
 import { fmt, fmtPct } from './format.js';
 import { drawMapFrame } from '../ridelab-first.js';
 import { paintClass } from './classmarks.js';
@@ -65,17 +65,20 @@ export class MapView {
   /**
    * @param {HTMLElement} parent where the figure goes
    * @param {object} crit one of CRITERIA
-   * @param {{onPick: (ks: number, cs: number) => void, onKey: (ev: KeyboardEvent) => boolean}} hooks
-   *   `onPick` gets N/m and N s/m; `onKey` a key on the focused map (true when it moved the design)
-   * @param {(field: Float64Array, nx: number, ny: number, levels: number[]) => Float64Array[]} contours
-   *   the core's marching squares (js/compute.js `contours`): segments per level in grid coordinates
-   * @param {{bit: number, label: string, family: string}[]} objectives the core's design objectives by mask bit
+   * @param {object} hooks
+   *   - `onPick(ks, cs)`: a click or drag on the map, N/m and N s/m;
+   *   - `onKey(ev)`: a key on the focused map (true when it moved the design);
+   *   - `contours(field, nx, ny, levels)`: the core's marching squares (js/compute.js
+   *     `contours`), segments per level in grid coordinates;
+   *   - `objectives`: the core's design objectives by mask bit (`{bit, label, family}[]`),
+   *     read when a map is drawn or hovered: the page builds its map views before the core
+   *     is up, so their figures are laid out while the wasm downloads.
    */
-  constructor(parent, crit, { onPick, onKey, contours, objectives }) {
+  constructor(parent, crit, hooks) {
+    const { onPick, onKey, contours } = hooks;
     this.crit = crit;
     this.contours = contours;
-    this.objectives = objectives;
-    this.hatches = hatchGroups(objectives);
+    this.hooks = hooks;
     this.onPick = onPick;
     this.onKey = onKey;
     this.data = null;
@@ -187,19 +190,17 @@ export class MapView {
     if (error) scale = 'rel';
     if (sigma) scale = 'abs';
     const ref = datum ? datum[this.crit.key] : 1;
+    // The shown values and their range in one pass. The colour range spans every design
+    // in the box, the infeasible ones too: their values show through the hatching.
     const shown = new Float64Array(n);
-    for (let k = 0; k < n; k++) {
-      const v = values[off + k];
-      shown[k] = error || sigma ? v : scale === 'rel' ? (v / ref - 1) * 100 : v * f;
-    }
-    // The colour range spans every design in the box, the infeasible ones too: their
-    // values show through the hatching.
     let lo = Infinity;
     let hi = -Infinity;
     for (let k = 0; k < n; k++) {
-      const v = shown[k];
-      if (v < lo) lo = v;
-      if (v > hi) hi = v;
+      const v = values[off + k];
+      const x = error || sigma ? v : scale === 'rel' ? (v / ref - 1) * 100 : v * f;
+      shown[k] = x;
+      if (x < lo) lo = x;
+      if (x > hi) hi = x;
     }
     if (sigma) lo = 0;
     if (scale === 'rel') {
@@ -214,50 +215,50 @@ export class MapView {
     const colourMap = scale === 'rel' ? 'diverging' : palette;
     const table = tables[colourMap];
 
-    // The dense colour image: one pixel per grid cell, row 0 at the top (highest Cs).
+    // The dense colour image and the infeasible masks (one per hatch: opaque where a
+    // design breaks an objective of that group, bits of `maps.broken`) in one pass over
+    // the grid: one pixel per cell, row 0 at the top (highest Cs).
     const img = new ImageData(nx, ny);
+    const cells = new Uint32Array(img.data.buffer);
+    const colours = pixels(table);
+    const groups = hatchGroups(this.hooks.objectives).filter((g) => g.bits);
+    const masks = groups.map((g) => ({ ...g, image: new ImageData(nx, ny), any: false }));
     for (let j = 0; j < ny; j++) {
       const row = (ny - 1 - j) * nx;
       for (let i = 0; i < nx; i++) {
-        paint(table, (shown[j * nx + i] - lo) / (hi - lo), img.data, 4 * (row + i));
+        const k = j * nx + i;
+        cells[row + i] = colours[colourIndex((shown[k] - lo) / (hi - lo))];
+        const b = maps.broken[k];
+        if (!b) continue;
+        for (const m of masks) {
+          if (b & m.bits) {
+            m.image.data[4 * (row + i) + 3] = 255;
+            m.any = true;
+          }
+        }
       }
     }
     const colour = new OffscreenCanvas(nx, ny);
     colour.getContext('2d').putImageData(img, 0, 0);
-
-    // The infeasible masks, one per hatch: opaque where a design breaks an objective of
-    // that group (bits of `maps.broken`).
-    const masks = [];
-    for (const group of this.hatches) {
-      const mask = new ImageData(nx, ny);
-      let any = false;
-      for (let j = 0; j < ny; j++) {
-        const row = (ny - 1 - j) * nx;
-        for (let i = 0; i < nx; i++) {
-          if (maps.broken[j * nx + i] & group.bits) {
-            mask.data[4 * (row + i) + 3] = 255;
-            any = true;
-          }
-        }
-      }
-      if (!any) continue;
+    const drawn = masks.filter((m) => m.any).map(({ kind, bits, image }) => {
       const canvas = new OffscreenCanvas(nx, ny);
-      canvas.getContext('2d').putImageData(mask, 0, 0);
-      masks.push({ ...group, canvas });
-    }
+      canvas.getContext('2d').putImageData(image, 0, 0);
+      return { kind, bits, canvas };
+    });
 
     const limitLine = swsLimit && !error ? this.contours(values.subarray(2 * n, 3 * n), nx, ny, [swsLimit])[0] : [];
 
     this.data = {
-      nx, ny, box, lo, hi, colourMap, colour, masks, limitLine, scale,
+      nx, ny, box, lo, hi, colourMap, colour, masks: drawn, limitLine, scale,
       // Contour levels and lines: at the colour bar's ticks, set when it is drawn.
-      levels: [], levelsKey: null, contours: [],
+      levels: [], contours: [],
       infeasible: maps.feasibleCount < n,
       unit: error ? '% error vs HiFi' : sigma ? '% estimated 1σ' : scale === 'rel' ? '% vs datum' : this.crit.unit,
       shown, kind, feasible: maps.feasible, broken: maps.broken,
     };
     const teach = error ? ERROR_TEACH : sigma ? SIGMA_TEACH : this.crit.teach;
-    this.teachEl.textContent = teach;
+    // Set only when it changes: a text change lays the page out again.
+    if (this.teachEl.textContent !== teach) this.teachEl.textContent = teach;
     this.capEl.title = teach;
     this.base.setAttribute(
       'aria-label',
@@ -402,16 +403,11 @@ export class MapView {
     g.imageSmoothingQuality = 'high';
     g.drawImage(d.colour, plot.x, plot.y, plot.w, plot.h);
 
-    // Contour lines at the colour bar's ticks (kept until the levels change): a dark
-    // halo under a light line reads on both ends of the colour map.
-    const span = d.hi - d.lo;
-    const levels = placed.barTicks.filter((t) => t > d.lo + 1e-9 * span && t < d.hi - 1e-9 * span);
-    const key = levels.join(' ');
-    if (d.levelsKey !== key) {
-      d.levelsKey = key;
-      d.levels = levels;
-      d.contours = this.contours(d.shown, d.nx, d.ny, levels);
-    }
+    // Contour lines at the colour bar's ticks, which the core drew the frame with and
+    // traced on the spec's values in the same call: a dark halo under a light line reads
+    // on both ends of the colour map.
+    d.levels = placed.levels;
+    d.contours = placed.contours;
     const strokeSegs = (segs) => {
       g.beginPath();
       for (let k = 0; k < segs.length; k += 4) {
@@ -681,7 +677,7 @@ export class MapView {
     const j = Math.min(d.ny - 1, Math.floor(at.v * d.ny));
     const v = d.shown[j * d.nx + i];
     const value = d.unit.startsWith('%') ? `${fmt(v, 3)} ${d.unit}` : `${fmt(v, 4)} ${d.unit}`;
-    const broken = this.objectives.filter((o) => d.broken[j * d.nx + i] & o.bit).map((o) => o.label);
+    const broken = this.hooks.objectives.filter((o) => d.broken[j * d.nx + i] & o.bit).map((o) => o.label);
     this.tip.textContent = `Ks ${fmt(at.ks / KS_UNIT, 4)} kN/m, Cs ${fmt(at.cs / CS_UNIT, 3)} kNs/m: ${this.crit.title} ${value}${broken.length ? ` (breaks the ${broken.join(', ')})` : ''}`;
     this.tip.hidden = false;
     const l = this.layout();

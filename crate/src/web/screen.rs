@@ -322,8 +322,10 @@ struct MapPlaced {
     ks: AxisOut,
     cs: AxisOut,
     colours: AxisOut,
-    /// The colour bar's ticks (the page's contour levels).
+    /// The colour bar's ticks.
     bar_ticks: Vec<f64>,
+    /// The ticks strictly inside the colour range: the levels of the contour lines.
+    levels: Vec<f64>,
 }
 
 /// Draws the frame of a [`MapChart`] spec (see `mapChartSvg`) on `canvas`: a white
@@ -331,8 +333,13 @@ struct MapPlaced {
 /// ticks and unit (no cells, contours or markers: the page puts its RGBA map inside the
 /// frame). Laid out in `spec.width` x `spec.height` logical px, scaled by `scale`.
 /// Returns `{frame, bar: {left, right, top, bottom}, ks, cs, colours: {lo, hi, log},
-/// barTicks: [...]}`;
-/// errors as `drawLineChart`'s.
+/// barTicks: [...], levels: [...], contours: [Float64Array, ...]}`: `levels` are the
+/// colour bar's ticks strictly inside the colour range (by 1e-9 of its span), `contours`
+/// the lines of `spec.values` at each, as `contourSegments` gives them. The map's data
+/// go one way: the page sends its values once, with the spec, and gets the frame's
+/// placement and the contour lines to draw in it back (before, the values went back to
+/// the core a second time for the lines at the ticks this call had chosen).
+/// Errors as `drawLineChart`'s.
 #[wasm_bindgen(js_name = drawMapFrame)]
 pub fn draw_map_frame_js(
     canvas: HtmlCanvasElement,
@@ -353,12 +360,24 @@ pub fn draw_map_frame_js(
         hi: s.hi,
         log: s.log,
     };
-    to_js(&MapPlaced {
+    let (lo, hi) = chart.range.unwrap_or((l.colours.lo, l.colours.hi));
+    let span = hi - lo;
+    let ticks = l.bar_ticks();
+    let levels: Vec<f64> = ticks
+        .iter()
+        .copied()
+        .filter(|&t| t > lo + 1e-9 * span && t < hi - 1e-9 * span)
+        .collect();
+    let contours = super::contour_segments_js(&chart.values, chart.nx, chart.ny, &levels)?;
+    let placed = to_js(&MapPlaced {
         frame: l.frame,
         bar: l.bar,
         ks: axis(l.ks),
         cs: axis(l.cs),
         colours: axis(l.colours),
-        bar_ticks: l.bar_ticks(),
-    })
+        bar_ticks: ticks,
+        levels,
+    })?;
+    Reflect::set(&placed, &"contours".into(), &contours)?;
+    Ok(placed)
 }
