@@ -91,11 +91,6 @@ impl DesignBox {
         Ok(())
     }
 
-    /// True when `(ks, cs)` lies in the box (ends included).
-    pub fn contains(&self, ks: f64, cs: f64) -> bool {
-        (self.ks_min..=self.ks_max).contains(&ks) && (self.cs_min..=self.cs_max).contains(&cs)
-    }
-
     /// Parses `min:max` (N/m or N s/m) of one range; errors name `field`.
     pub fn parse_range(field: &str, text: &str) -> Result<(f64, f64)> {
         let example = match field {

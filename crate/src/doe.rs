@@ -101,7 +101,7 @@ impl Plan {
     }
 
     /// The points in lattice units, `[ks level, cs level]` as numbers.
-    pub fn lattice(&self) -> Vec<[f64; 2]> {
+    pub(crate) fn lattice(&self) -> Vec<[f64; 2]> {
         self.levels
             .iter()
             .map(|l| [l[0] as f64, l[1] as f64])
@@ -109,7 +109,7 @@ impl Plan {
     }
 
     /// All `n_p (n_p - 1) / 2` pairwise gaps `L_ij` of the plan's points, lattice units.
-    pub fn gaps(&self) -> Vec<f64> {
+    pub(crate) fn gaps(&self) -> Vec<f64> {
         gaps(&self.lattice())
     }
 
@@ -208,13 +208,13 @@ fn squared_gaps(points: &[[f64; 2]]) -> impl Iterator<Item = f64> + '_ {
 
 /// Audze-Eglais potential energy `E = sum_{i<j} 1 / L_ij^2` of points, in (point units)^-2.
 /// For plans pass [`Plan::lattice`] to get lattice units (exact squared gaps on integers).
-pub fn energy(points: &[[f64; 2]]) -> f64 {
+pub(crate) fn energy(points: &[[f64; 2]]) -> f64 {
     squared_gaps(points).map(|l2| 1.0 / l2).sum()
 }
 
 /// All pairwise Euclidean gaps `L_ij = sqrt(dx^2 + dy^2)`, `i < j`, in the units of the
 /// points (`n (n - 1) / 2` values; lattice units for [`Plan::lattice`], see [`Plan::gaps`]).
-pub fn gaps(points: &[[f64; 2]]) -> Vec<f64> {
+pub(crate) fn gaps(points: &[[f64; 2]]) -> Vec<f64> {
     squared_gaps(points).map(f64::sqrt).collect()
 }
 
@@ -323,7 +323,7 @@ impl Annealing {
     }
 
     /// Runs the annealing for `n >= 2` points; returns the row level of each column.
-    pub fn run(&self, n: usize) -> Vec<usize> {
+    pub(crate) fn run(&self, n: usize) -> Vec<usize> {
         let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
         let mut best: Vec<usize> = (0..n).collect();
         let mut best_e = f64::INFINITY;

@@ -91,14 +91,14 @@ impl Limit {
     }
 
     /// True when `value` lies in the range.
-    pub fn contains(&self, value: f64) -> bool {
+    pub(crate) fn contains(&self, value: f64) -> bool {
         value.is_finite() && value >= self.min && value <= self.max
     }
 }
 
 /// A number as messages write it: up to 6 significant figures, plain between 1e-3 and
 /// 1e6, else in exponent form (`1e+12`, `1e-320`).
-pub fn num(v: f64) -> String {
+pub(crate) fn num(v: f64) -> String {
     if !v.is_finite() {
         return format!("{v}");
     }

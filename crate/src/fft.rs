@@ -42,7 +42,7 @@ enum Plan {
 
 impl Dft {
     /// The transform of length `n >= 1`.
-    pub fn new(n: usize) -> Dft {
+    pub(crate) fn new(n: usize) -> Dft {
         let n = n.max(1);
         if let Some(direct) = MixedRadix::new(n) {
             return Dft {
@@ -90,7 +90,7 @@ impl Dft {
     }
 
     /// Transforms `x` (length `n`) in place.
-    pub fn forward(&mut self, x: &mut [C64]) {
+    pub(crate) fn forward(&mut self, x: &mut [C64]) {
         debug_assert_eq!(x.len(), self.n);
         match &mut self.plan {
             Plan::Direct(r) => {

@@ -18,13 +18,13 @@ use num_complex::Complex64 as C64;
 
 /// `e^x`.
 #[inline]
-pub fn exp(x: f64) -> f64 {
+pub(crate) fn exp(x: f64) -> f64 {
     libm::exp(x)
 }
 
 /// Natural logarithm `ln x`.
 #[inline]
-pub fn ln(x: f64) -> f64 {
+pub(crate) fn ln(x: f64) -> f64 {
     libm::log(x)
 }
 
@@ -36,7 +36,7 @@ pub(crate) fn ln_1p(x: f64) -> f64 {
 
 /// Base-10 logarithm.
 #[inline]
-pub fn log10(x: f64) -> f64 {
+pub(crate) fn log10(x: f64) -> f64 {
     libm::log10(x)
 }
 
@@ -48,7 +48,7 @@ pub(crate) fn powf(x: f64, y: f64) -> f64 {
 
 /// `sin x`, `x` in radians.
 #[inline]
-pub fn sin(x: f64) -> f64 {
+pub(crate) fn sin(x: f64) -> f64 {
     libm::sin(x)
 }
 
@@ -78,7 +78,7 @@ pub(crate) fn atan(x: f64) -> f64 {
 
 /// `sqrt(x^2 + y^2)` without overflow or underflow.
 #[inline]
-pub fn hypot(x: f64, y: f64) -> f64 {
+pub(crate) fn hypot(x: f64, y: f64) -> f64 {
     libm::hypot(x, y)
 }
 

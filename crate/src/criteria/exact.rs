@@ -47,7 +47,7 @@ pub(super) struct WhiteForm {
 
 impl WhiteForm {
     /// Builds the form; fails when an output is unbounded (white feed-through or road warp).
-    pub fn new(model: &LinearModel, road: &Road) -> Result<WhiteForm> {
+    pub(crate) fn new(model: &LinearModel, road: &Road) -> Result<WhiteForm> {
         road.validate()?;
         let ss = model.state_space()?;
         let scale = ss.dr.amax().max(1.0);

@@ -10,7 +10,7 @@ use num_complex::Complex64 as C64;
 
 /// Eigenvalues of the row-major `n x n` matrix `a` (destroyed), or `None` if the
 /// QR iteration does not converge.
-pub fn eigenvalues(a: &mut [f64], n: usize) -> Option<Vec<C64>> {
+pub(crate) fn eigenvalues(a: &mut [f64], n: usize) -> Option<Vec<C64>> {
     balance(a, n);
     elmhes(a, n);
     let (mut wr, mut wi) = (vec![0.0; n], vec![0.0; n]);

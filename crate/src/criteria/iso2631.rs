@@ -77,7 +77,7 @@ fn sections() -> [Section; 4] {
 }
 
 /// `|Wk|` at `f` Hz (ISO 2631-1 Annex A), -.
-pub fn wk_gain(f: f64) -> f64 {
+pub(crate) fn wk_gain(f: f64) -> f64 {
     let p = C64::new(0.0, 2.0 * PI * f);
     math::cabs(sections().iter().map(|s| s.at(p)).product::<C64>())
 }
@@ -201,7 +201,7 @@ fn wk_partial_fractions() -> [(C64, C64); 8] {
 /// integrates in closed form with the delays exactly (as in the modal route). Checked
 /// against `Wk(s) T_g(s) / s` at 3 Hz; declines with `Err(ModalInapplicable(..))` where the
 /// expansion is not accurate (then [`bacc_wk`] takes the Kronecker route).
-pub fn bacc_wk_modal(model: &LinearModel, road: &Road) -> Result<f64> {
+pub(crate) fn bacc_wk_modal(model: &LinearModel, road: &Road) -> Result<f64> {
     let e = super::modal::expand(model, road)?;
     let mut var = 0.0;
     for (groups, rho) in &e.sources {

@@ -19,14 +19,13 @@ mod spectral;
 
 pub use closed_form::quarter_car_rms;
 pub use exact::criteria_exact;
-pub(crate) use iso2631::{add_wk_variance, append_wk, static_gain};
-pub use iso2631::{
-    bacc_wk, bacc_wk_exact, bacc_wk_modal, bacc_wk_spectral, comfort_label, wk_gain,
-};
+pub(crate) use iso2631::{add_wk_variance, append_wk, static_gain, wk_gain};
+pub use iso2631::{bacc_wk, bacc_wk_exact, bacc_wk_spectral, comfort_label};
 pub(crate) use modal::{add_source_variances, expand_sources, inverse_sums, Channel};
 pub use modal::{criteria_fast_exact, criteria_modal};
-pub use residue::{
-    quarter_shaped, Certified, Decline, PoleZeroFilter, Residue, ResidueFamily, ResidueRoads,
-    ResidueRoute, ShapedResidueRoute, MAX_DOF, RESIDUE_TOLERANCE,
+pub use residue::RESIDUE_TOLERANCE;
+pub(crate) use residue::{
+    quarter_shaped, Certified, PoleZeroFilter, ResidueFamily, ResidueRoads, ResidueRoute,
+    ShapedResidueRoute,
 };
 pub use spectral::{criteria_spectral, SpectralCriteria, Spectrum};

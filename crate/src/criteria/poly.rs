@@ -23,7 +23,7 @@ pub(super) struct Poly {
 
 impl Poly {
     /// The zero polynomial.
-    pub fn zero() -> Poly {
+    pub(crate) fn zero() -> Poly {
         Poly {
             c: [0.0; CAP],
             len: 0,
@@ -31,7 +31,7 @@ impl Poly {
     }
 
     /// The polynomial with coefficients `c` (ascending powers, at most 12).
-    pub fn new(c: &[f64]) -> Poly {
+    pub(crate) fn new(c: &[f64]) -> Poly {
         let mut p = Poly::zero();
         p.len = c.len().min(CAP);
         p.c[..p.len].copy_from_slice(&c[..p.len]);
@@ -49,12 +49,12 @@ impl Poly {
 
     /// Number of coefficients in use (degree + 1, or 0).
     #[cfg(test)]
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.len
     }
 
     /// The product (degrees must add up to at most 11; the matrices here stay within it).
-    pub fn mul(&self, o: &Poly) -> Poly {
+    pub(crate) fn mul(&self, o: &Poly) -> Poly {
         let mut p = Poly::zero();
         if self.len == 0 || o.len == 0 {
             return p;
@@ -69,7 +69,7 @@ impl Poly {
     }
 
     /// `self + f o`.
-    pub fn add_scaled(&self, o: &Poly, f: f64) -> Poly {
+    pub(crate) fn add_scaled(&self, o: &Poly, f: f64) -> Poly {
         let mut p = *self;
         p.len = self.len.max(o.len);
         for i in 0..o.len {
@@ -79,7 +79,7 @@ impl Poly {
     }
 
     /// `f self`.
-    pub fn scaled(&self, f: f64) -> Poly {
+    pub(crate) fn scaled(&self, f: f64) -> Poly {
         let mut p = *self;
         for v in p.c[..p.len].iter_mut() {
             *v *= f;

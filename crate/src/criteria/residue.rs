@@ -76,12 +76,12 @@ use num_complex::Complex64 as C64;
 mod quarter;
 mod roads;
 mod shaped;
-pub use quarter::quarter_shaped;
-pub use roads::ResidueRoads;
-pub use shaped::{PoleZeroFilter, ShapedResidueRoute};
+pub(crate) use quarter::quarter_shaped;
+pub(crate) use roads::ResidueRoads;
+pub(crate) use shaped::{PoleZeroFilter, ShapedResidueRoute};
 
 /// Most generalised coordinates of a family (the symmetric half car has 4).
-pub const MAX_DOF: usize = MAX_N;
+pub(crate) const MAX_DOF: usize = MAX_N;
 /// Coefficients of `D` and of every numerator (degree `2n` at most).
 const NC: usize = MAX_ROOTS + 1;
 /// Most wheel groups (distinct delays) of one source.
@@ -104,7 +104,7 @@ struct Group {
 
 /// A model family over the front design, prepared for the residue route (module doc).
 #[derive(Debug, Clone, PartialEq)]
-pub struct ResidueFamily {
+pub(crate) struct ResidueFamily {
     /// Degree `2n` of `D`.
     deg: usize,
     /// `det Q0(s)`, ascending powers.
@@ -148,7 +148,7 @@ impl Start {
 
 /// Variances of one point by the residue route, or why the route declined.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Residue {
+pub(crate) enum Residue {
     /// Variances `[BAcc, DTL, SWS]` (m^2/s^4, N^2, m^2) and the bound on their relative error.
     Variances {
         /// The variances.
@@ -162,7 +162,7 @@ pub enum Residue {
 
 /// Why the residue route declined a point.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Decline {
+pub(crate) enum Decline {
     /// No root finder converged, or two roots lie closer than 100 times their error
     /// (the first-order error analysis does not hold).
     Unresolved,
@@ -183,13 +183,13 @@ pub const RESIDUE_TOLERANCE: f64 = 1e-9;
 /// (the symmetric half alone with correlated tracks; both halves of a mirror-symmetric
 /// car with weights 1/2 with independent tracks, see [`crate::model::antisymmetric_half`]).
 #[derive(Debug, Clone, PartialEq)]
-pub struct ResidueRoute {
+pub(crate) struct ResidueRoute {
     parts: Vec<(ResidueFamily, f64)>,
 }
 
 /// The criteria of one point by the residue route, or why it declined.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Certified {
+pub(crate) enum Certified {
     /// RMS criteria and the bound on the relative error of their variances
     /// (at most [`RESIDUE_TOLERANCE`]).
     Exact {
@@ -205,7 +205,7 @@ pub enum Certified {
 impl ResidueRoute {
     /// The route over `parts` (family, weight); fails on no part or a weight that is
     /// not finite and positive.
-    pub fn new(parts: Vec<(ResidueFamily, f64)>) -> Result<ResidueRoute> {
+    pub(crate) fn new(parts: Vec<(ResidueFamily, f64)>) -> Result<ResidueRoute> {
         if parts.is_empty() || parts.iter().any(|(_, w)| !w.is_finite() || *w <= 0.0) {
             return Err(RideError::Numerical(
                 "residue route: needs families with positive weights".into(),
@@ -216,7 +216,7 @@ impl ResidueRoute {
 
     /// The RMS criteria at `(ks, cs)` (N/m, N s/m) with their error bound, or why the
     /// route declines; errors as [`ResidueFamily::variances`].
-    pub fn criteria(&self, ks: f64, cs: f64) -> Result<Certified> {
+    pub(crate) fn criteria(&self, ks: f64, cs: f64) -> Result<Certified> {
         let mut var = [0.0; N_OUT];
         let mut err = [0.0; N_OUT];
         for (family, weight) in &self.parts {
@@ -266,7 +266,7 @@ impl ResidueFamily {
     /// Fails when the family is not of this form (2 to [`MAX_DOF`] coordinates, `dk = dc`
     /// of rank one and positive), when an output feeds through the white road velocity,
     /// or on more than 2 wheel delays.
-    pub fn new(
+    pub(crate) fn new(
         base: &LinearModel,
         dk: &DMatrix<f64>,
         dc: &DMatrix<f64>,

@@ -39,13 +39,14 @@ pub struct SpectralCriteria {
     pub evaluations: usize,
     /// The quadrature's own error estimate relative to the variance, the largest of the
     /// three outputs: at most the requested `rtol` unless the splits ran out (see
-    /// [`SpectralCriteria::converged`]).
+    /// `SpectralCriteria::converged`).
     pub relative_error: f64,
 }
 
 impl SpectralCriteria {
     /// Whether the quadrature met `rtol` (it stops after `MAX_SPLITS` panel splits).
-    pub fn converged(&self, rtol: f64) -> bool {
+    #[cfg(test)]
+    pub(crate) fn converged(&self, rtol: f64) -> bool {
         self.relative_error <= rtol
     }
 }
@@ -255,7 +256,7 @@ fn to_rms(var: [f64; N_OUT]) -> Criteria {
 /// If the response is unbounded at low frequency (road warp), the band starts at
 /// ISO 8608's lowest spatial frequency 0.011 cycle/m and `low_cutoff_hz` says so. A
 /// quadrature that runs out of splits before `rtol` says how far it got in
-/// `relative_error` (see [`SpectralCriteria::converged`]).
+/// `relative_error` (see `SpectralCriteria::converged`).
 pub fn criteria_spectral(model: &LinearModel, road: &Road, rtol: f64) -> Result<SpectralCriteria> {
     let sp = Spectrum::new(model, road)?;
     let cutoff = if warp_unbounded(&sp) {

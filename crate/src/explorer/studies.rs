@@ -67,7 +67,7 @@ pub struct FrontResult {
     /// `w_i = (1 - d_i) / sum_j (1 - d_j)` of its normalised distances `d`, -.
     pub pseudo_weights: Vec<[f64; 2]>,
     /// How far the pick can be trusted: a design-box bound it sits on, a criterion its
-    /// HiFi re-check misses by more than [`crate::optimize::RECHECK_TOLERANCE_PERCENT`].
+    /// HiFi re-check misses by more than [`crate::optimize::trust::RECHECK_TOLERANCE_PERCENT`].
     pub warnings: Vec<Warning>,
     /// With robust cases: the rule, the normalisation and the pick in each case (its
     /// LoFi prediction and HiFi re-check against that case's datum, the objectives the

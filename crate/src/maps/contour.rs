@@ -73,7 +73,7 @@ pub fn contour(grid: &Grid, field: &[f64], level: f64) -> Result<Contour> {
 /// At most `target` round levels strictly inside `(min, max)`: the multiples of the
 /// smallest step `m 10^e`, `m` in {1, 2, 2.5, 5}, that gives no more than `target` of them.
 /// Empty when the range is empty or not finite.
-pub fn nice_levels(min: f64, max: f64, target: usize) -> Vec<f64> {
+pub(crate) fn nice_levels(min: f64, max: f64, target: usize) -> Vec<f64> {
     if target == 0 || !(min.is_finite() && max.is_finite()) || max <= min {
         return Vec::new();
     }

@@ -185,7 +185,7 @@ pub fn evaluate_grid<E: Evaluator + Sync + ?Sized>(
 /// point in row-major order makes the whole call fail with a message naming that point.
 /// `fill` is the initial value of each slot. For several values a point, e.g. every road
 /// of [`crate::analysis::HiFiRoads`].
-pub fn map_grid<T, F>(grid: &Grid, threads: usize, fill: T, f: F) -> Result<Vec<T>>
+pub(crate) fn map_grid<T, F>(grid: &Grid, threads: usize, fill: T, f: F) -> Result<Vec<T>>
 where
     T: Clone + Send,
     F: Fn(f64, f64) -> Result<T> + Sync,

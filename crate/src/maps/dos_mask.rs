@@ -53,7 +53,7 @@ pub fn objective_name(o: Objective) -> &'static str {
 }
 
 /// The objectives set in `mask`, in bit order.
-pub fn objectives_in(mask: u8) -> Vec<Objective> {
+pub(crate) fn objectives_in(mask: u8) -> Vec<Objective> {
     OBJECTIVE_BITS
         .iter()
         .copied()
@@ -199,19 +199,19 @@ impl DosMap {
 
     /// The objectives broken at Ks column `i`, Cs row `j` (empty when feasible).
     #[cfg(test)]
-    pub fn broken_at(&self, i: usize, j: usize) -> Vec<Objective> {
+    pub(crate) fn broken_at(&self, i: usize, j: usize) -> Vec<Objective> {
         objectives_in(self.mask[self.grid.index(i, j)])
     }
 
     /// True when the point at Ks column `i`, Cs row `j` meets every active objective.
     #[cfg(test)]
-    pub fn is_feasible(&self, i: usize, j: usize) -> bool {
+    pub(crate) fn is_feasible(&self, i: usize, j: usize) -> bool {
         self.mask[self.grid.index(i, j)] == 0
     }
 
     /// 1 where feasible, 0 where not, as a field for [`super::contour`] (its 0.5 contour
     /// outlines the feasible region).
-    pub fn feasible_field(&self) -> Vec<f64> {
+    pub(crate) fn feasible_field(&self) -> Vec<f64> {
         self.mask
             .iter()
             .map(|&m| if m == 0 { 1.0 } else { 0.0 })

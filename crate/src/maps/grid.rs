@@ -25,7 +25,7 @@ impl Axis {
     pub(crate) const MAX_POINTS: usize = 1001;
 
     /// A checked axis; errors name `field` (`ks-range` or `cs-range`).
-    pub fn new(field: &str, min: f64, max: f64, n: usize) -> Result<Axis> {
+    pub(crate) fn new(field: &str, min: f64, max: f64, n: usize) -> Result<Axis> {
         let a = Axis { min, max, n };
         a.validate(field)?;
         Ok(a)
@@ -60,7 +60,7 @@ impl Axis {
     }
 
     /// Checks: finite, `0 < min < max`, `2 <= n <= MAX_POINTS`; errors name `field`.
-    pub fn validate(&self, field: &str) -> Result<()> {
+    pub(crate) fn validate(&self, field: &str) -> Result<()> {
         if !(self.min.is_finite() && self.max.is_finite()) {
             return Err(RideError::field(
                 field,
@@ -96,18 +96,18 @@ impl Axis {
 
     /// The `k`-th value `(1 - t) min + t max`, `t = k / (n - 1)`: exactly `min` at 0 and
     /// exactly `max` at `n - 1`.
-    pub fn value(&self, k: usize) -> f64 {
+    pub(crate) fn value(&self, k: usize) -> f64 {
         let t = k as f64 / (self.n - 1) as f64;
         (1.0 - t) * self.min + t * self.max
     }
 
     /// All `n` values.
-    pub fn values(&self) -> Vec<f64> {
+    pub(crate) fn values(&self) -> Vec<f64> {
         (0..self.n).map(|k| self.value(k)).collect()
     }
 
     /// Spacing `(max - min) / (n - 1)`.
-    pub fn step(&self) -> f64 {
+    pub(crate) fn step(&self) -> f64 {
         (self.max - self.min) / (self.n - 1) as f64
     }
 }
@@ -185,13 +185,13 @@ impl Grid {
     }
 
     /// Checks both axes (errors name `ks-range` or `cs-range`).
-    pub fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         self.ks.validate("ks-range")?;
         self.cs.validate("cs-range")
     }
 
     /// The design box the grid spans.
-    pub fn design_box(&self) -> DesignBox {
+    pub(crate) fn design_box(&self) -> DesignBox {
         DesignBox {
             ks_min: self.ks.min,
             ks_max: self.ks.max,
@@ -216,7 +216,7 @@ impl Grid {
     }
 
     /// `(i, j)` of a flat index.
-    pub fn indices(&self, index: usize) -> (usize, usize) {
+    pub(crate) fn indices(&self, index: usize) -> (usize, usize) {
         (index % self.ks.n, index / self.ks.n)
     }
 

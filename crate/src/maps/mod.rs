@@ -32,10 +32,12 @@ pub mod dcs;
 pub mod dos_mask;
 pub mod grid;
 
-pub use contour::{auto_levels, contour, contours, nice_levels, Contour, Polyline};
-pub use dcs::{default_threads, evaluate_grid, map_grid, DatumPoint, Dcs, Scale};
+pub(crate) use contour::nice_levels;
+pub use contour::{auto_levels, contour, contours, Contour, Polyline};
+pub(crate) use dcs::map_grid;
+pub use dcs::{default_threads, evaluate_grid, DatumPoint, Dcs, Scale};
 pub use dos_mask::{
-    objective_bit, objective_name, objectives_in, DosMap, DosSummary, FeasiblePoint,
-    ObjectiveCount, OBJECTIVE_BITS,
+    objective_bit, objective_name, DosMap, DosSummary, FeasiblePoint, ObjectiveCount,
+    OBJECTIVE_BITS,
 };
 pub use grid::{Axis, Grid};

@@ -178,7 +178,7 @@ pub fn symmetric_half(full: &LinearModel) -> LinearModel {
 /// `var = (var_symmetric + var_antisymmetric) / 2` with each half's variance taken with
 /// intensity `W` on one source (correlated tracks). Outputs are those of corner 1
 /// (front right), the input weights `+1` right and `-1` left.
-pub fn antisymmetric_half(full: &LinearModel) -> LinearModel {
+pub(crate) fn antisymmetric_half(full: &LinearModel) -> LinearModel {
     let mut s = DMatrix::zeros(N, 3);
     s[(2, 0)] = 1.0;
     s[(3, 1)] = 1.0;

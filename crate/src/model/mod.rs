@@ -17,7 +17,8 @@ mod full;
 pub mod modes;
 mod quarter;
 
-pub use full::{antisymmetric_half, full_car, symmetric_half};
+pub(crate) use full::antisymmetric_half;
+pub use full::{full_car, symmetric_half};
 pub use modes::Mode;
 pub use quarter::quarter_car;
 

@@ -47,7 +47,7 @@ pub(crate) fn ideal_nadir(front: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
 /// Reference point `r_k = nadir_k + margin (nadir_k - ideal_k)` of a (reference) front,
 /// so the hypervolume measures the front in its own window whatever the units.
 /// An objective with no spread gets `nadir_k + margin max(|nadir_k|, 1)`.
-pub fn reference_point(front: &[[f64; 2]], margin: f64) -> [f64; 2] {
+pub(crate) fn reference_point(front: &[[f64; 2]], margin: f64) -> [f64; 2] {
     let (ideal, nadir) = ideal_nadir(front);
     let mut r = [0.0; 2];
     for k in 0..2 {
@@ -77,7 +77,7 @@ pub struct FrontDistance {
 }
 
 /// Nearest-point distances between `front` and `reference` (both non-empty), both ways.
-pub fn front_distance(front: &[[f64; 2]], reference: &[[f64; 2]]) -> FrontDistance {
+pub(crate) fn front_distance(front: &[[f64; 2]], reference: &[[f64; 2]]) -> FrontDistance {
     let (ideal, nadir) = ideal_nadir(reference);
     let scale = [0, 1].map(|k| {
         let s = nadir[k] - ideal[k];

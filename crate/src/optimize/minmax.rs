@@ -60,7 +60,7 @@ impl PickRule {
     }
 
     /// The rule as written on the command line.
-    pub fn name(self) -> String {
+    pub(crate) fn name(self) -> String {
         match self {
             PickRule::MinMax => "minmax".into(),
             PickRule::Knee => "knee".into(),
@@ -134,7 +134,7 @@ pub fn normalised_distances(front: &[FrontPoint], datum: &Criteria) -> Vec<[f64;
 
 /// Pseudo-weights `[w_bacc, w_dtl]` of normalised distances `d` (`[0.5, 0.5]` when both
 /// are 1, a front of one point).
-pub fn pseudo_weights(d: [f64; 2]) -> [f64; 2] {
+pub(crate) fn pseudo_weights(d: [f64; 2]) -> [f64; 2] {
     let (a, b) = (1.0 - d[0], 1.0 - d[1]);
     if a + b > 0.0 {
         [a / (a + b), b / (a + b)]

@@ -20,13 +20,15 @@ mod test_problems;
 mod tests;
 pub mod trust;
 
-pub use hypervolume::{front_distance, hypervolume, reference_point, FrontDistance};
-pub use minmax::{
-    min_max_pick, normalised_distances, pick, pseudo_weights, recheck, Pick, PickRule, Recheck,
-};
+pub(crate) use hypervolume::{front_distance, reference_point};
+pub use hypervolume::{hypervolume, FrontDistance};
+#[cfg(test)]
+pub(crate) use minmax::pseudo_weights;
+pub use minmax::{min_max_pick, normalised_distances, pick, recheck, Pick, PickRule, Recheck};
 pub use nsga2::{nsga2, Nsga2Params};
-pub use problem::{dominates, non_dominated, Eval, Problem, Solution};
+pub use problem::{non_dominated, Eval, Problem, Solution};
 pub use stm::{stm, StmParams};
 pub use study::{run_study, Method, Study};
-pub use suspension::{Counted, FrontPoint, SuspensionProblem};
-pub use trust::{pick_warnings, Warning, RECHECK_TOLERANCE_PERCENT};
+pub(crate) use suspension::Counted;
+pub use suspension::{FrontPoint, SuspensionProblem};
+pub use trust::{pick_warnings, Warning};

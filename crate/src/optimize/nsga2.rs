@@ -54,7 +54,7 @@ const MAX_GENERATIONS: usize = 10_000;
 
 impl Nsga2Params {
     /// Checks every setting; errors name the field.
-    pub fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         if self.population < 4
             || !self.population.is_multiple_of(2)
             || self.population > MAX_POPULATION

@@ -20,7 +20,7 @@ pub struct Eval<I> {
 
 impl<I> Eval<I> {
     /// True when no constraint is broken.
-    pub fn feasible(&self) -> bool {
+    pub(crate) fn feasible(&self) -> bool {
         self.violation <= 0.0
     }
 }
@@ -72,7 +72,7 @@ pub(crate) fn check_bounds(bounds: &[(f64, f64)]) -> Result<()> {
 }
 
 /// Pareto dominance for minimisation: `a` is no worse in both objectives and better in one.
-pub fn dominates(a: [f64; 2], b: [f64; 2]) -> bool {
+pub(crate) fn dominates(a: [f64; 2], b: [f64; 2]) -> bool {
     a[0] <= b[0] && a[1] <= b[1] && (a[0] < b[0] || a[1] < b[1])
 }
 

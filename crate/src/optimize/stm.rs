@@ -42,7 +42,7 @@ impl Default for StmParams {
 
 impl StmParams {
     /// Checks the settings; errors name the field.
-    pub fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         if !(2..=2001).contains(&self.grid) {
             return Err(RideError::field(
                 "grid",

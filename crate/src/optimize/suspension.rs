@@ -12,14 +12,14 @@ use serde::Serialize;
 use std::cell::{Cell, RefCell};
 
 /// An evaluator that counts its calls (how many model runs a study cost).
-pub struct Counted<E> {
+pub(crate) struct Counted<E> {
     inner: E,
     count: Cell<usize>,
 }
 
 impl<E: Evaluator> Counted<E> {
     /// Wraps `inner` with the count at 0.
-    pub fn new(inner: E) -> Self {
+    pub(crate) fn new(inner: E) -> Self {
         Counted {
             inner,
             count: Cell::new(0),
@@ -36,7 +36,7 @@ impl<E: Evaluator> Counted<E> {
     }
 
     /// Calls made so far, failed ones included.
-    pub fn count(&self) -> usize {
+    pub(crate) fn count(&self) -> usize {
         self.count.get()
     }
 }
@@ -94,7 +94,7 @@ impl FrontPoint {
     }
 
     /// The criteria of the point.
-    pub fn criteria(&self) -> Criteria {
+    pub(crate) fn criteria(&self) -> Criteria {
         Criteria {
             bacc: self.bacc,
             dtl: self.dtl,
@@ -186,7 +186,7 @@ impl<E: Evaluator> SuspensionProblem<E> {
     }
 
     /// Evaluator calls made so far.
-    pub fn evaluations(&self) -> usize {
+    pub(crate) fn evaluations(&self) -> usize {
         self.evaluator.count()
     }
 
@@ -196,7 +196,7 @@ impl<E: Evaluator> SuspensionProblem<E> {
     }
 
     /// The car context (sprung mass, tyre rate, datum criteria).
-    pub fn context(&self) -> &DosContext {
+    pub(crate) fn context(&self) -> &DosContext {
         &self.ctx
     }
 

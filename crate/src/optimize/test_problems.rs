@@ -93,7 +93,7 @@ impl Problem for Bnh {
 /// `v = 20 m/s`; `ms = 467.7 kg`, `mu = 40 kg`, `kt = 175500 N/m`, `M = ms + mu`:
 /// `var(BAcc) = W (ks^2 M + cs^2 kt) / (2 cs ms^2)`, `var(SWS) = W M / (2 cs)`,
 /// `var(DTL) = W / (2 cs) [kt^2 mu + (M/ms)^2 (ks^2 M + cs^2 kt) - 2 ks kt mu M / ms]`.
-pub struct QuarterCar;
+pub(crate) struct QuarterCar;
 
 impl QuarterCar {
     /// Sprung mass, kg.
@@ -104,7 +104,7 @@ impl QuarterCar {
     pub(crate) const KT: f64 = 175_500.0;
 
     /// Road input intensity `W = 2 pi^2 Gd n0^2 v`, m^2/s^3.
-    pub fn w() -> f64 {
+    pub(crate) fn w() -> f64 {
         2.0 * std::f64::consts::PI.powi(2) * 64e-6 * 0.1f64.powi(2) * 20.0
     }
 }

@@ -13,7 +13,7 @@ use serde::Serialize;
 /// fidelity study stay within 1 % (README), the LoFi within about 2 % of the HiFi near
 /// the datum; 3 % is beyond both, and a predicted improvement that large is no longer
 /// the HiFi's.
-pub const RECHECK_TOLERANCE_PERCENT: f64 = 3.0;
+pub(crate) const RECHECK_TOLERANCE_PERCENT: f64 = 3.0;
 
 /// Relative distance from a box bound, of the box's width, within which a pick counts
 /// as on the bound (STM's refinement and boundary bisection put a pick the box stops

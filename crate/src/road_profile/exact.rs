@@ -75,7 +75,7 @@ pub fn criteria_shaped(model: &LinearModel, road: &ShapedRoad) -> Result<Criteri
 /// appended, driven by BAcc (as [`crate::criteria::bacc_wk_exact`] on an ISO road; BAcc
 /// has no static gain from the road, and Wk none at 0 Hz, so the weighted output has no
 /// box terms), by the same Lyapunov equations.
-pub fn bacc_wk_shaped(model: &LinearModel, road: &ShapedRoad) -> Result<f64> {
+pub(crate) fn bacc_wk_shaped(model: &LinearModel, road: &ShapedRoad) -> Result<f64> {
     let mut var = 0.0;
     for form in forms(model, road)? {
         let scale = form.cy.row(0).amax().max(1.0);

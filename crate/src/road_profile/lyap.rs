@@ -17,7 +17,7 @@ use crate::error::{Result, RideError};
 use nalgebra::{DMatrix, Schur};
 
 /// The Schur form of `A`, ready for any number of right-hand sides.
-pub struct Lyapunov {
+pub(crate) struct Lyapunov {
     q: DMatrix<f64>,
     t: DMatrix<f64>,
     /// `(first index, size)` of each diagonal block of `T`.
@@ -26,7 +26,7 @@ pub struct Lyapunov {
 
 impl Lyapunov {
     /// Decomposes `a` (square).
-    pub fn new(a: &DMatrix<f64>) -> Result<Lyapunov> {
+    pub(crate) fn new(a: &DMatrix<f64>) -> Result<Lyapunov> {
         let n = a.nrows();
         let schur = Schur::try_new(a.clone(), f64::EPSILON, 1000 * n.max(1))
             .ok_or_else(|| RideError::Numerical("Schur decomposition did not converge".into()))?;

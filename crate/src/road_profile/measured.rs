@@ -2,6 +2,7 @@
 //! design map and optimiser run on a profile file (`--road FILE`) as on an ISO class.
 
 use super::modal::{bacc_wk_shaped_fast, criteria_shaped_fast};
+#[cfg(test)]
 use super::profile::Profile;
 use super::shaped::{ProfileTracks, ShapedRoad, ShapedSource};
 use crate::analysis::{half_family, Half, ModelKind};
@@ -37,11 +38,6 @@ impl ShapedQuarter {
             .map(|s| Some((s.weights[0], s.filter.pole_zero()?)))
             .collect();
         ShapedQuarter { road, sources }
-    }
-
-    /// The shaped road.
-    pub fn road(&self) -> &ShapedRoad {
-        &self.road
     }
 
     /// Exact RMS `[BAcc m/s^2, DTL N, SWS m]` of the (valid) quarter car `q` on the road.
@@ -134,7 +130,7 @@ impl MeasuredModel {
     }
 
     /// The shaped road (speed, band, sources and their filters).
-    pub fn road(&self) -> &ShapedRoad {
+    pub(crate) fn road(&self) -> &ShapedRoad {
         &self.road
     }
 }
@@ -277,7 +273,8 @@ impl DesignOnRoad {
     /// itself, on `profile` (named `file`) at `speed` (m/s) with `tracks`; errors name
     /// `road: ...` (the profile's column and row, or what the speed needs of it), `ks` or
     /// `cs`.
-    pub fn compute(
+    #[cfg(test)]
+    pub(crate) fn compute(
         datum: &Car,
         ks: f64,
         cs: f64,
@@ -291,7 +288,7 @@ impl DesignOnRoad {
         DesignOnRoad::on_shaped(datum, ks, cs, &shaped, file, tracks)
     }
 
-    /// [`DesignOnRoad::compute`] on the profile already shaped at its speed (`shaped`,
+    /// `DesignOnRoad::compute` on the profile already shaped at its speed (`shaped`,
     /// from the profile `file` with `tracks`): what the page asks again after a design
     /// move, with the road it keeps; errors name `ks` or `cs`.
     pub fn on_shaped(

@@ -13,7 +13,7 @@
 //!   default (white velocity, `w = 2`) outside it ([`VelocityPsd`]); a small stable
 //!   rational filter ([`ShapingFilter`]) driven by unit white noise reproduces it with a
 //!   stated error;
-//! - **the criteria by two routes**: exact ([`criteria_shaped_fast`]: the modal route
+//! - **the criteria by two routes**: exact ([`criteria_shaped_fast`](modal::criteria_shaped_fast): the modal route
 //!   [`criteria_shaped_modal`], the model's modes times the filters' partial fractions, and
 //!   where it declines [`criteria_shaped`], Lyapunov equations of the model augmented with
 //!   the filter, the front-rear delay exact through `exp(A tau)`; the quarter car's
@@ -45,22 +45,16 @@ mod welch;
 
 pub use crate::road::{MeasuredRoad, RoadScenario};
 pub use describe::{describe, CoherenceSeries, IsoFit, PsdSeries, RoadDescription, WelchInfo};
-pub use exact::{bacc_wk_shaped, criteria_shaped};
+pub use exact::criteria_shaped;
 pub use measured::{
     road_error, DesignOnRoad, MeasuredModel, QuarterRoute, ShapedQuarter, WkOnRoad,
 };
-pub use modal::{
-    bacc_wk_shaped_fast, bacc_wk_shaped_modal, criteria_shaped_fast, criteria_shaped_modal,
-};
+pub(crate) use modal::bacc_wk_shaped_fast;
+pub use modal::criteria_shaped_modal;
 pub use playback::{playback, WheelRoad};
-pub use profile::{
-    Profile, MAX_BYTES, MAX_GAP_RATIO, MAX_ROUGHNESS_RMS, MAX_SAMPLES, MAX_SPACING, MIN_SAMPLES,
-    MIN_SPACING, ROUGHNESS_WAVELENGTH, UNIFORM_TOLERANCE,
-};
+pub use profile::{Profile, MAX_BYTES};
 pub use shaped::{ProfileTracks, ShapedRoad, ShapedSource};
-pub use shaping::{
-    Extension, ShapingFilter, VelocityPsd, EXTENSION_SLOPE_OCTAVES, MAX_FILTER_ORDER,
-};
+pub use shaping::{Extension, ShapingFilter, VelocityPsd};
 pub use spectral::{criteria_shaped_spectral, ShapedSpectrum};
 pub use synth::{shipped_examples, synthesize, Slabs, Synthesis, EXAMPLE_DECIMALS};
 

@@ -169,7 +169,7 @@ pub fn criteria_shaped_modal(model: &LinearModel, road: &ShapedRoad) -> Result<C
 /// (module doc) times the Wk filter's ([`crate::criteria::bacc_wk_modal`]'s closed form
 /// on the model's, the road filters' and Wk's poles). Declines with
 /// `Err(ModalInapplicable(..))` where either expansion is not accurate.
-pub fn bacc_wk_shaped_modal(model: &LinearModel, road: &ShapedRoad) -> Result<f64> {
+pub(crate) fn bacc_wk_shaped_modal(model: &LinearModel, road: &ShapedRoad) -> Result<f64> {
     let mut var = 0.0;
     for s in expansion(model, road)? {
         let scale = s
@@ -199,7 +199,7 @@ pub fn bacc_wk_shaped_modal(model: &LinearModel, road: &ShapedRoad) -> Result<f6
 /// The Wk-weighted RMS body acceleration on a shaped road, m/s^2, exact: the modal route
 /// ([`bacc_wk_shaped_modal`]) where it is accurate, else the Lyapunov equations of the
 /// model augmented with the road's filters and Wk ([`bacc_wk_shaped`]).
-pub fn bacc_wk_shaped_fast(model: &LinearModel, road: &ShapedRoad) -> Result<f64> {
+pub(crate) fn bacc_wk_shaped_fast(model: &LinearModel, road: &ShapedRoad) -> Result<f64> {
     match bacc_wk_shaped_modal(model, road) {
         Err(RideError::ModalInapplicable(_)) => bacc_wk_shaped(model, road),
         other => other,
@@ -208,7 +208,7 @@ pub fn bacc_wk_shaped_fast(model: &LinearModel, road: &ShapedRoad) -> Result<f64
 
 /// Exact criteria on a shaped road: the modal route ([`criteria_shaped_modal`]) where it
 /// is accurate, the augmented Lyapunov equations ([`criteria_shaped`]) otherwise.
-pub fn criteria_shaped_fast(model: &LinearModel, road: &ShapedRoad) -> Result<Criteria> {
+pub(crate) fn criteria_shaped_fast(model: &LinearModel, road: &ShapedRoad) -> Result<Criteria> {
     match criteria_shaped_modal(model, road) {
         Err(RideError::ModalInapplicable(_)) => criteria_shaped(model, road),
         other => other,

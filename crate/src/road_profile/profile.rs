@@ -25,23 +25,23 @@ use crate::error::{Result, RideError};
 use std::fmt::Write as _;
 
 /// Fewest samples (data rows) a profile may have.
-pub const MIN_SAMPLES: usize = 256;
+pub(crate) const MIN_SAMPLES: usize = 256;
 /// Most samples (data rows) a profile may have (a 100 km profile at 5 cm).
-pub const MAX_SAMPLES: usize = 2_000_000;
+pub(crate) const MAX_SAMPLES: usize = 2_000_000;
 /// Largest file accepted, bytes (128 MiB).
 pub const MAX_BYTES: usize = 128 << 20;
 /// A spacing that varies by more than this fraction of the mean spacing is resampled.
-pub const UNIFORM_TOLERANCE: f64 = 0.01;
+pub(crate) const UNIFORM_TOLERANCE: f64 = 0.01;
 /// A gap larger than this many mean spacings is refused.
-pub const MAX_GAP_RATIO: f64 = 10.0;
+pub(crate) const MAX_GAP_RATIO: f64 = 10.0;
 /// Smallest mean spacing accepted, m.
-pub const MIN_SPACING: f64 = 0.001;
+pub(crate) const MIN_SPACING: f64 = 0.001;
 /// Largest mean spacing accepted, m (ISO 8608's band reaches 2.83 cycle/m).
-pub const MAX_SPACING: f64 = 0.5;
+pub(crate) const MAX_SPACING: f64 = 0.5;
 /// Roughness is the elevation less its moving average over this length, m.
-pub const ROUGHNESS_WAVELENGTH: f64 = 20.0;
+pub(crate) const ROUGHNESS_WAVELENGTH: f64 = 20.0;
 /// Largest RMS roughness accepted, m (more: the file is probably in millimetres).
-pub const MAX_ROUGHNESS_RMS: f64 = 0.5;
+pub(crate) const MAX_ROUGHNESS_RMS: f64 = 0.5;
 /// Smallest RMS roughness accepted, m (less: the profile is flat).
 const MIN_ROUGHNESS_RMS: f64 = 1e-9;
 
@@ -302,7 +302,7 @@ impl Profile {
 
     /// A profile already on a uniform grid (`spacing` m, first sample at `start` m),
     /// checked like a file.
-    pub fn uniform(
+    pub(crate) fn uniform(
         spacing: f64,
         start: f64,
         elevation: Vec<f64>,
@@ -335,7 +335,7 @@ impl Profile {
     }
 
     /// Length covered, `(N - 1) dx`, m.
-    pub fn length(&self) -> f64 {
+    pub(crate) fn length(&self) -> f64 {
         (self.len() - 1) as f64 * self.spacing
     }
 
@@ -345,17 +345,17 @@ impl Profile {
     }
 
     /// The right track (the only track when the file has one), m.
-    pub fn right(&self) -> &[f64] {
+    pub(crate) fn right(&self) -> &[f64] {
         self.elevation_right.as_deref().unwrap_or(&self.elevation)
     }
 
     /// The left track (column `elevation_m`), m.
-    pub fn left(&self) -> &[f64] {
+    pub(crate) fn left(&self) -> &[f64] {
         &self.elevation
     }
 
     /// Welch segment length of [`super::describe`], samples.
-    pub fn segment_samples(&self) -> usize {
+    pub(crate) fn segment_samples(&self) -> usize {
         super::welch::segment_length(self.len())
     }
 

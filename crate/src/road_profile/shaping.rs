@@ -49,7 +49,8 @@ use serde::Serialize;
 use std::f64::consts::PI;
 
 /// Most poles of a shaping filter.
-pub const MAX_FILTER_ORDER: usize = 8;
+#[cfg(test)]
+const MAX_FILTER_ORDER: usize = 8;
 /// Filter orders tried.
 const ORDERS: [usize; 3] = [4, 6, 8];
 /// Band means per octave of the fit's target, and fewest Welch bins in each.
@@ -65,7 +66,7 @@ const EXTENSION_OCTAVES: f64 = 4.0;
 const ISO_PER_DECADE: f64 = 50.0;
 /// Octaves over which a velocity PSD keeps its end slope beyond the band before it turns
 /// white.
-pub const EXTENSION_SLOPE_OCTAVES: f64 = 2.0;
+pub(crate) const EXTENSION_SLOPE_OCTAVES: f64 = 2.0;
 
 /// How a velocity PSD continues beyond its breakpoints: the power law of the band's end,
 /// bending smoothly to white beyond `corner`:
@@ -262,7 +263,7 @@ impl VelocityPsd {
 
     /// `Gv(f)`, m^2/s^2 per Hz: log-log interpolation between breakpoints, the
     /// extensions outside them (`f` may be 0 or infinite).
-    pub fn at(&self, f: f64) -> f64 {
+    pub(crate) fn at(&self, f: f64) -> f64 {
         let m = self.f.len();
         if m == 0 {
             return if f <= self.below.anchor_hz {
@@ -348,7 +349,7 @@ pub struct ShapingFilter {
 
 impl ShapingFilter {
     /// The constant filter `sqrt(gv / 2)` of a white velocity PSD `gv`.
-    pub fn constant(gv: f64, band: [f64; 2]) -> ShapingFilter {
+    pub(crate) fn constant(gv: f64, band: [f64; 2]) -> ShapingFilter {
         ShapingFilter {
             gain: (gv / 2.0).sqrt(),
             zeros: Vec::new(),
@@ -361,7 +362,7 @@ impl ShapingFilter {
     }
 
     /// Fits the filter to `psd` (see the module doc).
-    pub fn fit(psd: &VelocityPsd) -> Result<ShapingFilter> {
+    pub(crate) fn fit(psd: &VelocityPsd) -> Result<ShapingFilter> {
         if psd.is_white() {
             return Ok(ShapingFilter::constant(psd.below.level, psd.band));
         }
@@ -399,17 +400,18 @@ impl ShapingFilter {
     }
 
     /// The largest error in and outside the band, -.
-    pub fn error(&self) -> f64 {
+    pub(crate) fn error(&self) -> f64 {
         self.max_error.max(self.max_error_outside)
     }
 
     /// Number of poles (states).
-    pub fn order(&self) -> usize {
+    pub(crate) fn order(&self) -> usize {
         self.poles.len()
     }
 
     /// `F(i omega)` at `f` Hz.
-    pub fn response(&self, f: f64) -> num_complex::Complex64 {
+    #[cfg(test)]
+    fn response(&self, f: f64) -> num_complex::Complex64 {
         let s = num_complex::Complex64::new(0.0, 2.0 * PI * f);
         self.zeros.iter().zip(&self.poles).fold(
             num_complex::Complex64::new(self.gain, 0.0),

@@ -214,7 +214,7 @@ impl<'a> ShapedSpectrum<'a> {
     }
 
     /// RMS criteria over `[f_lo, infinity)` to relative tolerance `rtol` on the variance.
-    pub fn rms(&self, f_lo: f64, rtol: f64) -> SpectralCriteria {
+    pub(crate) fn rms(&self, f_lo: f64, rtol: f64) -> SpectralCriteria {
         let q = adaptive(|th| self.mapped_psd(th), &self.cuts(f_lo), rtol);
         SpectralCriteria {
             criteria: Criteria::from_array(q.value.map(|v| v.max(0.0).sqrt())),

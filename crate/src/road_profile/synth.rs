@@ -92,7 +92,7 @@ impl Default for Synthesis {
 
 impl Synthesis {
     /// Checks every field; messages name the field.
-    pub fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         let pos = |v: f64| v.is_finite() && v > 0.0;
         if !(pos(self.gd_n0) && self.gd_n0 <= 1.0) {
             return Err(RideError::field("gd_n0", "must be in (0, 1] m^3"));
@@ -145,7 +145,7 @@ impl Synthesis {
     }
 
     /// The PSD realised, `Gd(n) = Gd(n0) (n / n0)^-w`, m^3 (before slabs).
-    pub fn gd(&self, n: f64) -> f64 {
+    pub(crate) fn gd(&self, n: f64) -> f64 {
         self.gd_n0 * math::powf(n / N0, -self.waviness)
     }
 }

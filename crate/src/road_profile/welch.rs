@@ -60,7 +60,7 @@ pub(crate) fn segment_for_speed(speed: f64, dx: f64) -> usize {
 }
 
 /// Number of Welch segments of `seg` slopes in a record of `n` samples (50 % overlap).
-pub fn segments(n: usize, seg: usize) -> usize {
+pub(crate) fn segments(n: usize, seg: usize) -> usize {
     let slopes = n.saturating_sub(1);
     if slopes < seg {
         0
@@ -70,7 +70,7 @@ pub fn segments(n: usize, seg: usize) -> usize {
 }
 
 /// Spectral densities of one or two tracks over the bins `n_j`, `j = 1..=L/2`.
-pub struct Spectra {
+pub(crate) struct Spectra {
     /// Spatial frequencies, cycle/m.
     pub n: Vec<f64>,
     /// One-sided auto PSD of the first track, m^3.

@@ -40,7 +40,7 @@ const DEFAULT_F_MAX: f64 = 200.0;
 /// Most time steps in one run (duration / dt).
 pub const MAX_STEPS: f64 = 4.0e6;
 /// Most samples a run records (duration / dt / decimate).
-pub const MAX_SAMPLES: f64 = 5.0e5;
+pub(crate) const MAX_SAMPLES: f64 = 5.0e5;
 
 /// Settings of a time-domain run.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -89,7 +89,7 @@ impl TimeOptions {
     }
 
     /// Checks every field; messages name the field.
-    pub fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         if !(self.duration.is_finite() && self.duration > 0.0 && self.duration <= 3600.0) {
             return Err(RideError::field("duration", "must be in (0, 3600] s"));
         }

@@ -73,7 +73,10 @@ fn numerators(q: &QuarterCar, s: C64) -> ([C64; N_OUT], C64) {
 /// RMS `[BAcc m/s^2, DTL N, SWS m]` of the quarter car `q` whose wheel each source drives
 /// with its `weight` (its velocity the `filter` driven by unit white noise; independent
 /// sources add), by the closed form of the module doc; `None` where it declines.
-pub fn quarter_shaped(q: &QuarterCar, sources: &[(f64, PoleZeroFilter)]) -> Option<Criteria> {
+pub(crate) fn quarter_shaped(
+    q: &QuarterCar,
+    sources: &[(f64, PoleZeroFilter)],
+) -> Option<Criteria> {
     let d = [
         q.ks * q.kt,
         q.cs * q.kt + q.ks * q.ct,

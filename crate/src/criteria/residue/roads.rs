@@ -28,7 +28,7 @@ use crate::model::N_OUT;
 /// The residue routes of one model on several roads (each [`ResidueRoute`] built for one
 /// road), evaluated together at each design (module doc).
 #[derive(Debug, Clone, PartialEq)]
-pub struct ResidueRoads {
+pub(crate) struct ResidueRoads {
     routes: Vec<ResidueRoute>,
     /// Per road, the first road whose families have the same wheel delays.
     delays_of: Vec<usize>,
@@ -37,7 +37,7 @@ pub struct ResidueRoads {
 impl ResidueRoads {
     /// The routes `routes` (one per road) of one model; fails on none, or when their
     /// families differ in more than the road (the wheel delays and the intensity).
-    pub fn new(routes: Vec<ResidueRoute>) -> Result<ResidueRoads> {
+    pub(crate) fn new(routes: Vec<ResidueRoute>) -> Result<ResidueRoads> {
         let unsuited = |why: &str| RideError::Numerical(format!("residue roads: {why}"));
         let first = routes.first().ok_or_else(|| unsuited("needs a route"))?;
         for r in &routes[1..] {
@@ -66,19 +66,9 @@ impl ResidueRoads {
         Ok(ResidueRoads { routes, delays_of })
     }
 
-    /// Number of roads.
-    pub fn len(&self) -> usize {
-        self.routes.len()
-    }
-
-    /// Always false: there is at least one road.
-    pub fn is_empty(&self) -> bool {
-        self.routes.is_empty()
-    }
-
     /// Per road, what its own route's [`ResidueRoute::criteria`] gives at `(ks, cs)`
     /// (N/m, N s/m), bit for bit.
-    pub fn criteria(&self, ks: f64, cs: f64) -> Vec<Result<Certified>> {
+    pub(crate) fn criteria(&self, ks: f64, cs: f64) -> Vec<Result<Certified>> {
         let n = self.routes.len();
         let mut sums = vec![([0.0; N_OUT], [0.0; N_OUT]); n];
         // A road is settled once a part declines or errs, as its own route returns then.

@@ -41,7 +41,7 @@ const MAX_CANCELLATION: f64 = 1e4;
 /// A stable real rational filter `F(s) = K prod_i (s + z_i) / (s + p_i)` with distinct
 /// real poles `-p_i`, and its partial fractions `F(s) = K + sum_i c_i / (s - mu_i)`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct PoleZeroFilter {
+pub(crate) struct PoleZeroFilter {
     gain: f64,
     zeros: Vec<f64>,
     poles: Vec<f64>,
@@ -56,7 +56,7 @@ impl PoleZeroFilter {
     /// magnitudes, `|K| + sum_i |c_i / (i w - mu_i)|`, exceeds [`MAX_CANCELLATION`] times
     /// `|F(i w)|` at `w = 0` or at a pole's frequency `w = |mu_i|` (nearly repeated poles,
     /// which fits of steep slopes make, give huge `c_i` of opposite signs).
-    pub fn new(gain: f64, zeros: &[f64], poles: &[f64]) -> Option<PoleZeroFilter> {
+    pub(crate) fn new(gain: f64, zeros: &[f64], poles: &[f64]) -> Option<PoleZeroFilter> {
         if zeros.len() != poles.len() || poles.iter().any(|p| !(p.is_finite() && *p > 0.0)) {
             return None;
         }
@@ -98,7 +98,7 @@ impl PoleZeroFilter {
     }
 
     /// `F(s)` at a complex `s`, rad/s, from the product of first-order factors.
-    pub fn at(&self, s: C64) -> C64 {
+    pub(crate) fn at(&self, s: C64) -> C64 {
         self.zeros
             .iter()
             .zip(&self.poles)
@@ -136,7 +136,7 @@ impl PoleZeroFilter {
 /// the filter of its one source) whose weighted variances add (the symmetric half
 /// driven by the sum of the tracks, the antisymmetric half by their difference).
 #[derive(Debug, Clone, PartialEq)]
-pub struct ShapedResidueRoute {
+pub(crate) struct ShapedResidueRoute {
     parts: Vec<(ResidueFamily, f64, PoleZeroFilter)>,
 }
 
@@ -144,7 +144,9 @@ impl ShapedResidueRoute {
     /// The route over `parts`; fails on no part, a weight that is not finite and
     /// positive, a family of more than one source, or a filter of more than
     /// [`MAX_FILTER_POLES`] poles.
-    pub fn new(parts: Vec<(ResidueFamily, f64, PoleZeroFilter)>) -> Result<ShapedResidueRoute> {
+    pub(crate) fn new(
+        parts: Vec<(ResidueFamily, f64, PoleZeroFilter)>,
+    ) -> Result<ShapedResidueRoute> {
         let ok = !parts.is_empty()
             && parts.iter().all(|(f, w, filter)| {
                 w.is_finite()
@@ -163,7 +165,7 @@ impl ShapedResidueRoute {
 
     /// RMS `[BAcc m/s^2, DTL N, SWS m]` at `(ks, cs)` (N/m, N s/m), or `None` where the
     /// route declines (module doc); errors on a road warp.
-    pub fn criteria(&self, ks: f64, cs: f64) -> Result<Option<Criteria>> {
+    pub(crate) fn criteria(&self, ks: f64, cs: f64) -> Result<Option<Criteria>> {
         let mut var = [0.0; N_OUT];
         for (family, weight, filter) in &self.parts {
             match family.at(ks, cs, Shaped { filter })? {
