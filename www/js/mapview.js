@@ -50,6 +50,9 @@ function hatchGroups(objectives) {
   }));
 }
 
+/** The SWS limit's line by map set (`MapView.limitLine`). */
+const LIMIT_LINES = new WeakMap();
+
 /** The core's smallest map chart, logical px. */
 const MIN_W = 360;
 const MIN_H = 240;
@@ -69,7 +72,8 @@ export class MapView {
    *   - `onPick(ks, cs)`: a click or drag on the map, N/m and N s/m;
    *   - `onKey(ev)`: a key on the focused map (true when it moved the design);
    *   - `contours(field, nx, ny, levels)`: the core's marching squares (js/compute.js
-   *     `contours`), segments per level in grid coordinates;
+   *     `contours`), segments per level in grid coordinates: the SWS limit's line (the
+   *     contour lines at the colour bar's ticks come with the frame, `drawMapFrame`);
    *   - `objectives`: the core's design objectives by mask bit (`{bit, label, family}[]`),
    *     read when a map is drawn or hovered: the page builds its map views before the core
    *     is up, so their figures are laid out while the wasm downloads.
@@ -246,7 +250,7 @@ export class MapView {
       return { kind, bits, canvas };
     });
 
-    const limitLine = swsLimit && !error ? this.contours(values.subarray(2 * n, 3 * n), nx, ny, [swsLimit])[0] : [];
+    const limitLine = swsLimit && !error ? this.limitLine(maps, swsLimit) : [];
 
     this.data = {
       nx, ny, box, lo, hi, colourMap, colour, masks: drawn, limitLine, scale,
@@ -267,6 +271,19 @@ export class MapView {
         `values ${fmt(lo)} to ${fmt(hi)} ${this.data.unit}.`,
     );
     if (draw) this.drawAtSize();
+  }
+
+  /**
+   * The SWS limit's line on `maps` (the SWS plane of its `values`): traced once for the
+   * three views that show one map set, not once per view.
+   */
+  limitLine(maps, swsLimit) {
+    const kept = LIMIT_LINES.get(maps);
+    if (kept && kept.swsLimit === swsLimit) return kept.line;
+    const n = maps.nx * maps.ny;
+    const line = this.contours(maps.values.subarray(2 * n, 3 * n), maps.nx, maps.ny, [swsLimit])[0];
+    LIMIT_LINES.set(maps, { swsLimit, line });
+    return line;
   }
 
   /**
