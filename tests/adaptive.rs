@@ -67,7 +67,7 @@ fn five_adaptive_runs_beat_ten_audze_eglais_points_on_four_scenarios() {
         ] {
             let spec = SurrogateSpec::parse(name).unwrap();
             let fixed = spec.fit(&setting, &ae10, &LmOptions::default()).unwrap();
-            let fixed = front_check(&*fixed, &hifi, &decision, &b, &reference, 10).unwrap();
+            let fixed = front_check(&fixed, &hifi, &decision, &b, &reference, 10).unwrap();
             let options = AdaptiveOptions {
                 runs: 5,
                 uncertainty: Some(method),
@@ -448,7 +448,7 @@ fn the_study_rows_are_the_loop_and_the_plans() {
     assert_eq!(looped, study.rows[0].adaptive);
     let ae = sample_plan(&hifi, &PlanSpec::AudzeEglais(8).plan().unwrap(), &b).unwrap();
     let fixed = spec.fit(&setting, &ae, &LmOptions::default()).unwrap();
-    let fixed = front_check(&*fixed, &hifi, &decision, &b, &reference, 8).unwrap();
+    let fixed = front_check(&fixed, &hifi, &decision, &b, &reference, 8).unwrap();
     assert_eq!(fixed, study.rows[1].audze_eglais);
     let md = study.to_markdown();
     assert!(md.contains("| 8 | "), "{md}");

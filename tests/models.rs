@@ -430,7 +430,7 @@ fn evaluators_and_bad_inputs() {
     let setting = Setting::new(&car, &road, &box_).unwrap();
     let plan = PlanSpec::parse("grid:3").unwrap().plan().unwrap();
     let samples = sample_plan(&hifi, &plan, &box_).unwrap();
-    let surrogates: Vec<Box<dyn ridelab::surrogate::Surrogate>> = [
+    let surrogates: Vec<ridelab::surrogate::Guarded> = [
         "rba-mul-poly2",
         "vba-qts",
         "pba-smts-umts",
@@ -446,7 +446,7 @@ fn evaluators_and_bad_inputs() {
     })
     .collect();
     let mut evaluators: Vec<&dyn Evaluator> = vec![&lofi, &hifi, &warp];
-    evaluators.extend(surrogates.iter().map(|s| s.as_ref() as &dyn Evaluator));
+    evaluators.extend(surrogates.iter().map(|s| s as &dyn Evaluator));
     let (ks, cs) = (car.front.spring, car.front.damper);
     let bad: [(f64, f64, &str, &str); 9] = [
         (0.0, cs, "ks", "must be > 0"),

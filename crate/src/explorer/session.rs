@@ -33,6 +33,7 @@ use crate::robust::{CaseSet, Combination, MAX_CASES};
 use crate::study::robust::map::{robust_fields, CaseField};
 use crate::study::robust::optimize::hifi_combination;
 use crate::study::SurrogateReport;
+use crate::surrogate::Surrogate;
 use crate::time_domain::TimeOptions;
 use std::rc::Rc;
 
@@ -469,7 +470,9 @@ impl Session {
             }
             Model::Surrogate | Model::SurrogateError => {
                 let fit = self.surrogate()?;
-                Dcs::compute(&*fit.model, grid, at, Scale::Absolute)?
+                // As a trait object, as the maps take every surrogate: one compiled map.
+                let model: &dyn Surrogate = &fit.model;
+                Dcs::compute(model, grid, at, Scale::Absolute)?
             }
         });
         self.keep(model, *grid, comfort, case, Rc::clone(&v), ComputePath::Cpu);
@@ -597,7 +600,8 @@ impl Session {
             )),
             Model::Surrogate => {
                 let fit = self.surrogate()?;
-                studies::front(&self.scenario, method, &*fit.model)
+                let model: &dyn Surrogate = &fit.model;
+                studies::front(&self.scenario, method, model)
             }
             Model::HiFi | Model::SurrogateError => Err(model.refused("frontModel", Model::FRONT)),
         }

@@ -20,6 +20,7 @@ use crate::optimize::{
 use crate::robust::{CaseSet, Combine};
 use crate::study::robust::optimize::CasePick;
 use crate::study::{EvaluatorSpec, OptimizeRequest};
+use crate::surrogate::Surrogate;
 use crate::time_domain::{simulate, Damper, TimeOptions, TimeResponse};
 use serde::Serialize;
 

@@ -19,14 +19,14 @@ use crate::robust::CaseSet;
 use crate::study::fidelity::Fitted;
 use crate::study::SurrogateReport;
 use crate::surrogate::{
-    sample_plan, LmOptions, ModelRecord, PlanSpec, Sample, Setting, Surrogate, SurrogateSpec,
+    sample_plan, Guarded, LmOptions, ModelRecord, PlanSpec, Sample, Setting, SurrogateSpec,
 };
 use serde::{Deserialize, Serialize};
 
 /// A fitted surrogate with the samples it was fitted to.
 pub struct FittedSurrogate {
-    /// The fitted model (an [`Evaluator`]).
-    pub model: Box<dyn Surrogate>,
+    /// The fitted model (an [`Evaluator`] and a [`crate::surrogate::Surrogate`]).
+    pub model: Guarded,
     /// The plan.
     pub plan: PlanSpec,
     /// How the plan was made (the fit report says so; kept, not searched for again).
@@ -162,7 +162,7 @@ impl FitRecord {
     pub(crate) fn adopt(&self, s: &Scenario) -> Option<FittedSurrogate> {
         let same = FitInputs::bytes(s).is_ok_and(|b| b == self.inputs);
         same.then(|| FittedSurrogate {
-            model: self.model.clone().into_surrogate(s.dbox),
+            model: Guarded::new(self.model.clone(), s.dbox),
             plan: s.plan,
             plan_method: self.plan_method.clone(),
             samples: self.samples.clone(),
@@ -200,7 +200,7 @@ pub fn fit_report(
         plan: s.plan.name(),
         plan_method: fitted.plan_method.clone(),
         samples: fitted.samples.clone(),
-        model: &*fitted.model,
+        model: &fitted.model,
         options: LmOptions::default(),
         adaptive: None,
     }

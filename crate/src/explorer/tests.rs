@@ -4,6 +4,7 @@ use super::*;
 use crate::dos::{DosContext, Objective};
 use crate::evaluate::Evaluator;
 use crate::maps::dos_mask::objective_bit;
+use crate::surrogate::Surrogate;
 use std::rc::Rc;
 
 fn session(patch: impl FnOnce(&mut State)) -> Session {
@@ -103,7 +104,7 @@ fn surrogate_map_and_error_map_agree_with_the_hifi() {
     let s = x.scenario().clone();
     let fit = x.surrogate().unwrap();
     let sur = x.map(Model::Surrogate, 7, 6).unwrap();
-    check_map_cells(&s, &*fit.model, &sur);
+    check_map_cells(&s, &fit.model, &sur);
     let hifi = x.map(Model::HiFi, 7, 6).unwrap();
     let err = x.map(Model::SurrogateError, 7, 6).unwrap();
     // The error planes are 100 (S / HiFi - 1) from the two maps, to rounding.

@@ -90,7 +90,7 @@ fn plane_check_equals_the_adaptive_studys_yardstick() {
     assert_eq!(reference.hypervolume, view.front.study.hypervolume);
     assert_eq!(reference.reference_point, view.front.study.reference_point);
     let fit = x.surrogate().unwrap();
-    let check = front_check(&*fit.model, &hifi, &decision, &s.dbox, &reference, 10).unwrap();
+    let check = front_check(&fit.model, &hifi, &decision, &s.dbox, &reference, 10).unwrap();
     let p = &view.plane;
     assert_eq!(p.model, "surrogate");
     assert_eq!(p.hifi_runs, fit.samples.len() + 1);

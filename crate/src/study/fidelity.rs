@@ -103,7 +103,7 @@ pub(super) fn surrogate_report_on<E: Evaluator>(
         plan: plan_spec.name(),
         plan_method: plan.method,
         samples,
-        model: &*model,
+        model: &model,
         options,
         adaptive: None,
     };
@@ -313,7 +313,7 @@ fn validate(
     options: &LmOptions,
 ) -> Result<FittedRow> {
     let model = spec.fit(setting, samples, options)?;
-    let metrics = validation.metrics(&validation.predict(&*model)?)?;
+    let metrics = validation.metrics(&validation.predict(&model)?)?;
     let diagnostics = model.diagnostics();
     let all = metrics.to_array();
     Ok(FittedRow {

@@ -6,8 +6,8 @@
 use super::fit::FitDiagnostics;
 use super::response::{fit_affine, method, AffineSample, Response, ResponseKind};
 use super::{
-    check_samples, relative_cost, require_samples, Approach, ModelRecord, Parameter, Sample,
-    Scheme, Setting, Surrogate, SurrogateParams, SurrogateSpec,
+    check_samples, relative_cost, require_samples, Approach, Parameter, Sample, Scheme, Setting,
+    Surrogate, SurrogateParams, SurrogateSpec,
 };
 use crate::design::DesignBox;
 use crate::error::Result;
@@ -121,7 +121,7 @@ impl Surrogate for DataFit {
         self.diagnostics.clone()
     }
 
-    fn record(&self) -> Option<ModelRecord> {
-        Some(ModelRecord::Data(self.clone()))
+    fn on_measured_road(&self) -> bool {
+        false
     }
 }

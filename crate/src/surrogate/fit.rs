@@ -11,7 +11,7 @@
 //! (for VBA a transformed Ks or Cs <= 0) gets a large constant residual, so Levenberg-Marquardt
 //! rejects the step and shrinks its trust region.
 
-use super::{ModelRecord, Sample, Scheme, SurrogateLoFi, Tuned};
+use super::{Sample, Scheme, SurrogateLoFi};
 use crate::car::QuarterCar;
 use crate::error::{Result, RideError};
 use crate::evaluate::Criteria;
@@ -46,11 +46,6 @@ pub trait Tuning: Send + Sync {
 
     /// The tuned quarter car at design `(ks N/m, cs N s/m)`.
     fn quarter(&self, a: &[f64], ks: f64, cs: f64) -> Result<QuarterCar>;
-
-    /// A model fitted with this tuning, as data ([`super::record`]).
-    fn record(tuned: &Tuned<Self>) -> ModelRecord
-    where
-        Self: Sized;
 }
 
 /// Settings of the Levenberg-Marquardt fit.

@@ -16,8 +16,8 @@ use super::fit::FitDiagnostics;
 use super::kriging::Kriging;
 use super::SurrogateLoFi;
 use super::{
-    check_samples, relative_cost, require_samples, Approach, ModelRecord, Parameter, Sample,
-    Scheme, Setting, Surrogate, SurrogateParams, SurrogateSpec,
+    check_samples, relative_cost, require_samples, Approach, Parameter, Sample, Scheme, Setting,
+    Surrogate, SurrogateParams, SurrogateSpec,
 };
 use crate::design::DesignBox;
 use crate::error::Result;
@@ -158,11 +158,8 @@ impl Surrogate for Gp {
         })))
     }
 
-    fn record(&self) -> Option<ModelRecord> {
-        self.lofi
-            .measured
-            .is_none()
-            .then(|| ModelRecord::Gp(self.clone()))
+    fn on_measured_road(&self) -> bool {
+        self.lofi.measured.is_some()
     }
 }
 

@@ -9,7 +9,8 @@
 //! message instead of the prediction; the fidelity study shows the surrogate's row as
 //! skipped with it.
 
-use super::{FitDiagnostics, ModelRecord, Parameter, Surrogate, SurrogateSpec};
+use super::record::ModelRecord;
+use super::{FitDiagnostics, Parameter, Surrogate, SurrogateSpec};
 use crate::car::QuarterCar;
 use crate::design::DesignBox;
 use crate::domain::num;
@@ -21,16 +22,24 @@ use crate::evaluate::{Criteria, Evaluator};
 /// column then shows this refusal rather than an extrapolation.
 const EXTRAPOLATION_LIMIT: f64 = 0.1;
 
-/// A fitted surrogate whose predictions are checked (module docs).
-pub(crate) struct Guarded {
-    inner: Box<dyn Surrogate>,
+/// A fitted surrogate whose predictions are checked (module docs): what
+/// [`SurrogateSpec::fit`] returns.
+pub struct Guarded {
+    inner: ModelRecord,
     fitted: DesignBox,
 }
 
 impl Guarded {
-    /// `inner`, fitted over `fitted`, with its predictions checked.
-    pub(crate) fn new(inner: Box<dyn Surrogate>, fitted: DesignBox) -> Guarded {
+    /// `inner`, fitted over `fitted`, with its predictions checked. A record adopted from
+    /// another session ([`Guarded::record`]) is guarded again this way.
+    pub(crate) fn new(inner: ModelRecord, fitted: DesignBox) -> Guarded {
         Guarded { inner, fitted }
+    }
+
+    /// The fitted model as data, to be rebuilt elsewhere with the same predictions;
+    /// `None` on a measured road, whose LoFi route is not data.
+    pub fn record(&self) -> Option<ModelRecord> {
+        (!self.inner.model().on_measured_road()).then(|| self.inner.clone())
     }
 
     /// Refuses a design beyond [`EXTRAPOLATION_LIMIT`] of the fitted box.
@@ -46,7 +55,7 @@ impl Guarded {
             "surrogate",
             format!(
                 "{} was fitted over Ks {}..{} N/m, Cs {}..{} N s/m; Ks {} N/m, Cs {} N s/m lies {:.0} % of the box beyond it, further than the {:.0} % a fit can vouch for: move the design into the box or widen the box",
-                self.inner.name(),
+                self.inner.model().name(),
                 num(b.ks_min),
                 num(b.ks_max),
                 num(b.cs_min),
@@ -87,44 +96,43 @@ impl Evaluator for Guarded {
             crate::car::check_design(ks, cs)?;
         }
         self.check_reach(ks, cs)?;
-        let c = self.inner.evaluate(ks, cs)?;
-        check_rms(&self.inner.name(), ks, cs, &c)?;
+        let c = self.inner.model().evaluate(ks, cs)?;
+        check_rms(&self.inner.model().name(), ks, cs, &c)?;
         Ok(c)
     }
 
     fn name(&self) -> String {
-        self.inner.name()
+        self.inner.model().name()
     }
 }
 
 impl Surrogate for Guarded {
     fn spec(&self) -> SurrogateSpec {
-        self.inner.spec()
+        self.inner.model().spec()
     }
 
     fn tuning(&self) -> Vec<Parameter> {
-        self.inner.tuning()
+        self.inner.model().tuning()
     }
 
     fn diagnostics(&self) -> Vec<FitDiagnostics> {
-        self.inner.diagnostics()
+        self.inner.model().diagnostics()
     }
 
     fn tuned_quarters(&self, ks: f64, cs: f64) -> Result<Option<[QuarterCar; 3]>> {
         crate::car::check_design(ks, cs)?;
         self.check_reach(ks, cs)?;
-        self.inner.tuned_quarters(ks, cs)
+        self.inner.model().tuned_quarters(ks, cs)
     }
 
     fn relative_std(&self, ks: f64, cs: f64) -> Result<Option<[f64; 3]>> {
         crate::car::check_design(ks, cs)?;
         self.check_reach(ks, cs)?;
-        self.inner.relative_std(ks, cs)
+        self.inner.model().relative_std(ks, cs)
     }
 
-    /// The inner model's ([`ModelRecord::into_surrogate`] guards it again).
-    fn record(&self) -> Option<ModelRecord> {
-        self.inner.record()
+    fn on_measured_road(&self) -> bool {
+        self.inner.model().on_measured_road()
     }
 }
 
@@ -134,7 +142,7 @@ mod tests {
     use crate::surrogate::{sample_plan, LmOptions, PlanSpec, Setting};
     use crate::{Car, HiFi, Road};
 
-    fn fitted(spec: &str, plan: &str) -> Box<dyn Surrogate> {
+    fn fitted(spec: &str, plan: &str) -> Guarded {
         let (car, road, b) = (Car::datum(), Road::default(), DesignBox::default());
         let hifi = HiFi::new(&car, &road).unwrap();
         let plan = PlanSpec::parse(plan).unwrap().plan().unwrap();

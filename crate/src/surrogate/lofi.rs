@@ -23,7 +23,7 @@ pub struct SurrogateLoFi {
     pub road: Road,
     /// The quarter car's route on the measured road, shaped at its speed (shared by every
     /// fitted surrogate). Not data: a surrogate on a measured road has no record
-    /// ([`super::Surrogate::record`]).
+    /// ([`super::Guarded::record`]).
     #[serde(skip)]
     pub measured: Option<Arc<dyn QuarterRoute>>,
 }

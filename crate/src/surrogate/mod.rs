@@ -29,6 +29,7 @@
 //! ([`DesignBox::normalize`]); criteria index `k`: 0 BAcc (m/s^2), 1 DTL (N), 2 SWS (m).
 
 pub mod datafit;
+mod dispatch;
 pub mod fit;
 pub mod gp;
 mod guard;
@@ -49,16 +50,17 @@ pub mod vba;
 pub use datafit::{DataFit, DataFitParams};
 pub use fit::{FitDiagnostics, LmOptions, Tuning};
 pub use gp::{Gp, GpParams};
+pub use guard::Guarded;
 pub use lofi::SurrogateLoFi;
 pub use metrics::{ByCriterion, ErrorMap, Metrics};
-pub use pba::{PbaParams, Scaling};
-pub use rba::{Form, Rba, RbaParams};
+pub use pba::PbaParams;
+pub use rba::{Rba, RbaParams};
 pub use record::ModelRecord;
 pub use response::{Kernel, ResponseKind};
-pub use spec::{Approach, PlanSpec, SurrogateSpec};
+pub use spec::{Approach, Form, PlanSpec, Scaling, SurrogateSpec, Transform};
 pub use tuned::Tuned;
 pub use validation::{ValidationSet, VALIDATION_LEVELS};
-pub use vba::{Transform, VbaParams};
+pub use vba::VbaParams;
 
 use crate::car::{Car, QuarterCar};
 use crate::design::DesignBox;
@@ -211,9 +213,9 @@ pub trait Surrogate: Evaluator + Send + Sync {
         Ok(None)
     }
 
-    /// The fitted model as data ([`record`]), to be rebuilt elsewhere with the same
-    /// predictions; `None` on a measured road, whose LoFi route is not data.
-    fn record(&self) -> Option<ModelRecord>;
+    /// Whether the surrogate's LoFi runs on a measured road: its route there is not data,
+    /// so such a fit has no record ([`Guarded::record`]).
+    fn on_measured_road(&self) -> bool;
 }
 
 /// A parameter set that is checked, then fitted into a [`Surrogate`].

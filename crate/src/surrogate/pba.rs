@@ -12,60 +12,10 @@
 
 use super::fit::{check_tuning, LmOptions, Tuning};
 use super::tuned::Tuned;
-use super::{Approach, ModelRecord, Sample, Scheme, Setting, SurrogateParams, SurrogateSpec};
+use super::{Approach, Sample, Scaling, Scheme, Setting, SurrogateParams, SurrogateSpec};
 use crate::car::QuarterCar;
 use crate::error::Result;
 use serde::{Deserialize, Serialize};
-
-/// Which LoFi parameters are scaled.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Scaling {
-    /// Scale the sprung mass (SMTS).
-    pub sprung: bool,
-    /// Scale the unsprung mass (UMTS).
-    pub unsprung: bool,
-    /// Scale the tyre rate.
-    pub tyre: bool,
-}
-
-impl Scaling {
-    /// Name tokens in order, with the parameter each scales.
-    const TOKENS: [(&'static str, &'static str); 3] = [
-        ("smts", "ms_scale"),
-        ("umts", "mu_scale"),
-        ("kt", "kt_scale"),
-    ];
-
-    fn flags(self) -> [bool; 3] {
-        [self.sprung, self.unsprung, self.tyre]
-    }
-
-    /// Name after "pba-": "smts", "umts", "smts-umts", "smts-umts-kt", ...
-    pub fn name(self) -> String {
-        Scaling::TOKENS
-            .iter()
-            .zip(self.flags())
-            .filter(|(_, on)| *on)
-            .map(|((t, _), _)| *t)
-            .collect::<Vec<_>>()
-            .join("-")
-    }
-
-    /// Every non-empty combination, for name lists and the study.
-    pub fn all() -> Vec<Scaling> {
-        (1..8u8)
-            .map(|m| Scaling {
-                sprung: m & 1 != 0,
-                unsprung: m & 2 != 0,
-                tyre: m & 4 != 0,
-            })
-            .collect()
-    }
-
-    fn count(self) -> usize {
-        self.flags().iter().filter(|&&on| on).count()
-    }
-}
 
 /// The PBA tuning: `a` holds the scale factors of the scaled parameters, in the order
 /// ms, mu, kt.
@@ -122,10 +72,6 @@ impl Tuning for ParameterTuning {
             }
         }
         Ok(q)
-    }
-
-    fn record(tuned: &Tuned<Self>) -> ModelRecord {
-        ModelRecord::Pba(tuned.clone())
     }
 }
 

@@ -15,38 +15,15 @@ use super::fit::FitDiagnostics;
 use super::response::{fit_affine, method, AffineSample, Response, ResponseKind};
 use super::SurrogateLoFi;
 use super::{
-    check_samples, relative_cost, require_samples, Approach, ModelRecord, Parameter, Sample,
-    Scheme, Setting, Surrogate, SurrogateParams, SurrogateSpec,
+    check_samples, relative_cost, require_samples, Approach, Form, Parameter, Sample, Scheme,
+    Setting, Surrogate, SurrogateParams, SurrogateSpec,
 };
 use crate::design::DesignBox;
 use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use serde::{Deserialize, Serialize};
 
-/// How the correction acts on the LoFi output.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Form {
-    /// `S = f~ tau`.
-    Multiplicative,
-    /// `S = f~ + d`.
-    Additive,
-}
-
 impl Form {
-    /// Name part: "mul" or "add".
-    pub fn name(self) -> &'static str {
-        match self {
-            Form::Multiplicative => "mul",
-            Form::Additive => "add",
-        }
-    }
-
-    /// Whether this form with `response` can be shared by all criteria.
-    pub(crate) fn shareable(self, response: ResponseKind) -> bool {
-        self == Form::Multiplicative && matches!(response, ResponseKind::Poly(_))
-    }
-
     /// Offsets and gains `(a, b)` of `S = a + b c` for LoFi values `lofi`.
     fn affine(self, lofi: [f64; 3]) -> ([f64; 3], [f64; 3]) {
         match self {
@@ -183,10 +160,7 @@ impl Surrogate for Rba {
         self.diagnostics.clone()
     }
 
-    fn record(&self) -> Option<ModelRecord> {
-        self.lofi
-            .measured
-            .is_none()
-            .then(|| ModelRecord::Rba(self.clone()))
+    fn on_measured_road(&self) -> bool {
+        self.lofi.measured.is_some()
     }
 }

@@ -1,23 +1,25 @@
-//! A fitted surrogate as data: its fitted numbers, so a fit made in one place serves
-//! another without fitting again. The page fits once per scenario change on its main
-//! thread and its workers adopt that fit (issue #28). The data crosses as postcard bytes
-//! (`explorer::FitRecord`): every `f64` as its 8 bytes, so the adopted model predicts the
-//! same bits as the fit it came from. Postcard is not self-describing, so the types in a
-//! record use no `skip_serializing_if` or internally tagged enums.
+//! A fitted surrogate's model, by approach: what a fit holds ([`super::Guarded`] wraps
+//! it), and as data what lets a fit made in one place serve another without fitting
+//! again. The page fits once per scenario change on its main thread and its workers adopt
+//! that fit (issue #28). The data crosses as postcard bytes (`explorer::FitRecord`): every
+//! `f64` as its 8 bytes, so the adopted model predicts the same bits as the fit it came
+//! from. Postcard is not self-describing, so the types in a record use no
+//! `skip_serializing_if` or internally tagged enums.
+//!
+//! The models know nothing of this enum (it names them, they do not name it), so the
+//! module graph stays one way: the approaches below, the record above them, the dispatch
+//! from a name ([`super::dispatch`]) and the guard above that.
 
 use super::datafit::DataFit;
 use super::gp::Gp;
-use super::guard::Guarded;
 use super::pba::ParameterTuning;
 use super::rba::Rba;
 use super::tuned::Tuned;
 use super::vba::VariableTuning;
 use super::Surrogate;
-use crate::design::DesignBox;
 use serde::{Deserialize, Serialize};
 
-/// One fitted surrogate's model, by approach (the [`Surrogate`] a fit returns, without the
-/// reach check that [`ModelRecord::into_surrogate`] puts back).
+/// One fitted surrogate's model, by approach.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub enum ModelRecord {
     /// A variable-based tuning (VBA).
@@ -33,16 +35,14 @@ pub enum ModelRecord {
 }
 
 impl ModelRecord {
-    /// The surrogate again, its predictions checked against `fitted` (the design box it
-    /// was fitted over) as [`super::SurrogateSpec::fit`] checks them.
-    pub(crate) fn into_surrogate(self, fitted: DesignBox) -> Box<dyn Surrogate> {
-        let inner: Box<dyn Surrogate> = match self {
-            ModelRecord::Vba(m) => Box::new(m),
-            ModelRecord::Pba(m) => Box::new(m),
-            ModelRecord::Rba(m) => Box::new(m),
-            ModelRecord::Data(m) => Box::new(m),
-            ModelRecord::Gp(m) => Box::new(m),
-        };
-        Box::new(Guarded::new(inner, fitted))
+    /// The model, whichever its approach.
+    pub(crate) fn model(&self) -> &dyn Surrogate {
+        match self {
+            ModelRecord::Vba(m) => m,
+            ModelRecord::Pba(m) => m,
+            ModelRecord::Rba(m) => m,
+            ModelRecord::Data(m) => m,
+            ModelRecord::Gp(m) => m,
+        }
     }
 }

@@ -1,5 +1,7 @@
-//! Names of surrogates and sampling plans, as the CLI and the page write them, and the
-//! dispatch from a parsed name to the fit.
+//! Names of surrogates and sampling plans, as the CLI and the page write them: the
+//! approaches and the forms, transforms and scalings they are built from (the fits that
+//! use them are in [`super::rba`], [`super::vba`] and [`super::pba`]; the dispatch from a
+//! name to its fit in [`super::dispatch`]).
 //!
 //! Surrogates: `rba-{mul|add}-{poly1|poly2|rbf-gauss|rbf-mq|rbf-tps}`, `vba-{lts|mts|qts}`,
 //! `pba-{smts|umts|kt, joined in that order}`, `data-{quad|lin|rbf-gauss|rbf-mq|rbf-tps}`,
@@ -9,15 +11,8 @@
 //! multiplicative polynomial RBA), and per criterion otherwise.
 //! Plans: `ae:N` (Audze-Eglais, N points), `grid:n` (n x n full factorial).
 
-use super::datafit::DataFitParams;
-use super::fit::LmOptions;
-use super::gp::GpParams;
-use super::guard::Guarded;
-use super::pba::{PbaParams, Scaling};
-use super::rba::{Form, RbaParams};
 use super::response::{Kernel, ResponseKind};
-use super::vba::{Transform, VbaParams};
-use super::{Sample, Scheme, Setting, Surrogate, SurrogateParams};
+use super::Scheme;
 use crate::doe::{audze_eglais, full_factorial, Plan};
 use crate::error::{Result, RideError};
 use serde::{Deserialize, Serialize};
@@ -27,6 +22,110 @@ const PER_CRITERION: &str = "-per-criterion";
 
 /// Seed of the Audze-Eglais heuristic (unused up to the tabulated 14 points).
 const AE_SEED: u64 = 1;
+
+/// How the correction acts on the LoFi output.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Form {
+    /// `S = f~ tau`.
+    Multiplicative,
+    /// `S = f~ + d`.
+    Additive,
+}
+
+impl Form {
+    /// Name part: "mul" or "add".
+    pub fn name(self) -> &'static str {
+        match self {
+            Form::Multiplicative => "mul",
+            Form::Additive => "add",
+        }
+    }
+
+    /// Whether this form with `response` can be shared by all criteria.
+    pub(crate) fn shareable(self, response: ResponseKind) -> bool {
+        self == Form::Multiplicative && matches!(response, ResponseKind::Poly(_))
+    }
+}
+
+/// Form of the per-variable transform.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Transform {
+    /// Linear `u' = a0 + a1 u`.
+    Lts,
+    /// Multiplicative `u' = a1 u`.
+    Mts,
+    /// Quadratic `u' = a0 + a1 u + a2 u^2`.
+    Qts,
+}
+
+impl Transform {
+    /// All transforms with their names.
+    pub const ALL: [(Transform, &'static str); 3] = [
+        (Transform::Lts, "lts"),
+        (Transform::Mts, "mts"),
+        (Transform::Qts, "qts"),
+    ];
+
+    /// Name: "lts", "mts" or "qts".
+    pub fn name(self) -> &'static str {
+        Transform::ALL
+            .iter()
+            .find(|(t, _)| *t == self)
+            .map_or("", |(_, n)| n)
+    }
+}
+
+/// Which LoFi parameters are scaled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Scaling {
+    /// Scale the sprung mass (SMTS).
+    pub sprung: bool,
+    /// Scale the unsprung mass (UMTS).
+    pub unsprung: bool,
+    /// Scale the tyre rate.
+    pub tyre: bool,
+}
+
+impl Scaling {
+    /// Name tokens in order, with the parameter each scales.
+    pub(super) const TOKENS: [(&'static str, &'static str); 3] = [
+        ("smts", "ms_scale"),
+        ("umts", "mu_scale"),
+        ("kt", "kt_scale"),
+    ];
+
+    pub(super) fn flags(self) -> [bool; 3] {
+        [self.sprung, self.unsprung, self.tyre]
+    }
+
+    /// Name after "pba-": "smts", "umts", "smts-umts", "smts-umts-kt", ...
+    pub fn name(self) -> String {
+        Scaling::TOKENS
+            .iter()
+            .zip(self.flags())
+            .filter(|(_, on)| *on)
+            .map(|((t, _), _)| *t)
+            .collect::<Vec<_>>()
+            .join("-")
+    }
+
+    /// Every non-empty combination, for name lists and the study.
+    pub fn all() -> Vec<Scaling> {
+        (1..8u8)
+            .map(|m| Scaling {
+                sprung: m & 1 != 0,
+                unsprung: m & 2 != 0,
+                tyre: m & 4 != 0,
+            })
+            .collect()
+    }
+
+    pub(super) fn count(self) -> usize {
+        self.flags().iter().filter(|&&on| on).count()
+    }
+}
 
 /// The surrogate approaches (METHOD.md section 5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -165,84 +264,6 @@ impl SurrogateSpec {
                     .map(move |&scheme| SurrogateSpec { approach, scheme })
             })
             .collect()
-    }
-
-    /// Checks the spec against `samples` without fitting (errors name the field).
-    pub fn check(&self, samples: &[Sample]) -> Result<()> {
-        let options = LmOptions::default();
-        match self.approach {
-            Approach::Rba { form, response } => RbaParams {
-                form,
-                response,
-                scheme: self.scheme,
-            }
-            .check(samples),
-            Approach::Vba(transform) => VbaParams {
-                transform,
-                scheme: self.scheme,
-                options,
-            }
-            .check(samples),
-            Approach::Pba(scaling) => PbaParams {
-                scaling,
-                scheme: self.scheme,
-                options,
-            }
-            .check(samples),
-            Approach::Data(response) if self.scheme == Scheme::PerCriterion => {
-                DataFitParams { response }.check(samples)
-            }
-            Approach::Data(_) => Err(RideError::field(
-                "scheme",
-                "a data fit has one response per criterion",
-            )),
-            Approach::Gp if self.scheme == Scheme::PerCriterion => GpParams.check(samples),
-            Approach::Gp => Err(RideError::field(
-                "scheme",
-                "a GP correction has one model per criterion",
-            )),
-        }
-    }
-
-    /// Checks, then fits with `options` for the Levenberg-Marquardt fits.
-    pub fn fit(
-        &self,
-        setting: &Setting,
-        samples: &[Sample],
-        options: &LmOptions,
-    ) -> Result<Box<dyn Surrogate>> {
-        self.check(samples)?;
-        let scheme = self.scheme;
-        let fitted: Box<dyn Surrogate> = match self.approach {
-            Approach::Rba { form, response } => Box::new(
-                RbaParams {
-                    form,
-                    response,
-                    scheme,
-                }
-                .fit(setting, samples)?,
-            ),
-            Approach::Vba(transform) => Box::new(
-                VbaParams {
-                    transform,
-                    scheme,
-                    options: *options,
-                }
-                .fit(setting, samples)?,
-            ),
-            Approach::Pba(scaling) => Box::new(
-                PbaParams {
-                    scaling,
-                    scheme,
-                    options: *options,
-                }
-                .fit(setting, samples)?,
-            ),
-            Approach::Data(response) => Box::new(DataFitParams { response }.fit(setting, samples)?),
-            Approach::Gp => Box::new(GpParams.fit(setting, samples)?),
-        };
-        // Every prediction is checked: an RMS > 0, not too far beyond the fitted box.
-        Ok(Box::new(Guarded::new(fitted, setting.design_box)))
     }
 }
 

@@ -344,7 +344,11 @@ impl Uncertain {
                 Some((errors, field))
             }
         };
-        Ok(Uncertain { model, method, loo })
+        Ok(Uncertain {
+            model: Box::new(model),
+            method,
+            loo,
+        })
     }
 
     /// The estimated relative error (1 sigma) of `[bacc, dtl, sws]` at `(ks, cs)`, -.

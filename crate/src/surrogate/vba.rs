@@ -15,40 +15,13 @@
 
 use super::fit::{check_tuning, LmOptions, Tuning};
 use super::tuned::Tuned;
-use super::{Approach, ModelRecord, Sample, Scheme, Setting, SurrogateParams, SurrogateSpec};
+use super::{Approach, Sample, Scheme, Setting, SurrogateParams, SurrogateSpec, Transform};
 use crate::car::QuarterCar;
 use crate::design::DesignBox;
 use crate::error::{Result, RideError};
 use serde::{Deserialize, Serialize};
 
-/// Form of the per-variable transform.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Transform {
-    /// Linear `u' = a0 + a1 u`.
-    Lts,
-    /// Multiplicative `u' = a1 u`.
-    Mts,
-    /// Quadratic `u' = a0 + a1 u + a2 u^2`.
-    Qts,
-}
-
 impl Transform {
-    /// All transforms with their names.
-    pub const ALL: [(Transform, &'static str); 3] = [
-        (Transform::Lts, "lts"),
-        (Transform::Mts, "mts"),
-        (Transform::Qts, "qts"),
-    ];
-
-    /// Name: "lts", "mts" or "qts".
-    pub fn name(self) -> &'static str {
-        Transform::ALL
-            .iter()
-            .find(|(t, _)| *t == self)
-            .map_or("", |(_, n)| n)
-    }
-
     /// Coefficient names of one variable.
     fn coefficients(self) -> &'static [&'static str] {
         match self {
@@ -175,10 +148,6 @@ impl Tuning for VariableTuning {
             cs: cs_t,
             ..self.base
         })
-    }
-
-    fn record(tuned: &Tuned<Self>) -> ModelRecord {
-        ModelRecord::Vba(tuned.clone())
     }
 }
 

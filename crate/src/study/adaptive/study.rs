@@ -197,7 +197,7 @@ pub fn adaptive_study_on<E: Evaluator + Sync>(
         let looped = front_check(state.model(), hifi, &decision, &design_box, &hifi_front, n)?;
         let ae = sample_plan(hifi, &PlanSpec::AudzeEglais(n).plan()?, &design_box)?;
         let model = spec.fit(setting, &ae, &lm)?;
-        let fixed = front_check(&*model, hifi, &decision, &design_box, &hifi_front, n)?;
+        let fixed = front_check(&model, hifi, &decision, &design_box, &hifi_front, n)?;
         rows.push(StudyRow {
             hifi_runs: n,
             adaptive: looped,
