@@ -9,9 +9,11 @@ use crate::comfort::Comfort;
 use crate::dos::DesignObjectives;
 use crate::evaluate::Evaluator;
 use crate::maps::{Grid, Scale};
+use crate::road::Road;
 use crate::road::Tracks;
 use crate::road_profile::{DesignOnRoad, Profile, ProfileTracks, ShapedRoad};
 use crate::study::measured::measured_map;
+use crate::study::MapRequest;
 use crate::study::MapSettings;
 use crate::surrogate::{sample_plan, LmOptions};
 use crate::time_domain::TimeOptions;
@@ -72,15 +74,10 @@ fn maps_on_a_measured_road_are_the_clis() {
                 contour_levels: 0,
                 comfort: s.comfort,
             };
-            let cli = measured_map(
-                kind,
-                &s.datum,
-                &road,
-                SLAB,
-                ProfileTracks::Correlated,
-                &settings,
-            )
-            .unwrap();
+            // The ISO road is only recorded: the measured one replaces it.
+            let iso = Road::default();
+            let request = MapRequest::new(kind, &s.datum, &iso, settings);
+            let cli = measured_map(&request, &road, SLAB, ProfileTracks::Correlated).unwrap();
             let want: Vec<f64> = [cli.bacc, cli.dtl, cli.sws].concat();
             assert_eq!(m.planes(), want, "{comfort} {kind:?}");
             assert_eq!(m.values.datum.criteria, cli.datum.criteria);

@@ -1,6 +1,7 @@
 //! The map report behind `ridelab map`: criteria fields, datum point, feasibility mask
 //! and contour lines at automatic levels, as JSON (serde) or CSV.
 
+use super::model::EvaluatorSpec;
 use crate::analysis::{HiFi, LoFi, ModelKind};
 use crate::car::Car;
 use crate::comfort::Comfort;
@@ -17,11 +18,16 @@ use crate::maps::dos_mask::{
 use crate::maps::grid::Grid;
 use crate::road::Road;
 use crate::road_profile::RoadScenario;
+use crate::surrogate::PlanSpec;
 use serde::{Deserialize, Serialize};
 
 /// The layout sentence every report carries.
 pub const LAYOUT: &str =
     "row-major: Cs rows, Ks columns; the value at Ks index i, Cs index j is at j * ks.n + i";
+
+/// Why a surrogate's map has no Wk-weighted comfort (the error names `comfort`).
+pub(crate) const WK_SURROGATE_MAP: &str =
+    "wk needs --model quarter or full: the surrogates are fitted to the unweighted BAcc";
 
 /// Most automatic contour levels per criterion.
 const MAX_CONTOUR_LEVELS: usize = 50;
@@ -176,11 +182,15 @@ pub struct MapReport {
 /// and damper, with the feasibility mask of `settings.objectives` against the datum and
 /// contour lines, in `settings.scale`. [`Self::run`] maps it on the model itself,
 /// [`Self::run_on`] on an evaluator built already; [`Self::run_case`] and
-/// [`Self::run_robust`] map it over load cases.
+/// [`Self::run_robust`] map it over load cases. The datum's criteria are the model's own
+/// (a surrogate's map judges its designs against the surrogate's datum, as the page's
+/// surrogate map does).
 #[derive(Debug, Clone)]
 pub struct MapRequest<'a> {
-    /// The LoFi (`quarter`) or the HiFi (`full`).
-    pub model: ModelKind,
+    /// The LoFi (`quarter`), the HiFi (`full`) or a surrogate of the HiFi.
+    pub model: EvaluatorSpec,
+    /// A surrogate's HiFi sampling plan over the grid's box (default `ae:10`).
+    pub plan: PlanSpec,
     /// The datum car (its front spring and damper are the datum design).
     pub car: &'a Car,
     /// The road.
@@ -195,9 +205,15 @@ pub struct MapRequest<'a> {
 impl<'a> MapRequest<'a> {
     /// The HiFi fields on the CPU: the same report on every machine (`ridelab map` sets
     /// `compute` from `--compute`).
-    pub fn new(model: ModelKind, car: &'a Car, road: &'a Road, settings: MapSettings) -> Self {
+    pub fn new(
+        model: impl Into<EvaluatorSpec>,
+        car: &'a Car,
+        road: &'a Road,
+        settings: MapSettings,
+    ) -> Self {
         MapRequest {
-            model,
+            model: model.into(),
+            plan: PlanSpec::AudzeEglais(10),
             car,
             road,
             settings,
@@ -211,22 +227,28 @@ impl<'a> MapRequest<'a> {
     /// [`ModelKind::Quarter`] is an error naming `compute`, `Auto` maps on the CPU; the
     /// Wk-weighted comfort is computed on the CPU, `Compute::Gpu` with it an error naming
     /// `comfort`. A grid with a corner outside the car's design domain
-    /// ([`crate::car::DesignDomain`]) is an error naming `ks-range` or `cs-range`.
+    /// ([`crate::car::DesignDomain`]) is an error naming `ks-range` or `cs-range`. A
+    /// surrogate is fitted to the HiFi at `plan`'s points over the grid's box, then mapped
+    /// on the CPU ([`Self::run_surrogate`]).
     pub fn run(&self) -> Result<MapReport> {
         let (car, road, settings) = (self.car, self.road, &self.settings);
         settings.grid.design_box().check_on(&car.design_domain())?;
-        match (self.model, self.compute) {
+        let kind = match self.model {
+            EvaluatorSpec::Model(kind) => kind,
+            EvaluatorSpec::Surrogate(_) => return self.run_surrogate(),
+        };
+        match (kind, self.compute) {
             (ModelKind::Quarter, Compute::Gpu) => Err(RideError::field(
                 "compute",
                 "gpu: the GPU path maps the full model only (use --compute cpu or auto with the quarter car)",
             )),
-            (ModelKind::Quarter, _) => self.run_model_on_cpu(),
+            (ModelKind::Quarter, _) => self.run_model_on_cpu(kind),
             // The exact Wk route runs on the CPU (the GPU route has no Wk filter).
             (ModelKind::Full, Compute::Gpu) if settings.comfort == Comfort::Wk => Err(RideError::field(
                 "comfort",
                 "wk: the Wk-weighted comfort is computed on the CPU (use --compute cpu or auto)",
             )),
-            (ModelKind::Full, _) if settings.comfort == Comfort::Wk => self.run_model_on_cpu(),
+            (ModelKind::Full, _) if settings.comfort == Comfort::Wk => self.run_model_on_cpu(kind),
             (ModelKind::Full, _) => {
                 settings.validate()?;
                 let hifi = HiFiGrid::compute(
@@ -243,17 +265,40 @@ impl<'a> MapRequest<'a> {
         }
     }
 
-    /// The map by the request's model (with `settings.comfort` in the BAcc slot) on the
-    /// CPU.
-    fn run_model_on_cpu(&self) -> Result<MapReport> {
+    /// The map by the request's model `kind` (with `settings.comfort` in the BAcc slot)
+    /// on the CPU.
+    fn run_model_on_cpu(&self, kind: ModelKind) -> Result<MapReport> {
         let (car, road) = (self.car, self.road);
         car.validate()?;
         road.validate()?;
-        match (self.settings.comfort, self.model) {
+        match (self.settings.comfort, kind) {
             (Comfort::Bacc, ModelKind::Quarter) => self.run_on(&LoFi::new(car, road)),
             (Comfort::Bacc, ModelKind::Full) => self.run_on(&HiFi::new(car, road)?),
             (comfort, model) => self.run_on(&*comfort.evaluator(model, car, road)?),
         }
+    }
+
+    /// The map of the request's surrogate: fitted to the HiFi at `plan`'s points over the
+    /// grid's box (the HiFi built once), then evaluated at every grid point on the CPU.
+    /// `compute` gpu is an error naming `compute` (a surrogate has no GPU path), and the
+    /// Wk-weighted comfort one naming `comfort` (the surrogates are fitted to the
+    /// unweighted BAcc).
+    fn run_surrogate(&self) -> Result<MapReport> {
+        let settings = &self.settings;
+        if self.compute == Compute::Gpu {
+            return Err(RideError::field(
+                "compute",
+                "gpu: a surrogate's map is evaluated on the CPU (use --compute cpu or auto)",
+            ));
+        }
+        if settings.comfort == Comfort::Wk {
+            return Err(RideError::field("comfort", WK_SURROGATE_MAP));
+        }
+        settings.validate()?;
+        let model =
+            self.model
+                .build(self.car, self.road, &settings.grid.design_box(), self.plan)?;
+        self.run_on(&*model)
     }
 
     /// The map on `evaluator` (a surrogate, a measured road's model, the HiFi's values on

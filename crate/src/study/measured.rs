@@ -6,15 +6,13 @@
 //! full car on the road. The maps on a measured road ([`measured_map`]) are here too.
 
 use super::adaptive::{run, AdaptiveOptions, AdaptiveReport, Decision};
-use super::map::{MapReport, MapRequest, MapSettings};
+use super::map::{MapReport, MapRequest, WK_SURROGATE_MAP};
 use super::{optimize_on_models, EvaluatorSpec, OptimizeReport, OptimizeRequest};
 use crate::analysis::ModelKind;
-use crate::car::Car;
 use crate::comfort::Comfort;
 use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
 use crate::gpu::ComputePath;
-use crate::road::Road;
 use crate::road_profile::{MeasuredModel, MeasuredRoad, ProfileTracks, RoadScenario, ShapedRoad};
 use crate::surrogate::{sample_plan, LmOptions, Setting};
 
@@ -92,23 +90,39 @@ pub fn optimize_measured(
     Ok((out, looped))
 }
 
-/// The map of `kind`'s model of `car` on the shaped measured road `road` (shaped from the
-/// profile `file` with `tracks`), as `ridelab map --road FILE` prints it and the page's
-/// road panel draws it: each point by the exact routes of [`MeasuredModel`] (with
-/// `settings.comfort` in the comfort slot), the datum the car's own front design, the
-/// report's `road` the measured one and its compute path the CPU. The caller bounds the
-/// grid ([`crate::budget::check_measured`], naming its own option).
+/// The map `request` asks for (its model, plan, car and settings; its ISO road and compute
+/// are not read) on the shaped measured road `road` (shaped from the profile `file` with
+/// `tracks`), as `ridelab map --road FILE` prints it and the page's road panel draws it:
+/// the quarter or full car by the exact routes of [`MeasuredModel`] (with the settings'
+/// comfort in the comfort slot), or a surrogate fitted there to the full car at the plan's
+/// points over the grid's box (its LoFi the quarter car there; the Wk-weighted comfort is
+/// refused naming `comfort`). The datum is the car's own front design, the report's `road`
+/// the measured one and its compute path the CPU. The caller bounds the grid
+/// ([`crate::budget::check_measured`], naming its own option).
 pub fn measured_map(
-    kind: ModelKind,
-    car: &Car,
+    request: &MapRequest,
     road: &ShapedRoad,
     file: &str,
     tracks: ProfileTracks,
-    settings: &MapSettings,
 ) -> Result<MapReport> {
-    let model = MeasuredModel::new(kind, car, road.clone()).with_comfort(settings.comfort);
-    // The ISO road is only recorded by the report: it is replaced by the measured one.
-    let mut r = MapRequest::new(kind, car, &Road::default(), settings.clone()).run_on(&model)?;
+    let (car, settings) = (request.car, &request.settings);
+    let model: Box<dyn Evaluator + Sync> = match request.model {
+        EvaluatorSpec::Model(kind) => {
+            Box::new(MeasuredModel::new(kind, car, road.clone()).with_comfort(settings.comfort))
+        }
+        EvaluatorSpec::Surrogate(spec) => {
+            if settings.comfort == Comfort::Wk {
+                return Err(RideError::field("comfort", WK_SURROGATE_MAP));
+            }
+            settings.validate()?;
+            let design_box = settings.grid.design_box();
+            let hifi = MeasuredModel::new(ModelKind::Full, car, road.clone());
+            let setting = Setting::measured(car, road.clone(), &design_box)?;
+            let samples = sample_plan(&hifi, &request.plan.plan()?, &design_box)?;
+            Box::new(spec.fit(&setting, &samples, &LmOptions::default())?)
+        }
+    };
+    let mut r = request.run_on(&*model)?;
     r.road = RoadScenario::Measured(MeasuredRoad::of(file, road, tracks));
     r.compute = ComputePath::Cpu;
     Ok(r)

@@ -26,6 +26,7 @@ pub mod adaptive;
 pub mod fidelity;
 pub mod map;
 pub mod measured;
+pub mod model;
 pub mod optimize;
 pub mod robust;
 pub mod surrogate;
@@ -35,8 +36,9 @@ pub use map::{
     map_csv, CriteriaContours, Feasibility, MapReport, MapRequest, MapSettings, MaskBit, Units,
     LAYOUT,
 };
+pub use model::EvaluatorSpec;
 pub use optimize::{
-    optimize_model, optimize_on_models, EvaluatorSpec, OptimizeReport, OptimizeRequest, SameModel,
+    optimize_model, optimize_on_models, OptimizeReport, OptimizeRequest, SameModel,
 };
 pub use robust::{CaseInfo, CaseMapReport, RobustMapReport, RobustOptimizeReport, RobustProblem};
 pub use surrogate::SurrogateRequest;

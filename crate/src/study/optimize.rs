@@ -6,7 +6,8 @@
 //! against the datum car's **HiFi** criteria, whatever the evaluator: the HiFi is the
 //! reference every evaluator is judged by.
 
-use crate::analysis::{HiFi, LoFi, ModelKind};
+use super::model::EvaluatorSpec;
+use crate::analysis::{HiFi, ModelKind};
 use crate::car::Car;
 use crate::comfort::{Comfort, WkComfort};
 use crate::design::DesignBox;
@@ -20,74 +21,8 @@ use crate::optimize::study::{run_study, Method, Study};
 use crate::optimize::suspension::SuspensionProblem;
 use crate::optimize::trust::{pick_warnings, Warning};
 use crate::road::Road;
-use crate::surrogate::{sample_plan, LmOptions, PlanSpec, Setting, SurrogateSpec};
+use crate::surrogate::PlanSpec;
 use serde::Serialize;
-
-/// What a study evaluates: one of the two models, or a surrogate of the HiFi.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum EvaluatorSpec {
-    /// The quarter car or the full car.
-    Model(ModelKind),
-    /// A surrogate fitted to HiFi samples.
-    Surrogate(SurrogateSpec),
-}
-
-impl std::str::FromStr for EvaluatorSpec {
-    type Err = RideError;
-    /// "quarter" / "lofi", "full" / "hifi", or a surrogate name (`ridelab surrogate`'s);
-    /// errors name `evaluator`.
-    fn from_str(s: &str) -> Result<EvaluatorSpec> {
-        if let Ok(kind) = ModelKind::parse(s) {
-            return Ok(EvaluatorSpec::Model(kind));
-        }
-        SurrogateSpec::parse(s)
-            .map(EvaluatorSpec::Surrogate)
-            .map_err(|e| match e {
-                RideError::Field { reason, .. } => RideError::field(
-                    "evaluator",
-                    format!("'{s}' is not quarter, full or a surrogate: {reason}"),
-                ),
-                other => other,
-            })
-    }
-}
-
-impl EvaluatorSpec {
-    /// The evaluator for `car` on `road` over `design_box`; a surrogate is fitted to the
-    /// HiFi at `plan`'s points.
-    pub fn build(
-        &self,
-        car: &Car,
-        road: &Road,
-        design_box: &DesignBox,
-        plan: PlanSpec,
-    ) -> Result<Box<dyn Evaluator + Sync>> {
-        match self {
-            EvaluatorSpec::Model(ModelKind::Quarter) => Ok(Box::new(LoFi::new(car, road))),
-            _ => self.build_on(&HiFi::new(car, road)?, design_box, plan),
-        }
-    }
-
-    /// [`Self::build`] on a HiFi prepared already (its car and road): the full car is a
-    /// copy of it, a surrogate's samples are its evaluations.
-    fn build_on(
-        &self,
-        hifi: &HiFi,
-        design_box: &DesignBox,
-        plan: PlanSpec,
-    ) -> Result<Box<dyn Evaluator + Sync>> {
-        let (car, road) = (hifi.car(), hifi.road());
-        Ok(match self {
-            EvaluatorSpec::Model(ModelKind::Quarter) => Box::new(LoFi::new(car, road)),
-            EvaluatorSpec::Model(ModelKind::Full) => Box::new(hifi.clone()),
-            EvaluatorSpec::Surrogate(spec) => {
-                let samples = sample_plan(hifi, &plan.plan()?, design_box)?;
-                let setting = Setting::new(car, road, design_box)?;
-                Box::new(spec.fit(&setting, &samples, &LmOptions::default())?)
-            }
-        })
-    }
-}
 
 /// The study, the datum's HiFi criteria and the pick's HiFi re-check (the JSON of
 /// `ridelab optimize`: the study's fields at the top level).

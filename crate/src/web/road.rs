@@ -18,7 +18,7 @@ use crate::road_profile::{
     ShapedRoad,
 };
 use crate::study::measured::{measured_map, optimize_measured};
-use crate::study::{EvaluatorSpec, MapSettings, OptimizeRequest};
+use crate::study::{EvaluatorSpec, MapRequest, MapSettings, OptimizeRequest};
 use js_sys::{Float64Array, Object, Reflect, Uint8Array};
 use std::cell::RefCell;
 use std::hash::{Hash, Hasher};
@@ -127,8 +127,10 @@ pub fn road_map(
         contour_levels: 0,
         comfort: scenario.comfort,
     };
-    let r = measured_map(kind, &scenario.datum, &road, file, tracks, &settings)
-        .map_err(road_js_error)?;
+    // The ISO road is only recorded: the measured one replaces it.
+    let iso = Road::default();
+    let request = MapRequest::new(kind, &scenario.datum, &iso, settings);
+    let r = measured_map(&request, &road, file, tracks).map_err(road_js_error)?;
     crate::finite::check(&r).map_err(js_error)?;
     let planes: Vec<f64> = [&r.bacc, &r.dtl, &r.sws]
         .into_iter()

@@ -5,7 +5,6 @@ use crate::args::{
 };
 use crate::road::{one_scenario, shaped_road};
 use clap::Args;
-use ridelab::analysis::ModelKind;
 use ridelab::car::Car;
 use ridelab::chart::{map_chart_svg, map_report_charts};
 use ridelab::comfort::Comfort;
@@ -14,14 +13,19 @@ use ridelab::gpu::Compute;
 use ridelab::maps::{Axis, Grid, Scale};
 use ridelab::robust::LoadCase;
 use ridelab::robust::{CaseSet, Combine};
-use ridelab::study::{map_csv, MapReport, MapRequest, MapSettings};
+use ridelab::study::{map_csv, EvaluatorSpec, MapReport, MapRequest, MapSettings};
+use ridelab::surrogate::PlanSpec;
 use std::path::{Path, PathBuf};
 
 #[derive(Args)]
 pub(crate) struct MapArgs {
-    /// quarter (LoFi) or full (HiFi).
-    #[arg(long)]
-    pub(crate) model: ModelKind,
+    /// quarter (LoFi), full (HiFi) or a surrogate name (see `ridelab surrogate`), fitted
+    /// to the HiFi at --plan's points over the grid's box.
+    #[arg(long, value_parser = |s: &str| EvaluatorSpec::parse("model", s))]
+    pub(crate) model: EvaluatorSpec,
+    /// A surrogate's HiFi sampling plan: ae:N or grid:n.
+    #[arg(long, default_value = "ae:10")]
+    pub(crate) plan: PlanSpec,
     /// Ks axis, min:max:points (N/m).
     #[arg(long, default_value = "10000:40000:41", allow_hyphen_values = true, value_parser = |s: &str| Axis::parse("ks-range", s))]
     pub(crate) ks_range: Axis,
@@ -88,6 +92,7 @@ pub(crate) fn map_cmd(a: MapArgs) -> Result<String> {
     }
     let request = MapRequest {
         compute: a.compute,
+        plan: a.plan,
         ..MapRequest::new(a.model, &car, &road, settings)
     };
     let (r, json_text) = match (set, a.case) {
@@ -138,7 +143,13 @@ fn measured_map(
         "the points of --ks-range or --cs-range",
     )?;
     let (shaped, tracks) = shaped_road(&a.car, path)?;
-    ridelab::study::measured::measured_map(a.model, car, &shaped, path, tracks, settings)
+    // The ISO road is only recorded: the measured one replaces it.
+    let iso = ridelab::road::Road::default();
+    let request = MapRequest {
+        plan: a.plan,
+        ..MapRequest::new(a.model, car, &iso, settings.clone())
+    };
+    ridelab::study::measured::measured_map(&request, &shaped, path, tracks)
 }
 
 /// Writes the SVGs (`--svg`) and returns the CSV, the JSON or the text of `r`.

@@ -13,6 +13,7 @@ use crate::maps::{default_threads, map_grid, DatumPoint, Dcs, DosMap, FeasiblePo
 use crate::road::Road;
 use crate::robust::cases::{Case, CaseSet, Combine};
 use crate::robust::objective::Combination;
+use crate::study::EvaluatorSpec;
 use crate::study::{MapReport, MapRequest, MapSettings};
 use serde::Serialize;
 
@@ -304,7 +305,7 @@ fn case_maps(request: &MapRequest, set: &CaseSet) -> Result<Vec<MapReport>> {
         .run()
     };
     let settings = &request.settings;
-    if request.model != ModelKind::Full || settings.comfort != Comfort::Bacc {
+    if request.model != EvaluatorSpec::Model(ModelKind::Full) || settings.comfort != Comfort::Bacc {
         return set.cases.iter().map(one).collect();
     }
     settings.validate()?;
