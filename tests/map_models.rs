@@ -147,3 +147,55 @@ fn what_a_surrogates_map_cannot_do_is_refused_naming_the_option() {
         );
     }
 }
+
+/// The page's surrogate map (the explorer's session: its fit over the design box, its
+/// map at the cells' centres inside it) and `ridelab map --model SURROGATE` fitted over
+/// the same box (`--fit-ks-range`, `--fit-cs-range`) at the same points are one
+/// computation: equal bit for bit.
+#[test]
+fn the_pages_surrogate_map_is_the_clis_bit_for_bit() {
+    use ridelab::explorer::{Model, Session, State};
+    let mut session = Session::new(State::default()).unwrap();
+    let page = session.map(Model::Surrogate, 8, 6).unwrap();
+    let s = session.scenario();
+    let (g, b) = (page.grid(), s.dbox);
+    // Shortest round-trip decimals: the CLI reads back exactly these numbers.
+    let axis = |a: &ridelab::maps::Axis| format!("{:?}:{:?}:{}", a.min, a.max, a.n);
+    let range = |lo: f64, hi: f64| format!("{lo:?}:{hi:?}");
+    let cli = map(&[
+        "--model",
+        &s.surrogate.name(),
+        "--plan",
+        &s.plan.name(),
+        "--ks-range",
+        &axis(&g.ks),
+        "--cs-range",
+        &axis(&g.cs),
+        "--fit-ks-range",
+        &range(b.ks_min, b.ks_max),
+        "--fit-cs-range",
+        &range(b.cs_min, b.cs_max),
+    ]);
+    let values = &page.values;
+    for (name, field) in [
+        ("bacc", &values.bacc),
+        ("dtl", &values.dtl),
+        ("sws", &values.sws),
+    ] {
+        let got: Vec<f64> = serde_json::from_value(cli[name].clone()).unwrap();
+        assert_eq!(&got, field, "{name}");
+    }
+    // Fitted over the grid's own (smaller) box instead, the map differs.
+    let own = map(&[
+        "--model",
+        &s.surrogate.name(),
+        "--ks-range",
+        &axis(&g.ks),
+        "--cs-range",
+        &axis(&g.cs),
+    ]);
+    assert_ne!(own["bacc"], cli["bacc"]);
+    let bad = ridelab(&["map", "--model", "gp-mul", "--fit-ks-range", "40000:10000"]);
+    assert_eq!(bad.0, 2, "{}", bad.2);
+    assert!(bad.2.starts_with("error: fit-ks-range"), "{}", bad.2);
+}

@@ -5,6 +5,7 @@ use super::model::EvaluatorSpec;
 use crate::analysis::{HiFi, LoFi, ModelKind};
 use crate::car::Car;
 use crate::comfort::Comfort;
+use crate::design::DesignBox;
 use crate::dos::{DesignObjectives, DosContext, Objective};
 use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
@@ -189,8 +190,11 @@ pub struct MapReport {
 pub struct MapRequest<'a> {
     /// The LoFi (`quarter`), the HiFi (`full`) or a surrogate of the HiFi.
     pub model: EvaluatorSpec,
-    /// A surrogate's HiFi sampling plan over the grid's box (default `ae:10`).
+    /// A surrogate's HiFi sampling plan (default `ae:10`).
     pub plan: PlanSpec,
+    /// The box a surrogate is fitted over, N/m and N s/m (`None`: the grid's). The page
+    /// fits over its design box and maps at the cells' centres inside it.
+    pub fit_box: Option<DesignBox>,
     /// The datum car (its front spring and damper are the datum design).
     pub car: &'a Car,
     /// The road.
@@ -214,6 +218,7 @@ impl<'a> MapRequest<'a> {
         MapRequest {
             model: model.into(),
             plan: PlanSpec::AudzeEglais(10),
+            fit_box: None,
             car,
             road,
             settings,
@@ -278,8 +283,9 @@ impl<'a> MapRequest<'a> {
         }
     }
 
-    /// The map of the request's surrogate: fitted to the HiFi at `plan`'s points over the
-    /// grid's box (the HiFi built once), then evaluated at every grid point on the CPU.
+    /// The map of the request's surrogate: fitted to the HiFi at `plan`'s points over
+    /// [`Self::surrogate_box`] (the HiFi built once), then evaluated at every grid point on
+    /// the CPU.
     /// `compute` gpu is an error naming `compute` (a surrogate has no GPU path), and the
     /// Wk-weighted comfort one naming `comfort` (the surrogates are fitted to the
     /// unweighted BAcc).
@@ -295,10 +301,24 @@ impl<'a> MapRequest<'a> {
             return Err(RideError::field("comfort", WK_SURROGATE_MAP));
         }
         settings.validate()?;
-        let model =
-            self.model
-                .build(self.car, self.road, &settings.grid.design_box(), self.plan)?;
+        let fit_box = self.surrogate_box()?;
+        let model = self.model.build(self.car, self.road, &fit_box, self.plan)?;
         self.run_on(&*model)
+    }
+
+    /// The box a surrogate is fitted over: `fit_box`, else the grid's; checked and inside
+    /// the car's design domain (errors name `fit-ks-range` or `fit-cs-range`).
+    pub(crate) fn surrogate_box(&self) -> Result<DesignBox> {
+        let b = self.fit_box.unwrap_or(self.settings.grid.design_box());
+        b.validate()
+            .and_then(|()| b.check_on(&self.car.design_domain()))
+            .map_err(|e| match e {
+                RideError::Field { field, reason } => {
+                    RideError::field(format!("fit-{field}"), reason)
+                }
+                other => other,
+            })?;
+        Ok(b)
     }
 
     /// The map on `evaluator` (a surrogate, a measured road's model, the HiFi's values on

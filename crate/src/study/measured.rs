@@ -96,7 +96,7 @@ pub fn optimize_measured(
 /// the quarter or full car by the exact routes of [`MeasuredModel`] (with the settings'
 /// comfort in the comfort slot), or a surrogate fitted there to the full car at the plan's
 /// points over the grid's box (its LoFi the quarter car there; the Wk-weighted comfort is
-/// refused naming `comfort`). The datum is the car's own front design, the report's `road`
+/// refused naming `comfort`), over the request's [`MapRequest::surrogate_box`]. The datum is the car's own front design, the report's `road`
 /// the measured one and its compute path the CPU. The caller bounds the grid
 /// ([`crate::budget::check_measured`], naming its own option).
 pub fn measured_map(
@@ -115,7 +115,7 @@ pub fn measured_map(
                 return Err(RideError::field("comfort", WK_SURROGATE_MAP));
             }
             settings.validate()?;
-            let design_box = settings.grid.design_box();
+            let design_box = request.surrogate_box()?;
             let hifi = MeasuredModel::new(ModelKind::Full, car, road.clone());
             let setting = Setting::measured(car, road.clone(), &design_box)?;
             let samples = sample_plan(&hifi, &request.plan.plan()?, &design_box)?;

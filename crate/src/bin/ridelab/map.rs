@@ -8,6 +8,7 @@ use clap::Args;
 use ridelab::car::Car;
 use ridelab::chart::{map_chart_svg, map_report_charts};
 use ridelab::comfort::Comfort;
+use ridelab::design::DesignBox;
 use ridelab::error::{Result, RideError};
 use ridelab::gpu::Compute;
 use ridelab::maps::{Axis, Grid, Scale};
@@ -26,6 +27,12 @@ pub(crate) struct MapArgs {
     /// A surrogate's HiFi sampling plan: ae:N or grid:n.
     #[arg(long, default_value = "ae:10")]
     pub(crate) plan: PlanSpec,
+    /// The Ks range a surrogate is fitted over, min:max (N/m) [default: the grid's].
+    #[arg(long, value_name = "MIN:MAX", allow_hyphen_values = true, value_parser = |s: &str| DesignBox::parse_range("fit-ks-range", s))]
+    pub(crate) fit_ks_range: Option<(f64, f64)>,
+    /// The Cs range a surrogate is fitted over, min:max (N s/m) [default: the grid's].
+    #[arg(long, value_name = "MIN:MAX", allow_hyphen_values = true, value_parser = |s: &str| DesignBox::parse_range("fit-cs-range", s))]
+    pub(crate) fit_cs_range: Option<(f64, f64)>,
     /// Ks axis, min:max:points (N/m).
     #[arg(long, default_value = "10000:40000:41", allow_hyphen_values = true, value_parser = |s: &str| Axis::parse("ks-range", s))]
     pub(crate) ks_range: Axis,
@@ -93,6 +100,7 @@ pub(crate) fn map_cmd(a: MapArgs) -> Result<String> {
     let request = MapRequest {
         compute: a.compute,
         plan: a.plan,
+        fit_box: fit_box(&a, &settings),
         ..MapRequest::new(a.model, &car, &road, settings)
     };
     let (r, json_text) = match (set, a.case) {
@@ -147,9 +155,29 @@ fn measured_map(
     let iso = ridelab::road::Road::default();
     let request = MapRequest {
         plan: a.plan,
+        fit_box: fit_box(a, settings),
         ..MapRequest::new(a.model, car, &iso, settings.clone())
     };
     ridelab::study::measured::measured_map(&request, &shaped, path, tracks)
+}
+
+/// The box of `--fit-ks-range` and `--fit-cs-range`, each the grid's where not given
+/// (`None` when neither is).
+fn fit_box(a: &MapArgs, settings: &MapSettings) -> Option<DesignBox> {
+    if a.fit_ks_range.is_none() && a.fit_cs_range.is_none() {
+        return None;
+    }
+    let g = &settings.grid;
+    let (ks, cs) = (
+        a.fit_ks_range.unwrap_or((g.ks.min, g.ks.max)),
+        a.fit_cs_range.unwrap_or((g.cs.min, g.cs.max)),
+    );
+    Some(DesignBox {
+        ks_min: ks.0,
+        ks_max: ks.1,
+        cs_min: cs.0,
+        cs_max: cs.1,
+    })
 }
 
 /// Writes the SVGs (`--svg`) and returns the CSV, the JSON or the text of `r`.
