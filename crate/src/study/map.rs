@@ -233,8 +233,8 @@ impl<'a> MapRequest<'a> {
     /// Wk-weighted comfort is computed on the CPU, `Compute::Gpu` with it an error naming
     /// `comfort`. A grid with a corner outside the car's design domain
     /// ([`crate::car::DesignDomain`]) is an error naming `ks-range` or `cs-range`. A
-    /// surrogate is fitted to the HiFi at `plan`'s points over the grid's box, then mapped
-    /// on the CPU ([`Self::run_surrogate`]).
+    /// surrogate is fitted to the HiFi at `plan`'s points over [`Self::surrogate_box`],
+    /// then mapped on the CPU ([`Self::run_surrogate`]).
     pub fn run(&self) -> Result<MapReport> {
         let (car, road, settings) = (self.car, self.road, &self.settings);
         settings.grid.design_box().check_on(&car.design_domain())?;

@@ -14,7 +14,7 @@ use crate::error::{Result, RideError};
 use crate::evaluate::Evaluator;
 use crate::gpu::ComputePath;
 use crate::road_profile::{MeasuredModel, MeasuredRoad, ProfileTracks, RoadScenario, ShapedRoad};
-use crate::surrogate::{sample_plan, LmOptions, Setting};
+use crate::surrogate::{sample_plan, Guarded, LmOptions, PlanSpec, Setting, SurrogateSpec};
 
 /// What an optimisation on a measured road refuses, naming the field: the adaptive loop
 /// with a model evaluator (it refits a surrogate), and a surrogate with the Wk-weighted
@@ -65,10 +65,7 @@ pub fn optimize_measured(
         EvaluatorSpec::Surrogate(spec) => {
             let setting = Setting::measured(car, hifi.road().clone(), design_box)?;
             match options {
-                None => {
-                    let samples = sample_plan(hifi, &request.plan.plan()?, design_box)?;
-                    Box::new(spec.fit(&setting, &samples, &LmOptions::default())?)
-                }
+                None => Box::new(fit_on(spec, &setting, hifi, request.plan)?),
                 Some(options) => {
                     let decision = Decision::for_method(car, hifi, method, objectives.clone())?;
                     let state = run(spec, &setting, hifi, request.plan, &decision, options)?;
@@ -118,12 +115,23 @@ pub fn measured_map(
             let design_box = request.surrogate_box()?;
             let hifi = MeasuredModel::new(ModelKind::Full, car, road.clone());
             let setting = Setting::measured(car, road.clone(), &design_box)?;
-            let samples = sample_plan(&hifi, &request.plan.plan()?, &design_box)?;
-            Box::new(spec.fit(&setting, &samples, &LmOptions::default())?)
+            Box::new(fit_on(spec, &setting, &hifi, request.plan)?)
         }
     };
     let mut r = request.run_on(&*model)?;
     r.road = RoadScenario::Measured(MeasuredRoad::of(file, road, tracks));
     r.compute = ComputePath::Cpu;
     Ok(r)
+}
+
+/// `spec` fitted in `setting` (on the measured road) to `hifi`'s samples at `plan`'s
+/// points over the setting's box: the fit of a front's and of a map's surrogate there.
+fn fit_on(
+    spec: SurrogateSpec,
+    setting: &Setting,
+    hifi: &MeasuredModel,
+    plan: PlanSpec,
+) -> Result<Guarded> {
+    let samples = sample_plan(hifi, &plan.plan()?, &setting.design_box)?;
+    spec.fit(setting, &samples, &LmOptions::default())
 }
