@@ -15,6 +15,8 @@
 //! [`crate::doe`], [`crate::robust`]'s cases and objective) know nothing of this layer;
 //! `tests/structure.rs` keeps the modules' imports free of cycles.
 //!
+//! - [`spec`]: a study's inputs as one type, [`StudySpec`], with its map and its front as
+//!   methods over the pipelines below (`ridelab map` and `ridelab optimize` run them).
 //! - [`map`]: a design map of one model (`ridelab map`).
 //! - [`optimize`]: a front and its min-max pick on any evaluator (`ridelab optimize`).
 //! - [`fidelity`]: one surrogate fitted and validated (`ridelab surrogate`), and the
@@ -29,6 +31,7 @@ pub mod measured;
 pub mod model;
 pub mod optimize;
 pub mod robust;
+pub mod spec;
 pub mod surrogate;
 
 pub use fidelity::{study, study_on, StudyReport, SurrogateReport};
@@ -41,4 +44,7 @@ pub use optimize::{
     optimize_model, optimize_on_models, OptimizeReport, OptimizeRequest, SameModel,
 };
 pub use robust::{CaseInfo, CaseMapReport, RobustMapReport, RobustOptimizeReport, RobustProblem};
+pub use spec::{
+    FrontAsk, FrontReport, MapAsk, MeasuredSource, StudyFront, StudyMap, StudyRoad, StudySpec,
+};
 pub use surrogate::SurrogateRequest;

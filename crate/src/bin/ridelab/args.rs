@@ -10,6 +10,8 @@ use ridelab::optimize::Warning;
 use ridelab::road::{Road, RoadClass, Tracks};
 use ridelab::robust::{CarFile, CaseSet, Combine, LoadCase};
 use ridelab::study::adaptive::{AdaptiveOptions, DEFAULT_CANDIDATES, DEFAULT_MIN_DISTANCE};
+use ridelab::study::spec::one_scenario;
+use ridelab::study::{MeasuredSource, StudyRoad, StudySpec};
 use ridelab::surrogate::infill::Infill;
 use ridelab::surrogate::uncertainty::UncertaintyMethod;
 use std::path::{Path, PathBuf};
@@ -297,6 +299,25 @@ pub(crate) fn car_loads_road_of(o: &CarRoad) -> Result<(Car, Vec<LoadCase>, Road
         CaseSet::new(&car, &road, &loads, &[], Combine::Worst)?;
     }
     Ok((car, loads, road))
+}
+
+/// The study of the car, road and cases options (map and optimize): the car with
+/// `--ks/--cs` applied, the ISO class or the measured road of `--road FILE` (shaped at
+/// `--speed`), and the cases of `--cases` or the car file's load cases; the box,
+/// objectives, comfort and compute the defaults (the caller sets its own).
+pub(crate) fn study_of(o: &CarRoad, cases: &CasesArgs) -> Result<StudySpec> {
+    let (car, loads, iso) = car_loads_road_of(o)?;
+    let Some(path) = o.road.as_deref() else {
+        return Ok(StudySpec {
+            cases: cases.set(&car, &loads, &iso)?,
+            ..StudySpec::new(car, StudyRoad::Iso(iso))
+        });
+    };
+    // Refused before the cases file is read.
+    one_scenario(cases.cases.is_some() || !loads.is_empty(), false)?;
+    let (profile, speed, tracks) = crate::road::profile_at(o, path)?;
+    let road = StudyRoad::Measured(MeasuredSource::new(path, profile, speed, tracks)?);
+    Ok(StudySpec::new(car, road))
 }
 
 /// `v` as pretty JSON with its `units` object ([`crate::units`]), once every number in

@@ -1,20 +1,16 @@
 //! `ridelab map`: the design criteria and objective maps over a Ks x Cs grid.
 
 use crate::args::{
-    car_loads_road_of, count, json, svg_target, write_svg, CarRoad, CasesArgs, ObjectiveArgs,
+    count, json, study_of, svg_target, write_svg, CarRoad, CasesArgs, ObjectiveArgs,
 };
-use crate::road::{one_scenario, shaped_road};
 use clap::Args;
-use ridelab::car::Car;
 use ridelab::chart::{map_chart_svg, map_report_charts};
 use ridelab::comfort::Comfort;
 use ridelab::design::DesignBox;
-use ridelab::error::{Result, RideError};
+use ridelab::error::Result;
 use ridelab::gpu::Compute;
 use ridelab::maps::{Axis, Grid, Scale};
-use ridelab::robust::LoadCase;
-use ridelab::robust::{CaseSet, Combine};
-use ridelab::study::{map_csv, EvaluatorSpec, MapReport, MapRequest, MapSettings};
+use ridelab::study::{map_csv, EvaluatorSpec, MapAsk, MapReport, StudySpec};
 use ridelab::surrogate::PlanSpec;
 use std::path::{Path, PathBuf};
 
@@ -73,111 +69,44 @@ pub(crate) struct MapArgs {
 
 pub(crate) fn map_cmd(a: MapArgs) -> Result<String> {
     let svg = svg_target(a.svg.as_deref())?;
-    let (car, loads, road) = car_loads_road_of(&a.car)?;
-    let settings = MapSettings {
-        grid: Grid::new(a.ks_range, a.cs_range)?,
+    let base = study_of(&a.car, &a.cases)?;
+    let grid = Grid::new(a.ks_range, a.cs_range)?;
+    let study = StudySpec {
+        design_box: fit_box(&a, &grid),
+        objectives: a.objectives.objectives()?,
+        comfort: a.comfort,
+        compute: Some(a.compute),
+        ..base
+    };
+    let ask = MapAsk {
+        model: a.model,
+        plan: a.plan,
+        grid,
         scale: if a.relative {
             Scale::Relative
         } else {
             Scale::Absolute
         },
-        objectives: a.objectives.objectives()?,
-        comfort: a.comfort,
-        ..MapSettings::default()
+        case: a.case,
     };
-    if let Some(path) = a.car.road.as_deref() {
-        let r = measured_map(&a, &car, &loads, &settings, path)?;
-        let text = if a.json { json(&r)? } else { String::new() };
-        return map_output(&a, svg, r, text);
-    }
-    let set = a.cases.set(&car, &loads, &road)?;
-    if set.is_some() && a.compute == Compute::Gpu {
-        return Err(RideError::field(
-            "compute",
-            "gpu: the robust maps' cases are evaluated on the CPU; use --compute cpu or auto",
-        ));
-    }
-    let request = MapRequest {
-        compute: a.compute,
-        plan: a.plan,
-        fit_box: fit_box(&a, &settings),
-        ..MapRequest::new(a.model, &car, &road, settings)
-    };
-    let (r, json_text) = match (set, a.case) {
-        (None, None) => {
-            let r = request.run()?;
-            let text = if a.json { json(&r)? } else { String::new() };
-            (r, text)
-        }
-        (set, Some(k)) => {
-            let set = match set {
-                Some(s) => s,
-                None => CaseSet::new(&car, &road, &[], &[], Combine::Worst)?,
-            };
-            let r = request.run_case(&set, k)?;
-            let text = if a.json { json(&r)? } else { String::new() };
-            (r.map, text)
-        }
-        (Some(set), None) => {
-            let r = request.run_robust(&set)?;
-            let text = if a.json { json(&r)? } else { String::new() };
-            (r.map, text)
-        }
-    };
-    map_output(&a, svg, r, json_text)
+    let r = study.map(&ask)?;
+    let text = if a.json { json(&r)? } else { String::new() };
+    map_output(&a, svg, r.into_map(), text)
 }
 
-/// The map on the measured road of `--road FILE`: one scenario, so `--cases`, `--case`,
-/// a car file's load cases and `--compute gpu` are refused naming them; `--comfort wk`
-/// weights BAcc by the modal route with the road's filters and Wk's. A point costs more
-/// here than on an ISO class (the exact route with the road's filters), so the grid is
-/// bounded by [`ridelab::budget::MAX_MEASURED_RUNS`] points.
-fn measured_map(
-    a: &MapArgs,
-    car: &Car,
-    loads: &[LoadCase],
-    settings: &MapSettings,
-    path: &str,
-) -> Result<MapReport> {
-    one_scenario(
-        a.cases.cases.is_some() || a.case.is_some() || !loads.is_empty(),
-        a.compute == Compute::Gpu,
-    )?;
-    let g = &settings.grid;
-    ridelab::budget::check_measured(
-        (g.ks.n as u64) * (g.cs.n as u64),
-        "ks-range",
-        &format!("a {} x {} map", g.ks.n, g.cs.n),
-        "the points of --ks-range or --cs-range",
-    )?;
-    let (shaped, tracks) = shaped_road(&a.car, path)?;
-    // The ISO road is only recorded: the measured one replaces it.
-    let iso = ridelab::road::Road::default();
-    let request = MapRequest {
-        plan: a.plan,
-        fit_box: fit_box(a, settings),
-        ..MapRequest::new(a.model, car, &iso, settings.clone())
-    };
-    ridelab::study::measured::measured_map(&request, &shaped, path, tracks)
-}
-
-/// The box of `--fit-ks-range` and `--fit-cs-range`, each the grid's where not given
-/// (`None` when neither is).
-fn fit_box(a: &MapArgs, settings: &MapSettings) -> Option<DesignBox> {
-    if a.fit_ks_range.is_none() && a.fit_cs_range.is_none() {
-        return None;
-    }
-    let g = &settings.grid;
+/// The box a surrogate is fitted over: `--fit-ks-range` and `--fit-cs-range`, each the
+/// grid's where not given.
+fn fit_box(a: &MapArgs, grid: &Grid) -> DesignBox {
     let (ks, cs) = (
-        a.fit_ks_range.unwrap_or((g.ks.min, g.ks.max)),
-        a.fit_cs_range.unwrap_or((g.cs.min, g.cs.max)),
+        a.fit_ks_range.unwrap_or((grid.ks.min, grid.ks.max)),
+        a.fit_cs_range.unwrap_or((grid.cs.min, grid.cs.max)),
     );
-    Some(DesignBox {
+    DesignBox {
         ks_min: ks.0,
         ks_max: ks.1,
         cs_min: cs.0,
         cs_max: cs.1,
-    })
+    }
 }
 
 /// Writes the SVGs (`--svg`) and returns the CSV, the JSON or the text of `r`.

@@ -1,27 +1,19 @@
 //! `ridelab optimize`: the front, its pick and the pick's HiFi re-check.
 
 use crate::args::{
-    car_loads_road_of, count, count_u64, json, svg_target, warning_lines, write_svg, AdaptiveArgs,
-    BoxArgs, CarRoad, CasesArgs, ObjectiveArgs,
+    count, count_u64, json, study_of, svg_target, warning_lines, write_svg, AdaptiveArgs, BoxArgs,
+    CarRoad, CasesArgs, ObjectiveArgs,
 };
-use crate::road::{measured_model, one_scenario};
 use clap::Args;
-use ridelab::analysis::ModelKind;
-use ridelab::car::Car;
 use ridelab::chart::{front_chart, line_chart_svg};
 use ridelab::comfort::Comfort;
-use ridelab::design::DesignBox;
-use ridelab::dos::DesignObjectives;
-use ridelab::error::{Result, RideError};
+use ridelab::error::Result;
 use ridelab::gpu::{Compute, ComputePath};
 use ridelab::optimize::{Method, Nsga2Params, PickRule, StmParams};
-use ridelab::road::Road;
 use ridelab::road_profile::RoadScenario;
-use ridelab::robust::LoadCase;
 use ridelab::study::adaptive;
-use ridelab::study::measured::{check_measured_request, optimize_measured};
 use ridelab::study::RobustOptimizeReport;
-use ridelab::study::{EvaluatorSpec, OptimizeReport, OptimizeRequest};
+use ridelab::study::{EvaluatorSpec, FrontAsk, FrontReport, OptimizeReport, StudySpec};
 use ridelab::surrogate::PlanSpec;
 use std::path::Path;
 
@@ -86,8 +78,7 @@ pub(crate) struct OptimizeArgs {
 
 pub(crate) fn optimize(a: OptimizeArgs) -> Result<String> {
     let svg = svg_target(a.svg.as_deref())?;
-    let (car, loads, road) = car_loads_road_of(&a.car)?;
-    let objectives = a.objectives.objectives()?;
+    let base = study_of(&a.car, &a.cases)?;
     let method = if a.method == "stm" {
         Method::Stm(StmParams {
             grid: a.grid,
@@ -101,190 +92,61 @@ pub(crate) fn optimize(a: OptimizeArgs) -> Result<String> {
             ..Nsga2Params::default()
         })
     };
-    let design_box = a.design_box.design_box()?;
-    if let Some(path) = a.car.road.as_deref() {
-        return measured_optimize(&a, &car, &loads, &design_box, &method, objectives, path);
-    }
-    let set = a.cases.set(&car, &loads, &road)?;
-    if let Some(set) = set {
-        if a.compute == Some(Compute::Gpu) {
-            return Err(RideError::field(
-                "compute",
-                "gpu: the robust design's cases are evaluated on the CPU; use --compute cpu or auto",
-            ));
-        }
-        if a.adaptive.adaptive.is_some() {
-            return Err(RideError::field(
-                "adaptive",
-                "the adaptive loop runs on one case: leave out --cases (and the car file's load_cases)",
-            ));
-        }
-        let out = OptimizeRequest {
-            evaluator: a.evaluator,
-            plan: a.plan,
-            comfort: a.comfort,
-            pick: a.pick,
-            ..OptimizeRequest::new(&car, &road, design_box, method, objectives)
-        }
-        .run_robust(&set)?;
-        if let Some(path) = &svg {
-            ridelab::finite::check(&out)?;
-            let mut chart = front_chart(&out.study, &out.datum, Some(&out.hifi_recheck));
-            chart.title = format!("Robust {}", chart.title);
-            if out.comfort == Comfort::Wk {
-                chart.title = chart.title.replacen("BAcc", out.comfort.label(), 1);
-                chart.x_label = format!("{} [m/s^2]", out.comfort.label());
-            }
-            write_svg(path, &line_chart_svg(&chart)?)?;
-        }
-        return if a.json {
-            json(&out)
-        } else {
-            Ok(robust_optimize_text(&out))
-        };
-    }
-    let request = OptimizeRequest {
-        evaluator: a.evaluator,
-        plan: a.plan,
+    let objectives = a.objectives.objectives()?;
+    let study = StudySpec {
+        design_box: a.design_box.design_box()?,
+        objectives,
         comfort: a.comfort,
         compute: a.compute,
+        ..base
+    };
+    let out = study.front(&FrontAsk {
+        evaluator: a.evaluator,
+        plan: a.plan,
+        method,
         pick: a.pick,
-        ..OptimizeRequest::new(&car, &road, design_box, method, objectives)
-    };
-    let (mut out, looped) = match a.adaptive.options() {
-        None => (request.run()?, None),
-        Some(_) if a.compute == Some(Compute::Gpu) => {
-            return Err(RideError::field(
-                "compute",
-                "gpu: the adaptive loop's HiFi runs are single designs on the CPU; use --compute cpu or auto",
-            ))
-        }
-        Some(_) if a.comfort == Comfort::Wk => {
-            return Err(RideError::field(
-                "comfort",
-                "wk needs --evaluator quarter or full: the adaptive loop's surrogates are fitted to the unweighted BAcc",
-            ))
-        }
-        Some(options) => {
-            let r = request.run_adaptive(options)?;
-            let mut out = r.optimize;
-            out.compute = a.compute.map(|_| ComputePath::Cpu);
-            (out, Some(r.adaptive))
-        }
-    };
-    if looped.is_some() && a.pick != PickRule::MinMax {
-        out.repick(a.pick, &car, &road, &design_box)?;
-    }
+        adaptive: a.adaptive.options(),
+    })?;
     if let Some(path) = &svg {
-        write_front_svg(path, &out)?;
-    }
-    if let Some(looped) = looped {
-        let report = adaptive::AdaptiveOptimizeReport {
-            optimize: out,
-            adaptive: looped,
-        };
-        if a.json {
-            return json(&report);
-        }
-        return Ok(optimize_text(&report.optimize) + &adaptive_text(&report.adaptive));
+        write_front_svg(path, &out.front)?;
     }
     if a.json {
         return json(&out);
     }
-    Ok(optimize_text(&out))
+    let text = match &out.front {
+        FrontReport::One(r) => optimize_text(r),
+        FrontReport::Adaptive(r) => optimize_text(&r.optimize) + &adaptive_text(&r.adaptive),
+        FrontReport::Robust(r) => robust_optimize_text(r),
+    };
+    Ok(match &out.road {
+        None => text,
+        Some(about) => format!(
+            "on {}\n{text}",
+            crate::text::scenario_words(&RoadScenario::Measured(about.clone()))
+        ),
+    })
 }
 
-/// The front in the BAcc-DTL plane as an SVG file.
-fn write_front_svg(path: &Path, out: &OptimizeReport) -> Result<()> {
-    ridelab::finite::check(out)?;
-    let mut chart = front_chart(&out.study, &out.datum, Some(&out.hifi_recheck));
-    if out.comfort == Comfort::Wk {
-        chart.title = chart.title.replacen("BAcc", out.comfort.label(), 1);
-        chart.x_label = format!("{} [m/s^2]", out.comfort.label());
+/// The front in the BAcc-DTL plane as an SVG file ("Robust ..." over cases).
+fn write_front_svg(path: &Path, front: &FrontReport) -> Result<()> {
+    ridelab::finite::check(front)?;
+    let (study, datum, recheck, comfort) = match front {
+        FrontReport::One(r) => (&r.study, &r.datum, &r.hifi_recheck, r.comfort),
+        FrontReport::Adaptive(r) => {
+            let r = &r.optimize;
+            (&r.study, &r.datum, &r.hifi_recheck, r.comfort)
+        }
+        FrontReport::Robust(r) => (&r.study, &r.datum, &r.hifi_recheck, r.comfort),
+    };
+    let mut chart = front_chart(study, datum, Some(recheck));
+    if let FrontReport::Robust(_) = front {
+        chart.title = format!("Robust {}", chart.title);
+    }
+    if comfort == Comfort::Wk {
+        chart.title = chart.title.replacen("BAcc", comfort.label(), 1);
+        chart.x_label = format!("{} [m/s^2]", comfort.label());
     }
     write_svg(path, &line_chart_svg(&chart)?)
-}
-
-/// `optimize --road FILE`: the front of the LoFi, the HiFi or a surrogate on the measured
-/// road (the models by the exact route at every design; a surrogate fitted to the HiFi's
-/// samples there, its LoFi the quarter car there), the datum and the pick's re-check on
-/// its HiFi; with `--adaptive K` the surrogate is the adaptive loop's on this road. One
-/// scenario: `--cases` (and a car file's load_cases) and `--compute gpu` are refused
-/// naming them, `--adaptive` with a model evaluator and `--comfort wk` with a surrogate
-/// (as on an ISO class). A run costs more here (the residue route with the road's
-/// filters: the default STM on the HiFi, 48 517 runs, took 0.17 s on the shipped slab
-/// road), so the work is bounded by [`ridelab::budget::MAX_MEASURED_RUNS`] runs
-/// (`grid^2 + 12 (grid - 1) 2^levels` for STM, `population (generations + 1)` for
-/// NSGA-II, plus the loop's plan and added HiFi runs).
-fn measured_optimize(
-    a: &OptimizeArgs,
-    car: &Car,
-    loads: &[LoadCase],
-    design_box: &DesignBox,
-    method: &Method,
-    objectives: DesignObjectives,
-    path: &str,
-) -> Result<String> {
-    one_scenario(
-        a.cases.cases.is_some() || !loads.is_empty(),
-        a.compute == Some(Compute::Gpu),
-    )?;
-    let looped = a.adaptive.options();
-    check_measured_request(a.evaluator, a.comfort, looped.is_some())?;
-    // The optimisation's runs, and the loop's HiFi runs (its plan and added runs).
-    let plan_runs = match looped {
-        Some(o) => a.plan.plan()?.points(design_box).len() as u64 + o.runs as u64,
-        None => 0,
-    };
-    let runs = match method {
-        Method::Stm(p) => ridelab::budget::stm_runs(p.grid, p.levels),
-        Method::Nsga2(p) => (p.population as u64).saturating_mul(p.generations as u64 + 1),
-    }
-    .saturating_add(plan_runs);
-    let (field, options) = match method {
-        Method::Stm(_) => ("grid", "--grid or --levels"),
-        Method::Nsga2(_) => ("generations", "--generations or --population"),
-    };
-    ridelab::budget::check_measured(runs, field, "this optimisation", options)?;
-    let (hifi, about) = measured_model(ModelKind::Full, car, &a.car, path, a.comfort)?;
-    // The request's ISO road is not used: the models are on the measured one.
-    let unused = Road::default();
-    let request = OptimizeRequest {
-        evaluator: a.evaluator,
-        plan: a.plan,
-        comfort: a.comfort,
-        ..OptimizeRequest::new(car, &unused, *design_box, method.clone(), objectives)
-    };
-    let (mut out, report) = optimize_measured(&request, &hifi, looped)?;
-    out.compute = a.compute.map(|_| ComputePath::Cpu);
-    if a.pick != PickRule::MinMax {
-        out.repick_on(a.pick, &hifi, design_box)?;
-    }
-    if let Some(p) = svg_target(a.svg.as_deref())? {
-        write_front_svg(&p, &out)?;
-    }
-    let loop_text = report.as_ref().map(adaptive_text).unwrap_or_default();
-    if a.json {
-        let mut v = match report {
-            None => to_value(&out)?,
-            Some(adaptive) => to_value(&adaptive::AdaptiveOptimizeReport {
-                optimize: out,
-                adaptive,
-            })?,
-        };
-        v["road"] = to_value(&about)?;
-        return json(&v);
-    }
-    Ok(format!(
-        "on {}\n{}{loop_text}",
-        crate::text::scenario_words(&RoadScenario::Measured(about)),
-        optimize_text(&out)
-    ))
-}
-
-/// `v` as a JSON value (to add the measured road to a report).
-fn to_value<T: serde::Serialize>(v: &T) -> Result<serde_json::Value> {
-    serde_json::to_value(v).map_err(|e| RideError::Numerical(e.to_string()))
 }
 
 /// The loop's added runs, one line each.

@@ -1,10 +1,11 @@
 //! `ridelab report`: the study report as HTML, Markdown, SVG, JSON and CSV.
 
 use crate::args::{car_loads_road_of, count_u64, json, BoxArgs, CarRoad, ObjectiveArgs};
-use crate::road::{one_scenario, profile_at};
+use crate::road::profile_at;
 use clap::Args;
 use ridelab::error::{Result, RideError};
 use ridelab::report::{build, build_on, MeasuredInputs, ReportInputs, SECTIONS};
+use ridelab::study::spec::one_scenario;
 use ridelab::surrogate::{PlanSpec, SurrogateSpec};
 use std::path::PathBuf;
 

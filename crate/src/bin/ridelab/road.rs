@@ -11,8 +11,8 @@ use ridelab::error::{Result, RideError};
 use ridelab::evaluate::{Criteria, Evaluator};
 use ridelab::road::Tracks;
 use ridelab::road_profile::{
-    criteria_shaped_spectral, describe, road_error, MeasuredModel, MeasuredRoad, Profile,
-    ProfileTracks, RoadDescription, ShapedRoad, ShapedSpectrum,
+    criteria_shaped_spectral, describe, road_error, MeasuredModel, Profile, ProfileTracks,
+    RoadDescription, ShapedRoad, ShapedSpectrum,
 };
 use serde::Serialize;
 
@@ -97,42 +97,6 @@ pub(crate) fn profile_at(o: &CarRoad, path: &str) -> Result<(Profile, f64, Profi
         Some(Tracks::Independent) => ProfileTracks::Independent,
     };
     Ok((profile, speed, tracks))
-}
-
-/// What a measured road (one scenario, computed on the CPU) cannot be combined with, as
-/// map and optimize refuse it: cases (`--cases`, `--case`, a car file's load cases) and
-/// `--compute gpu`.
-pub(crate) fn one_scenario(cases: bool, gpu: bool) -> Result<()> {
-    if cases {
-        return Err(RideError::field(
-            "road",
-            "a measured road is one scenario: --cases, --case and a car file's load_cases take ISO classes (--class)",
-        ));
-    }
-    if gpu {
-        return Err(RideError::field(
-            "compute",
-            "gpu: on a measured road the models run on the CPU; use --compute cpu or auto",
-        ));
-    }
-    Ok(())
-}
-
-/// `kind`'s model of `car` on the measured road of `--road FILE` (map and optimize) with
-/// `comfort` in its comfort slot, and what their reports say of that road.
-pub(crate) fn measured_model(
-    kind: ModelKind,
-    car: &Car,
-    o: &CarRoad,
-    path: &str,
-    comfort: Comfort,
-) -> Result<(MeasuredModel, MeasuredRoad)> {
-    let (shaped, tracks) = shaped_road(o, path)?;
-    let about = MeasuredRoad::of(path, &shaped, tracks);
-    Ok((
-        MeasuredModel::new(kind, car, shaped).with_comfort(comfort),
-        about,
-    ))
 }
 
 /// `eval --road FILE`: the criteria on a measured road by the exact route (the model

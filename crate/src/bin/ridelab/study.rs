@@ -1,7 +1,7 @@
 //! `ridelab study`: the fidelity study, or the adaptive study of one surrogate.
 
 use crate::args::{car_and_road, car_loads_road_of, count, json, BoxArgs, CarRoad, ObjectiveArgs};
-use crate::road::{one_scenario, shaped_road};
+use crate::road::shaped_road;
 use clap::Args;
 use ridelab::analysis::ModelKind;
 use ridelab::car::Car;
@@ -9,6 +9,7 @@ use ridelab::error::{Result, RideError};
 use ridelab::optimize::StmParams;
 use ridelab::road_profile::{MeasuredModel, MeasuredRoad, RoadScenario};
 use ridelab::study::adaptive::{adaptive_study, adaptive_study_on, AdaptiveStudy, StudyOptions};
+use ridelab::study::spec::one_scenario;
 use ridelab::study::{study, study_on, StudyReport};
 use ridelab::surrogate::Setting;
 use ridelab::surrogate::SurrogateSpec;
