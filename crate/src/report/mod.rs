@@ -31,6 +31,7 @@ pub mod markdown;
 mod measured;
 mod render;
 mod road;
+mod study;
 
 pub use measured::{build_on, MeasuredInputs};
 pub use render::Documents;

@@ -17,6 +17,8 @@
 //!
 //! - [`spec`]: a study's inputs as one type, [`StudySpec`], with its map and its front as
 //!   methods over the pipelines below (`ridelab map` and `ridelab optimize` run them).
+//! - [`fits`]: a study's surrogate fits, its fidelity study and its adaptive study as
+//!   methods of [`StudySpec`] (`ridelab surrogate` and `ridelab study` run them).
 //! - [`map`]: a design map of one model (`ridelab map`).
 //! - [`optimize`]: a front and its min-max pick on any evaluator (`ridelab optimize`).
 //! - [`fidelity`]: one surrogate fitted and validated (`ridelab surrogate`), and the
@@ -26,6 +28,7 @@
 
 pub mod adaptive;
 pub mod fidelity;
+pub mod fits;
 pub mod map;
 pub mod measured;
 pub mod model;

@@ -421,6 +421,7 @@ mod tests {
     use crate::evaluate::Evaluator;
     use crate::maps::Axis;
     use crate::optimize::StmParams;
+    use crate::surrogate::SurrogateSpec;
 
     fn grid(n: usize) -> Grid {
         Grid::new(
@@ -589,6 +590,17 @@ mod tests {
         };
         let looped = front_ask(Some(AdaptiveOptions::default()));
         assert_eq!(field(robust.front(&looped).unwrap_err()), "adaptive");
+        // A fit, the fidelity study and the report are of one scenario.
+        let gp = SurrogateSpec::parse("gp-mul").unwrap();
+        let e = robust.surrogate(gp, PlanSpec::AudzeEglais(5), None, None);
+        assert_eq!(field(e.unwrap_err()), "cases");
+        assert_eq!(field(robust.fidelity().unwrap_err()), "cases");
+        let options = crate::study::adaptive::StudyOptions::default();
+        assert_eq!(
+            field(robust.adaptive_study(gp, &options).unwrap_err()),
+            "cases"
+        );
+        assert_eq!(field(robust.report(None, 1, |_| {}).unwrap_err()), "cases");
         let robust_gpu = StudySpec {
             compute: Some(Compute::Gpu),
             ..robust

@@ -301,20 +301,33 @@ pub(crate) fn car_loads_road_of(o: &CarRoad) -> Result<(Car, Vec<LoadCase>, Road
     Ok((car, loads, road))
 }
 
-/// The study of the car, road and cases options (map and optimize): the car with
-/// `--ks/--cs` applied, the ISO class or the measured road of `--road FILE` (shaped at
-/// `--speed`), and the cases of `--cases` or the car file's load cases; the box,
-/// objectives, comfort and compute the defaults (the caller sets its own).
-pub(crate) fn study_of(o: &CarRoad, cases: &CasesArgs) -> Result<StudySpec> {
+/// The study of the car, road and cases options: the car with `--ks/--cs` applied, the
+/// ISO class or the measured road of `--road FILE` (shaped at `--speed`), and with
+/// `cases` (map and optimize) the cases of `--cases` or the car file's load cases; the
+/// box, objectives, comfort and compute the defaults (the caller sets its own). Without
+/// `cases` a car file's load cases are not read on an ISO class (the command is of the
+/// car as given) and refused on a measured road, naming `road`, as with `--cases`.
+pub(crate) fn study_of(o: &CarRoad, cases: Option<&CasesArgs>) -> Result<StudySpec> {
     let (car, loads, iso) = car_loads_road_of(o)?;
     let Some(path) = o.road.as_deref() else {
+        let set = match cases {
+            Some(c) => c.set(&car, &loads, &iso)?,
+            None => None,
+        };
         return Ok(StudySpec {
-            cases: cases.set(&car, &loads, &iso)?,
+            cases: set,
             ..StudySpec::new(car, StudyRoad::Iso(iso))
         });
     };
-    // Refused before the cases file is read.
-    one_scenario(cases.cases.is_some() || !loads.is_empty(), false)?;
+    // Refused before the cases file is read, naming what this command takes.
+    match cases {
+        Some(c) => one_scenario(c.cases.is_some() || !loads.is_empty(), false)?,
+        None if !loads.is_empty() => return Err(RideError::field(
+            "road",
+            "a measured road is one scenario: a car file's load_cases take ISO classes (--class)",
+        )),
+        None => {}
+    }
     let (profile, speed, tracks) = crate::road::profile_at(o, path)?;
     let road = StudyRoad::Measured(MeasuredSource::new(path, profile, speed, tracks)?);
     Ok(StudySpec::new(car, road))

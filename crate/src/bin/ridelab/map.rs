@@ -69,7 +69,7 @@ pub(crate) struct MapArgs {
 
 pub(crate) fn map_cmd(a: MapArgs) -> Result<String> {
     let svg = svg_target(a.svg.as_deref())?;
-    let base = study_of(&a.car, &a.cases)?;
+    let base = study_of(&a.car, Some(&a.cases))?;
     let grid = Grid::new(a.ks_range, a.cs_range)?;
     let study = StudySpec {
         design_box: fit_box(&a, &grid),

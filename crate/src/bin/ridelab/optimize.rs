@@ -78,7 +78,7 @@ pub(crate) struct OptimizeArgs {
 
 pub(crate) fn optimize(a: OptimizeArgs) -> Result<String> {
     let svg = svg_target(a.svg.as_deref())?;
-    let base = study_of(&a.car, &a.cases)?;
+    let base = study_of(&a.car, Some(&a.cases))?;
     let method = if a.method == "stm" {
         Method::Stm(StmParams {
             grid: a.grid,

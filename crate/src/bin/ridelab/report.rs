@@ -1,11 +1,10 @@
 //! `ridelab report`: the study report as HTML, Markdown, SVG, JSON and CSV.
 
-use crate::args::{car_loads_road_of, count_u64, json, BoxArgs, CarRoad, ObjectiveArgs};
-use crate::road::profile_at;
+use crate::args::{count_u64, json, study_of, BoxArgs, CarRoad, ObjectiveArgs};
 use clap::Args;
 use ridelab::error::{Result, RideError};
-use ridelab::report::{build, build_on, MeasuredInputs, ReportInputs, SECTIONS};
-use ridelab::study::spec::one_scenario;
+use ridelab::report::SECTIONS;
+use ridelab::study::StudySpec;
 use ridelab::surrogate::{PlanSpec, SurrogateSpec};
 use std::path::PathBuf;
 
@@ -36,18 +35,6 @@ pub(crate) struct ReportArgs {
     pub(crate) json: bool,
 }
 
-/// The measured road of `report --road FILE` ([`profile_at`]). One scenario: a car file's
-/// load cases are refused naming `road`.
-fn measured_inputs(o: &CarRoad, path: &str, cases: bool) -> Result<MeasuredInputs> {
-    one_scenario(cases, false)?;
-    let (profile, _, tracks) = profile_at(o, path)?;
-    Ok(MeasuredInputs {
-        file: path.to_string(),
-        profile,
-        tracks,
-    })
-}
-
 /// `report --json`: what was written where, and what each section took.
 #[derive(serde::Serialize)]
 struct Summary {
@@ -68,18 +55,11 @@ struct SectionTime {
 }
 
 pub(crate) fn report_cmd(a: ReportArgs) -> Result<String> {
-    let (car, loads, road) = car_loads_road_of(&a.car)?;
-    let measured = match a.car.road.as_deref() {
-        None => None,
-        Some(path) => Some(measured_inputs(&a.car, path, !loads.is_empty())?),
-    };
-    let design_box = a.design_box.design_box()?;
-    let inputs = ReportInputs {
-        design_box,
+    let base = study_of(&a.car, None)?;
+    let study = StudySpec {
+        design_box: a.design_box.design_box()?,
         objectives: a.objectives.objectives()?,
-        surrogate: a.approach.zip(a.plan),
-        seed: a.seed,
-        ..ReportInputs::new(car, road)
+        ..base
     };
     let figures_dir = a.out.join("figures");
     std::fs::create_dir_all(&figures_dir).map_err(|e| {
@@ -107,10 +87,7 @@ pub(crate) fn report_cmd(a: ReportArgs) -> Result<String> {
         }
         last = (now, Some(k));
     };
-    let report = match &measured {
-        None => build(&inputs, progress)?,
-        Some(m) => build_on(&inputs, m, progress)?,
-    };
+    let report = study.report(a.approach.zip(a.plan), a.seed, progress)?;
     // Nothing is written unless every number in the report is finite.
     ridelab::finite::check(&report)?;
     let render = std::time::Instant::now();

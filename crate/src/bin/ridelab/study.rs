@@ -1,17 +1,11 @@
 //! `ridelab study`: the fidelity study, or the adaptive study of one surrogate.
 
-use crate::args::{car_and_road, car_loads_road_of, count, json, BoxArgs, CarRoad, ObjectiveArgs};
-use crate::road::shaped_road;
+use crate::args::{count, json, study_of, BoxArgs, CarRoad, ObjectiveArgs};
 use clap::Args;
-use ridelab::analysis::ModelKind;
-use ridelab::car::Car;
 use ridelab::error::{Result, RideError};
 use ridelab::optimize::StmParams;
-use ridelab::road_profile::{MeasuredModel, MeasuredRoad, RoadScenario};
-use ridelab::study::adaptive::{adaptive_study, adaptive_study_on, AdaptiveStudy, StudyOptions};
-use ridelab::study::spec::one_scenario;
-use ridelab::study::{study, study_on, StudyReport};
-use ridelab::surrogate::Setting;
+use ridelab::study::adaptive::StudyOptions;
+use ridelab::study::StudySpec;
 use ridelab::surrogate::SurrogateSpec;
 
 #[derive(Args)]
@@ -56,28 +50,27 @@ pub(crate) fn study_cmd(a: StudyArgs) -> Result<String> {
             "the fidelity study judges fits, not designs; the objectives apply to the adaptive study's fronts (--adaptive SURROGATE)",
         )?;
     }
-    if let Some(path) = a.car.road.as_deref() {
-        if let Some(spec) = a.adaptive {
-            let r = measured_adaptive_study(&a, path, spec)?;
-            return output(&a, &r, r.to_markdown());
-        }
-        let r = measured_study(&a, path)?;
-        return output(&a, &r, r.to_markdown());
-    }
-    let (car, road) = car_and_road(&a.car)?;
+    let base = study_of(&a.car, None)?;
+    let study = StudySpec {
+        design_box: a.design_box.design_box()?,
+        objectives: a.objectives.objectives()?,
+        ..base
+    };
     if let Some(spec) = a.adaptive {
-        let r = adaptive_study(&car, &road, spec, &study_options(&a)?).map_err(option_name)?;
+        let r = study
+            .adaptive_study(spec, &study_options(&a))
+            .map_err(option_name)?;
         return output(&a, &r, r.to_markdown());
     }
-    let r = study(&car, &road, &a.design_box.design_box()?)?;
+    let r = study.fidelity()?;
     output(&a, &r, r.to_markdown())
 }
 
-/// The adaptive study's settings from the options (the defaults where left out); errors
-/// name the box or an objective.
-fn study_options(a: &StudyArgs) -> Result<StudyOptions> {
+/// The adaptive study's settings from the options (the defaults where left out; the
+/// box and objectives are the study's).
+fn study_options(a: &StudyArgs) -> StudyOptions {
     let d = StudyOptions::default();
-    Ok(StudyOptions {
+    StudyOptions {
         initial: a.initial.unwrap_or(d.initial),
         min_runs: a.min_runs.unwrap_or(d.min_runs),
         max_runs: a.max_runs.unwrap_or(d.max_runs),
@@ -85,10 +78,8 @@ fn study_options(a: &StudyArgs) -> Result<StudyOptions> {
             grid: a.grid.unwrap_or(d.stm.grid),
             ..d.stm.clone()
         },
-        design_box: a.design_box.design_box()?,
-        objectives: a.objectives.objectives()?,
         ..d
-    })
+    }
 }
 
 /// An error's field as the option that sets it (`min_runs` -> `min-runs`).
@@ -108,42 +99,4 @@ fn output<T: serde::Serialize>(a: &StudyArgs, r: &T, markdown: String) -> Result
     } else {
         Ok(crate::text::plain_table(&markdown))
     }
-}
-
-/// `study --road FILE`: the fidelity study on the measured road (its HiFi samples and
-/// validation grid the full car there, the surrogates' LoFi the quarter car there, as
-/// `surrogate --road`), in the options' design box. Fixed work (every plan of the study
-/// and the 20 x 20 grid: about 3 s on the shipped slab road). One scenario: a car file's
-/// load cases exit 2 naming `road`.
-fn measured_study(a: &StudyArgs, path: &str) -> Result<StudyReport> {
-    let (car, setting, hifi, road) = measured_scenario(a, path)?;
-    study_on(&car, &setting, hifi, road)
-}
-
-/// `study --road FILE --adaptive SURROGATE`: the adaptive study on the measured road, its
-/// HiFi runs (the loop's, the Audze-Eglais plans', every front's re-check) the full car
-/// there and the surrogates' LoFi the quarter car there. Bounded as on an ISO class
-/// (`--max-runs` <= 100, the fronts' STM grid by the work budget).
-fn measured_adaptive_study(
-    a: &StudyArgs,
-    path: &str,
-    spec: SurrogateSpec,
-) -> Result<AdaptiveStudy> {
-    let (car, setting, hifi, road) = measured_scenario(a, path)?;
-    adaptive_study_on(&car, &setting, &hifi, road, spec, &study_options(a)?).map_err(option_name)
-}
-
-/// The car, the surrogates' setting, the full car and the road's description of a study
-/// on the profile `path` at the options' speed and tracks.
-fn measured_scenario(
-    a: &StudyArgs,
-    path: &str,
-) -> Result<(Car, Setting, MeasuredModel, RoadScenario)> {
-    let (car, loads, _) = car_loads_road_of(&a.car)?;
-    one_scenario(!loads.is_empty(), false)?;
-    let (shaped, tracks) = shaped_road(&a.car, path)?;
-    let about = MeasuredRoad::of(path, &shaped, tracks);
-    let setting = Setting::measured(&car, shaped.clone(), &a.design_box.design_box()?)?;
-    let hifi = MeasuredModel::new(ModelKind::Full, &car, shaped);
-    Ok((car, setting, hifi, RoadScenario::Measured(about)))
 }
