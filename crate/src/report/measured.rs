@@ -31,7 +31,7 @@ use crate::time_domain::{simulate_playback, TimeOptions, MAX_STEPS};
 /// A measured road for the report: the profile, the file it came from and how its tracks
 /// drive the car.
 #[derive(Debug, Clone, PartialEq)]
-pub struct MeasuredInputs {
+pub(crate) struct MeasuredInputs {
     /// The file's name, as the report names the road.
     pub file: String,
     /// The profile.
@@ -42,7 +42,7 @@ pub struct MeasuredInputs {
 
 /// [`build`](super::build) on the measured road `measured` at `inputs.road`'s speed (its
 /// class is not used): `ridelab report --road FILE` (this module).
-pub fn build_on(
+pub(crate) fn build_on(
     inputs: &ReportInputs,
     measured: &MeasuredInputs,
     progress: impl FnMut(usize),

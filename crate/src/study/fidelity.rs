@@ -365,7 +365,7 @@ pub fn study(car: &Car, road: &Road, design_box: &DesignBox) -> Result<StudyRepo
 
 /// [`study`] on `setting` (an ISO class or a measured road: its LoFi and box) with
 /// `hifi` the full car of `car` there; `road` is recorded.
-pub fn study_on<E: Evaluator>(
+pub(crate) fn study_on<E: Evaluator>(
     car: &Car,
     setting: &Setting,
     hifi: E,

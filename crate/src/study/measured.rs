@@ -19,7 +19,7 @@ use crate::surrogate::{sample_plan, Guarded, LmOptions, PlanSpec, Setting, Surro
 /// What an optimisation on a measured road refuses, naming the field: the adaptive loop
 /// with a model evaluator (it refits a surrogate), and a surrogate with the Wk-weighted
 /// comfort (the surrogates are fitted to the unweighted BAcc).
-pub fn check_measured_request(
+pub(crate) fn check_measured_request(
     evaluator: EvaluatorSpec,
     comfort: Comfort,
     adaptive: bool,
@@ -42,7 +42,7 @@ pub fn check_measured_request(
 /// with `options` through the adaptive loop (its fronts the request's objectives and STM
 /// settings, [`Decision::for_method`]); the loop's report beside it. The request's
 /// compute and pick are the caller's (the pick is min-max).
-pub fn optimize_measured(
+pub(crate) fn optimize_measured(
     request: &OptimizeRequest,
     hifi: &MeasuredModel,
     options: Option<AdaptiveOptions>,
@@ -96,7 +96,7 @@ pub fn optimize_measured(
 /// refused naming `comfort`), over the request's [`MapRequest::surrogate_box`]. The datum is the car's own front design, the report's `road`
 /// the measured one and its compute path the CPU. The caller bounds the grid
 /// ([`crate::budget::check_measured`], naming its own option).
-pub fn measured_map(
+pub(crate) fn measured_map(
     request: &MapRequest,
     road: &ShapedRoad,
     file: &str,

@@ -37,7 +37,8 @@ pub mod robust;
 pub mod spec;
 pub mod surrogate;
 
-pub use fidelity::{study, study_on, StudyReport, SurrogateReport};
+pub(crate) use fidelity::study_on;
+pub use fidelity::{study, StudyReport, SurrogateReport};
 pub use map::{
     map_csv, CriteriaContours, Feasibility, MapReport, MapRequest, MapSettings, MaskBit, Units,
     LAYOUT,

@@ -28,7 +28,8 @@ mod study;
 
 pub use check::{front_check, FrontCheck, HifiFront, HIFI_FEASIBILITY_TOLERANCE};
 pub use reports::AdaptiveOptimizeReport;
-pub use study::{adaptive_study, adaptive_study_on, AdaptiveStudy, StudyOptions, StudyRow};
+pub(crate) use study::adaptive_study_on;
+pub use study::{adaptive_study, AdaptiveStudy, StudyOptions, StudyRow};
 
 use crate::car::Car;
 use crate::design::DesignBox;

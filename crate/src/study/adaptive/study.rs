@@ -117,7 +117,7 @@ pub fn adaptive_study(
 /// [`adaptive_study`] on any HiFi (the full car on a measured road, say) with the
 /// surrogates' `setting` (its LoFi on the same road; its box, not `options`', is the
 /// study's); `road` names the road in the report.
-pub fn adaptive_study_on<E: Evaluator + Sync>(
+pub(crate) fn adaptive_study_on<E: Evaluator + Sync>(
     car: &Car,
     setting: &Setting,
     hifi: &E,
