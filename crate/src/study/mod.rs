@@ -36,6 +36,8 @@ pub mod optimize;
 pub mod robust;
 pub mod spec;
 pub mod surrogate;
+#[cfg(test)]
+mod tests_spec;
 
 pub(crate) use fidelity::study_on;
 pub use fidelity::{study, StudyReport, SurrogateReport};
