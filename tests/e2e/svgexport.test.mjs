@@ -122,6 +122,13 @@ test('bad specs are refused naming the field; a worker gets an error, not a cras
     const nested = await fail({ series: [{ colour: '#000000', points: [[1, 1]], stroek: '#ffffff' }] });
     const colour = await fail({ series: [{ colour: 'red', points: [[1, 1]] }] });
     const map = await fail({ unit: 'u', nx: 2, ny: 2, values: [1, 2, 3] }, 'mapChartSvg');
+    // A value of the wrong type, found at its path after the read (web/charts.rs `locate`).
+    const good = { colour: '#000000', points: [[1, 1], [2, 2]] };
+    const width = await fail({ width: 'wide', series: [good] });
+    const size = await fail({ series: [good, { ...good, size: 'big' }] });
+    const point = await fail({ series: [good, { ...good, points: [[1, 'one']] }] });
+    const notList = await fail({ series: 'none' });
+    const markerAt = await fail({ unit: 'u', nx: 2, ny: 2, values: [1, 2, 3, 4], markers: [{ label: 'a', ks: 2e4, cs: 1e3 }, { label: 'b', ks: 'x', cs: 1e3 }] }, 'mapChartSvg');
     // The worker: the same module, no window; the call must throw, and the worker live on.
     const worker = await new Promise((resolve) => {
       const src = `import init, * as api from '${new URL('./ridelab.js', location.href)}';
@@ -139,7 +146,7 @@ test('bad specs are refused naming the field; a worker gets an error, not a cras
       w.onerror = (e) => resolve({ first: 'worker error: ' + e.message });
       w.postMessage(0);
     });
-    return { nan, log, unknown, nested, colour, map, worker };
+    return { nan, log, unknown, nested, colour, map, width, size, point, notList, markerAt, worker };
   });
   assert.equal(res.nan.field, 'series[0].points[1]');
   assert.match(res.nan.message, /y is NaN/);
@@ -150,6 +157,12 @@ test('bad specs are refused naming the field; a worker gets an error, not a cras
   assert.equal(res.nested.field, 'series[0].stroek');
   assert.equal(res.colour.field, 'series[0].colour');
   assert.equal(res.map.field, 'values');
+  assert.equal(res.width.field, 'width', JSON.stringify(res.width));
+  assert.match(res.width.message, /invalid type: string "wide"/);
+  assert.equal(res.size.field, 'series[1].size', JSON.stringify(res.size));
+  assert.equal(res.point.field, 'series[1].points', JSON.stringify(res.point));
+  assert.equal(res.notList.field, 'series', JSON.stringify(res.notList));
+  assert.equal(res.markerAt.field, 'markers[1].ks', JSON.stringify(res.markerAt));
   assert.equal(res.worker.first.field, 'chart', JSON.stringify(res.worker));
   assert.match(res.worker.first.message, /main thread/);
   assert.match(String(res.worker.after), /^\d+\.\d+\.\d+/);

@@ -73,18 +73,84 @@ pub(super) fn check_items(value: &JsValue, key: &str, allowed: &[&str]) -> Resul
     Ok(())
 }
 
-/// Reads a spec; a bad key or value is reported at its path (`series[0].colour`).
+/// Reads a spec; a bad value is reported at its path (`width`, `series[0].size`).
+///
+/// serde-wasm-bindgen's errors carry no path. Rather than track one on every read
+/// (serde_path_to_error, which compiles each spec type's reader a second time: 5.6 KB of
+/// the first-screen module gzipped, about 28 ms on a slow school network, issue #29),
+/// a failed read is located afterwards by [`locate`], which reads the spec again without
+/// one key at a time (the same reader: nothing more is compiled). Unknown keys are
+/// refused before the read ([`check_keys`]), colours and values after it (the charts'
+/// `layout`), each with its own path.
 pub(super) fn read_spec<T: DeserializeOwned>(spec: JsValue) -> Result<T, JsValue> {
-    let de = serde_wasm_bindgen::Deserializer::from(spec);
-    serde_path_to_error::deserialize(de).map_err(|e| {
-        let path = e.path().to_string();
-        let field = if path == "." {
-            "spec".to_string()
-        } else {
-            path
+    serde_wasm_bindgen::from_value(spec.clone()).map_err(|e| {
+        let message = e.to_string();
+        let read = |v| {
+            serde_wasm_bindgen::from_value::<T>(v)
+                .err()
+                .map(|e| e.to_string())
         };
-        chart_error(RideError::field(field, e.inner().to_string()))
+        let field = locate(&spec, &message, &read).unwrap_or_else(|| "spec".to_string());
+        chart_error(RideError::field(field, message))
     })
+}
+
+/// The path of the key of `spec` that makes `read` fail with `message`: the first key
+/// without which the read fails otherwise (or not at all), and within an array of
+/// objects at that key the item, then the item's key, found the same way (`series[1]`,
+/// `series[1].size`); `None` when no key changes it (a spec that is not an object).
+fn locate(
+    spec: &JsValue,
+    message: &str,
+    read: &dyn Fn(JsValue) -> Option<String>,
+) -> Option<String> {
+    let changes = |v: JsValue| read(v).as_deref() != Some(message);
+    let obj = spec
+        .dyn_ref::<Object>()
+        .filter(|_| !Array::is_array(spec))?;
+    let key = Object::keys(obj)
+        .iter()
+        .find(|k| changes(without(obj, k)))?;
+    let name = key.as_string().unwrap_or_default();
+    let value = Reflect::get(obj, &key).unwrap_or(JsValue::UNDEFINED);
+    let Some(items) = value.dyn_ref::<Array>() else {
+        return Some(name);
+    };
+    // With `obj[key]` replaced by `items`, the spec read again.
+    let with = |items: &Array| {
+        let copy = Object::assign(&Object::new(), obj);
+        // Setting a key of a plain object just made cannot fail.
+        let _ = Reflect::set(&copy, &key, items);
+        JsValue::from(copy)
+    };
+    for (i, item) in items.iter().enumerate() {
+        let others = items
+            .slice(0, i as u32)
+            .concat(&items.slice(i as u32 + 1, items.length()));
+        if !changes(with(&others)) {
+            continue;
+        }
+        let Some(item_obj) = item.dyn_ref::<Object>().filter(|_| !Array::is_array(&item)) else {
+            return Some(format!("{name}[{i}]"));
+        };
+        for k in Object::keys(item_obj).iter() {
+            let one = items.slice(0, items.length());
+            one.set(i as u32, without(item_obj, &k));
+            if changes(with(&one)) {
+                return Some(format!("{name}[{i}].{}", k.as_string().unwrap_or_default()));
+            }
+        }
+        return Some(format!("{name}[{i}]"));
+    }
+    Some(name)
+}
+
+/// A copy of `obj` without `key`.
+fn without(obj: &Object, key: &JsValue) -> JsValue {
+    let copy = Object::assign(&Object::new(), obj);
+    // Deleting a key of a plain object just made cannot fail.
+    let _ = Reflect::delete_property(&copy, key);
+    copy.into()
 }
 
 /// Reads a [`MapChart`] spec. A `values` given as a `Float64Array` is copied in one go
