@@ -81,10 +81,8 @@ impl Car {
     /// Parses and validates a car from JSON text.
     pub fn from_json(text: &str) -> Result<Car> {
         check_object("car", "a car file", text)?;
-        let de = &mut serde_json::Deserializer::from_str(text);
-        let car: Car = serde_path_to_error::deserialize(de).map_err(|e| {
-            let path = e.path().to_string();
-            let inner = e.into_inner().to_string();
+        let car: Car = crate::json_path::from_str(text).map_err(|(path, e)| {
+            let inner = e.to_string();
             // A car file may also list `load_cases` (robust::CarFile reads them).
             let inner = match inner.split_once(", expected one of ") {
                 Some((head, keys)) if head.starts_with("unknown field") => {
@@ -92,7 +90,7 @@ impl Car {
                 }
                 _ => inner,
             };
-            if path == "." || path == "?" || path.is_empty() {
+            if path.is_empty() {
                 RideError::Json(inner)
             } else {
                 RideError::field(path, inner)

@@ -24,6 +24,7 @@ pub mod explorer;
 pub(crate) mod fft;
 pub mod finite;
 pub mod gpu;
+pub(crate) mod json_path;
 pub mod maps;
 pub mod math;
 pub mod model;

@@ -170,11 +170,8 @@ impl CaseSet {
         road: &Road,
     ) -> Result<CaseSet> {
         crate::car::check_object("cases", "a cases file", text)?;
-        let de = &mut serde_json::Deserializer::from_str(text);
-        let file: CasesFile = serde_path_to_error::deserialize(de).map_err(|e| {
-            let path = e.path().to_string();
-            let inner = e.into_inner();
-            if path == "." || path.is_empty() {
+        let file: CasesFile = crate::json_path::from_str(text).map_err(|(path, inner)| {
+            if path.is_empty() {
                 RideError::Json(inner.to_string())
             } else {
                 RideError::field(path, inner.to_string())

@@ -209,9 +209,17 @@ impl CarFile {
 
 /// Deserialises a list of load cases from `value`; errors name `field[i].key`.
 pub(crate) fn parse_load_cases(value: serde_json::Value, field: &str) -> Result<Vec<LoadCase>> {
-    serde_path_to_error::deserialize(value).map_err(|e| {
-        let path = e.path().to_string();
-        let path = if path == "." || path.is_empty() {
+    // Read from its text (compact, every number exact: serde_json's float_roundtrip), so
+    // that an error has a position to find its field at (crate::json_path).
+    let text = value.to_string();
+    crate::json_path::from_str(&text).map_err(|(path, e)| {
+        // The position is in that text, not the user's file: left out of the message.
+        let message = e.to_string();
+        let message = match message.rfind(" at line ") {
+            Some(k) => message[..k].to_string(),
+            None => message,
+        };
+        let path = if path.is_empty() {
             field.to_string()
         } else {
             format!(
@@ -223,7 +231,7 @@ pub(crate) fn parse_load_cases(value: serde_json::Value, field: &str) -> Result<
                 }
             )
         };
-        RideError::field(path, e.into_inner().to_string())
+        RideError::field(path, message)
     })
 }
 
