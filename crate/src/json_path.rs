@@ -59,7 +59,8 @@ pub(crate) fn path_at(text: &str, line: usize, column: usize) -> String {
                 while i < bytes.len() && bytes[i] != b'"' {
                     i += if bytes[i] == b'\\' { 2 } else { 1 };
                 }
-                if expect_key {
+                // A key cut short by the error (`{"na`) is no field yet.
+                if expect_key && i < end {
                     if let Some(Frame::Object(key)) = frames.last_mut() {
                         *key = Some(
                             text.get(start..i.min(bytes.len()))
@@ -188,6 +189,7 @@ mod tests {
             r#"[{"spring": 1, "damper": 2},, ]"#,
         );
         assert_eq!(path_of(&item), "loads[1]");
+        assert_eq!(path_of(r#"{"name": "a", "mass"#), "");
         assert_eq!(path_of(&ok.replace(r#""mass": 1, "#, "")), "");
         // A number out of range, a key with an escaped quote, text over several lines.
         assert_eq!(
@@ -211,5 +213,6 @@ mod tests {
             r#"[{"spring": 1, "damper": 2},, ]"#,
         );
         assert_eq!(path_of(&item), "loads[1]");
+        assert_eq!(path_of(r#"{"name": "a", "mass"#), "");
     }
 }
