@@ -202,9 +202,10 @@ test('moving the Ks slider changes the readout and the marker', { timeout: TIMEO
   await context.close();
 });
 
-test('a slider step crosses into the wasm twice on the main thread (setDesign, designStep)', { timeout: TIMEOUT }, async () => {
+test('a slider step crosses into the wasm twice on the main thread (setState, designStep)', { timeout: TIMEOUT }, async () => {
   // It was four (setDesign, the LoFi report, the surrogate's criteria, the HiFi readout)
-  // and five with Wk comfort (the plane's model's criteria); issue #28.
+  // and five with Wk comfort (the plane's model's criteria); issue #28. The setter is now
+  // setState (the core keeps the scenario when only Ks and Cs changed).
   for (const hash of ['', '#comfort=wk']) {
     const { page, context, log } = await open(hash);
     const calls = () => page.evaluate(() => window.__ridelab.engine.host.wasmCalls);
@@ -671,7 +672,7 @@ test('the JS API refuses bad input with messages naming the field, and keeps wor
       unknown: fail(() => ex.setState({ ...s, colour: 'red' })),
       speed: fail(() => ex.setState({ ...s, speed: -5 })),
       nan: fail(() => ex.setState({ ...s, speed: NaN })),
-      ks: fail(() => ex.setDesign(0, s.cs)),
+      ks: fail(() => ex.setState({ ...s, ks: 0 })),
       cs: fail(() => ex.setState({ ...s, cs: -1 })),
       model: fail(() => ex.analyse('bicycle')),
       grid: fail(() => ex.maps('lofi', 0, 10)),

@@ -168,7 +168,8 @@ test('changing the SWS limit changes the front; the maps follow the last edit; a
   // The maps caught up with the last limit once the edits stopped.
   const caught = await page.evaluate(() => {
     const a = window.__ridelab;
-    return a.maps.key === JSON.stringify({ ...a.state, ks: 0, cs: 0 }) && a.views.every((v) => v.data.feasible === a.maps.feasible);
+    // The maps' key is the core's scenario tag (js/store.js `tags`) of the state shown.
+    return a.maps.key === a.session(a.state).tags().scenario && a.views.every((v) => v.data.feasible === a.maps.feasible);
   });
   assert.ok(caught, 'the maps show the last state');
   // A bad entry: message next to the field, the last good front kept.
@@ -635,7 +636,7 @@ test('NSGA-II: an answer for an earlier scenario is dropped and the new scenario
   const r = await page.evaluate(() => {
     const a = window.__ridelab;
     const direct = a.session(a.state).front('nsga2', 'surrogate');
-    return { counters: a.counters, shown: a.nsga.study.front, direct: direct.study.front, key: a.nsga.key, now: JSON.stringify({ ...a.state, ks: 0, cs: 0 }) };
+    return { counters: a.counters, shown: a.nsga.study.front, direct: direct.study.front, key: a.nsga.key, now: a.session(a.state).tags().scenario };
   });
   assert.ok(r.counters.nsgaDropped >= 1, `the class B answer was dropped (${r.counters.nsgaDropped})`);
   assert.ok(r.counters.nsgaRuns >= 2, `and NSGA-II ran again (${r.counters.nsgaRuns} runs)`);

@@ -13,7 +13,7 @@
 import init, * as api from '../ridelab-first.js';
 import { createEngine, deferredEngine } from './engine.js';
 import { Compute } from './compute.js';
-import { Store, scenarioKey, setKeyFields } from './store.js';
+import { Store } from './store.js';
 import { Controller } from './controller.js';
 import { Render } from './render.js';
 import { Controls, fieldName, plainWords } from './controls.js';
@@ -221,7 +221,7 @@ function wire({ store, controller: ctl, controls, render, ui, bench, compute, pa
       cs: st.desc.datumCs,
       lofi: st.lofi.datum,
       hifi: st.hifiDatumCurrent() ? st.hifi.datum : null,
-    }, scenarioKey(st.state)));
+    }, st.tags.scenario));
     showSaved();
     st.scheduleUrl();
     $('compare-hint').textContent = `${st.saved.length} of ${MAX_SAVED} designs kept; "Keep" again adds the current one (the oldest goes).`;
@@ -436,7 +436,6 @@ async function main() {
     const hifi = worker ? deferredEngine(worker, main) : main;
     compute = new Compute(api, { main, hifi, heavy: heavy ? deferredEngine(heavy, main) : main });
     Object.assign(store, await compute.boot());
-    setKeyFields(store.keyFields);
     compute.gpuStatus().then((g) => {
       // Until a HiFi map says otherwise (a GPU failure), the path the GPU status gives.
       if (!$('compute-path').textContent) $('compute-path').textContent = `HiFi maps: ${pathText(g.adapter ? 'gpu' : 'cpu', g)}.`;

@@ -33,7 +33,7 @@ const crit = (r) => (r ? { bacc: r.bacc, dtl: r.dtl, sws: r.sws } : null);
 /**
  * A kept design's entry from its reports and its datum's (`lofi`, `hifi`: reports with
  * `bacc`, `dtl`, `sws` in SI, or null where not computed; `datum`: `{ks, cs, lofi, hifi}`),
- * evaluated for the scenario `key` (js/store.js `scenarioKey`).
+ * evaluated for the scenario `key` (its scenario tag, js/store.js `tags`).
  */
 export function savedEntry(ks, cs, lofi, hifi, datum, key) {
   return {
@@ -57,7 +57,7 @@ const designWords = (ks, cs) => `Ks ${fmt(ks / 1000, 4)} kN/m, Cs ${fmt(cs / 100
 /**
  * The designs `pairs` (`[[ks N/m, cs N s/m], ...]`) evaluated on state `s`'s scenario
  * (`desc`: its `describe`; `compute`: js/compute.js, LoFi and HiFi reports and the
- * datum's; `key`: the scenario's key): `{entries, failed}`, `failed` naming each design
+ * datum's; `key`: the scenario's tag): `{entries, failed}`, `failed` naming each design
  * that cannot be evaluated there, with the reason.
  */
 export async function evaluateKept(compute, s, desc, pairs, key) {

@@ -7,7 +7,6 @@
 // of the core, which keeps fits and maps; a call passes the view's state and the engine
 // moves its session there by the smallest setter (js/engine.js `Host`).
 
-import { fitKeyOf } from './store.js';
 
 /** LoFi and surrogate map resolution (cells); the image is scaled smoothly onto the plot. */
 export const GRID = { nx: 160, ny: 120 };
@@ -70,7 +69,6 @@ export class Compute {
       classes: await call('roadClasses'),
       surrogateNames: await call('surrogates'),
       objectives: await call('objectives'),
-      keyFields: await call('stateKeys'),
       version: await call('version'),
     };
   }
@@ -162,15 +160,15 @@ export class Compute {
    * criteria by the objective plane's model (`plane`), and with `withHifi` its HiFi
    * readout too (the report without its frequency-route check, about 0.1 ms, on the main
    * thread so every view follows the slider in one frame; null when it fails), all in one
-   * wasm call (`designStep`, after the session's `setDesign`; with robust cases one more
-   * for the maps' criteria). The full HiFi report follows from the HiFi worker
-   * (`hifiReport`).
+   * wasm call (`designStep`, after the session's `setState`; with robust cases one more
+   * for the maps' criteria), with the session's `tags` there. The full HiFi report
+   * follows from the HiFi worker (`hifiReport`).
    */
   async design(s, desc, withHifi) {
     const r = await this.main.call('designStep', s, planeModel(s), withHifi);
     const mapDesign = await mapDesignOf(this.main, s);
     const sur = r.surrogate;
-    return { lofi: r.lofi, surrogate: { ...sur, dtl_relative: sur.dtl / desc.staticWheelLoad }, plane: r.plane ?? sur, hifi: r.hifi, mapDesign };
+    return { lofi: r.lofi, surrogate: { ...sur, dtl_relative: sur.dtl / desc.staticWheelLoad }, plane: r.plane ?? sur, hifi: r.hifi, mapDesign, tags: r.tags };
   }
 
   /** A HiFi report on the HiFi worker (`s`: a design or the datum state). */
@@ -189,13 +187,14 @@ export class Compute {
   }
 
   /**
-   * Offers the heavy engine the main thread's surrogate fit of `s`, before a call that
-   * needs the surrogate, once per fit key: the worker adopts it instead of fitting again,
-   * so a scenario change costs the page one fit (issue #28). The main thread fits for
-   * its plane anyway; a state it cannot fit is left to the call's own error.
+   * Offers the heavy engine the main thread's surrogate fit of `s` (whose fit tag, the
+   * core's, is `fitTag`), before a call that needs the surrogate, once per fit: the worker
+   * adopts it instead of fitting again, so a scenario change costs the page one fit
+   * (issue #28). The main thread fits for its plane anyway; a state it cannot fit is left
+   * to the call's own error.
    */
-  shareFit(s) {
-    const key = fitKeyOf(s);
+  shareFit(s, fitTag) {
+    const key = fitTag;
     if (this.sharedFit?.key !== key) {
       const done = this.main.call('fitRecord', s).then(
         (record) => record && this.heavy.call('offerFit', record).catch(() => {}),
@@ -206,9 +205,9 @@ export class Compute {
     return this.sharedFit.done;
   }
 
-  /** The HiFi or surrogate-error maps (`model`) at the HiFi grid, with the HiFi datum's criteria (heavy worker). */
-  async modelMaps(s, model, datumState) {
-    if (model === 'error') await this.shareFit(s);
+  /** The HiFi or surrogate-error maps (`model`) at the HiFi grid, with the HiFi datum's criteria (heavy worker; `fitTag`: see `shareFit`). */
+  async modelMaps(s, fitTag, model, datumState) {
+    if (model === 'error') await this.shareFit(s, fitTag);
     const [maps, datum] = await Promise.all([
       this.heavy.call('maps', s, model, HIFI_GRID.nx, HIFI_GRID.ny),
       model === 'hifi' ? this.heavy.call('criteria', datumState, 'hifi') : null,
@@ -231,14 +230,14 @@ export class Compute {
    * both hypervolumes against the HiFi front's reference point and the HiFi runs each
    * took (heavy worker; `{error}` when none is feasible).
    */
-  async hifiFront(s) {
-    await this.shareFit(s);
+  async hifiFront(s, fitTag) {
+    await this.shareFit(s, fitTag);
     return this.heavy.call('hifiFront', s).catch((e) => ({ error: e.message || String(e) }));
   }
 
   /** The surrogate's fit report, validated on the HiFi grid (heavy worker). */
-  async fit(s) {
-    await this.shareFit(s);
+  async fit(s, fitTag) {
+    await this.shareFit(s, fitTag);
     return this.heavy.call('surrogateFit', s, VALIDATION_LEVELS);
   }
 
@@ -256,8 +255,8 @@ export class Compute {
   }
 
   /** The seeded NSGA-II front on the plane's model (heavy worker; `{error}` when none is feasible). */
-  async nsga(s) {
-    await this.shareFit(s);
+  async nsga(s, fitTag) {
+    await this.shareFit(s, fitTag);
     return this.front(s, 'nsga2').catch((e) => ({ error: e.message || String(e) }));
   }
 

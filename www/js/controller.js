@@ -12,7 +12,7 @@
 // an earlier state is dropped.
 
 import { latestOnly } from './engine.js';
-import { DEFAULT_VIEW, MODEL_NAMES, datumStateOf, fitKeyOf, keyOf, scenarioKey } from './store.js';
+import { DEFAULT_VIEW, MODEL_NAMES, datumStateOf, stateTag } from './store.js';
 import { fromLink } from './restore.js';
 import { FIELD_INPUT, explain, plainWords } from './controls.js';
 import { HIFI_GRID, VALIDATION_LEVELS } from './compute.js';
@@ -83,25 +83,26 @@ export class Controller {
     this.checkTimer = null;
 
     this.hifiRun = latestOnly(async (req) => {
-      const dkey = keyOf(req.datumState);
-      if (this.store.hifi.datumKey !== dkey) {
+      if (this.store.hifi.datumKey !== req.datumKey) {
         this.store.hifi.datum = await this.compute.hifiReport(req.datumState);
-        this.store.hifi.datumKey = dkey;
+        this.store.hifi.datumKey = req.datumKey;
       }
       return { ...req, design: await this.compute.hifiReport(req.s) };
     });
-    this.modelMapsRun = latestOnly(async ({ s, model, datumState }) => {
+    // Each worker job is asked with the state and its tags (`{s, tags}`, js/store.js
+    // `tags`) and answers with them, so its answer is shown only while they are current.
+    this.modelMapsRun = latestOnly(async ({ s, tags, model, datumState }) => {
       const t0 = performance.now();
-      const r = await this.compute.modelMaps(s, model, datumState);
-      return { s, model, ...r, ms: performance.now() - t0 };
+      const r = await this.compute.modelMaps(s, tags.fit, model, datumState);
+      return { tags, model, ...r, ms: performance.now() - t0 };
     });
-    this.fitRun = latestOnly((s) => this.compute.fit(s).then((r) => ({ s, r })));
-    this.hifiFrontRun = latestOnly((s) => this.compute.hifiFront(s).then((r) => ({ s, r })));
-    this.nsgaRun = latestOnly((s) => {
+    this.fitRun = latestOnly(({ s, tags }) => this.compute.fit(s, tags.fit).then((r) => ({ tags, r })));
+    this.hifiFrontRun = latestOnly(({ s, tags }) => this.compute.hifiFront(s, tags.fit).then((r) => ({ tags, r })));
+    this.nsgaRun = latestOnly(({ s, tags }) => {
       this.counters.nsgaRuns++;
-      return this.compute.nsga(s).then((r) => ({ s, r }));
+      return this.compute.nsga(s, tags.fit).then((r) => ({ tags, r }));
     });
-    this.spectraRun = latestOnly((s) => this.compute.spectra(s).then((r) => ({ s, r })));
+    this.spectraRun = latestOnly(({ s, tags }) => this.compute.spectra(s).then((r) => ({ tags, r })));
   }
 
   /** The design the page is moving to (`{ks, cs}`): the latest request, else the state's. */
@@ -114,7 +115,7 @@ export class Controller {
   isSettled() {
     const hf = this.store.hifiFront;
     return this.pending === 0 && this.pendingDesign === null && this.store.hifiChecked() && !this.render.ui.plane.animating &&
-      hf !== null && hf.key === scenarioKey(this.store.state);
+      hf !== null && hf.key === this.store.tags.scenario;
   }
 
   /** Runs `fn` after every earlier update; each reads the state when it starts. */
@@ -179,6 +180,7 @@ export class Controller {
   adopt(s, r) {
     const st = this.store;
     st.state = s;
+    st.tags = r.desc.tags;
     st.desc = r.desc;
     st.lofi = r.lofi;
     st.mapDesign = r.mapDesign;
@@ -186,9 +188,10 @@ export class Controller {
     st.cloud = r.cloud;
     st.front = r.front;
     st.plane = r.plane;
-    if (st.nsga && st.nsga.key !== scenarioKey(s)) st.nsga = null;
-    if (st.hifiFront && st.hifiFront.key !== scenarioKey(s)) st.hifiFront = null;
-    if (st.adaptive && st.adaptive.key !== scenarioKey(s)) {
+    const key = st.tags.scenario;
+    if (st.nsga && st.nsga.key !== key) st.nsga = null;
+    if (st.hifiFront && st.hifiFront.key !== key) st.hifiFront = null;
+    if (st.adaptive && st.adaptive.key !== key) {
       st.adaptive = null;
       this.counters.adaptiveDropped++;
     }
@@ -223,9 +226,9 @@ export class Controller {
     this.enqueue(async () => {
       const st = this.store;
       if (!st.front) {
-        const s = st.state;
+        const { state: s, tags } = st;
         const parts = await this.compute.planeParts(s);
-        if (scenarioKey(st.state) !== scenarioKey(s)) return; // a newer scenario brought its own
+        if (st.tags.scenario !== tags.scenario) return; // a newer scenario brought its own
         st.cloud = parts.cloud;
         st.front = parts.front;
       }
@@ -278,7 +281,7 @@ export class Controller {
       // The HiFi readout of the design (about 3 ms) in the same update once the datum's
       // is there, so every view follows the slider in one frame; the datum's (once per
       // scenario) and any failure go to the HiFi worker.
-      const withHifi = st.hifiDatumCurrent(s);
+      const withHifi = st.hifiDatumCurrent();
       let r;
       try {
         r = await this.compute.design(s, st.desc, withHifi);
@@ -292,13 +295,14 @@ export class Controller {
       this.controls.setMsg('ks', '');
       this.controls.setMsg('cs', '');
       st.state = s;
+      st.tags = r.tags;
       st.lofi = { ...st.lofi, design: r.lofi };
       st.mapDesign = r.mapDesign;
       st.surrogate = { ...st.surrogate, design: r.surrogate };
       st.plane = { ...st.plane, design: r.plane };
       if (r.hifi) {
         st.hifi.design = r.hifi;
-        st.hifi.key = keyOf(s);
+        st.hifi.key = r.tags.design;
       }
       this.designChanged();
       this.metrics.design.push(performance.now() - start);
@@ -321,11 +325,11 @@ export class Controller {
    */
   requestHifi(t0, { counted = true } = {}) {
     const st = this.store;
-    const s = st.state;
+    const { state: s, tags } = st;
     this.track(
-      this.hifiRun({ s, key: keyOf(s), datumState: datumStateOf(s, st.desc), t0 })
+      this.hifiRun({ s, key: tags.design, datumKey: tags.datum, datumState: datumStateOf(s, st.desc), t0 })
         .then((r) => {
-          if (!r || r.key !== keyOf(st.state)) return; // superseded
+          if (!r || r.key !== st.tags.design) return; // superseded
           st.hifi.design = r.design;
           st.hifi.key = r.key;
           st.hifi.checkedKey = r.key;
@@ -396,7 +400,7 @@ export class Controller {
             if (this.queued > 0) continue;
           }
           const s = st.state;
-          const key = scenarioKey(s);
+          const key = st.tags.scenario;
           const t0 = performance.now();
           if (!st.maps || st.maps.key !== key) st.maps = { ...(await this.compute.lofiMaps(s)), key };
           if (st.view.model === 'surrogate' && (!st.surMaps || st.surMaps.key !== key)) {
@@ -454,16 +458,16 @@ export class Controller {
   /** The HiFi or surrogate-error maps of the current scenario, from the heavy worker. */
   requestModelMaps() {
     const st = this.store;
-    const s = st.state;
+    const { state: s, tags } = st;
     const model = st.view.model;
     this.track(
-      this.modelMapsRun({ s, model, datumState: datumStateOf(s, st.desc) })
+      this.modelMapsRun({ s, tags, model, datumState: datumStateOf(s, st.desc) })
         .then((r) => {
           if (!r) return;
           this.metrics.modelMaps.push(r.ms);
-          st.modelMaps = { model: r.model, key: scenarioKey(r.s), maps: r.maps, datum: r.datum, ms: r.ms };
+          st.modelMaps = { model: r.model, key: r.tags.scenario, maps: r.maps, datum: r.datum, ms: r.ms };
           if (r.maps.compute) this.render.computePath(r.maps.compute, r.maps.gpu);
-          if (r.model === st.view.model && scenarioKey(r.s) === scenarioKey(st.state)) this.showMaps();
+          if (r.model === st.view.model && r.tags.scenario === st.tags.scenario) this.showMaps();
         })
         .catch((e) => this.render.mapStatus(`The ${MODEL_NAMES[model]} maps failed: ${e.message || e}`, 'bad')),
     );
@@ -474,16 +478,16 @@ export class Controller {
   /** The surrogate's fit report (samples, tuning, metrics on the HiFi grid), from the heavy worker. */
   requestFit() {
     const st = this.store;
-    const s = st.state;
-    if (fitKeyOf(s) === st.fitKey) return;
+    const { state: s, tags } = st;
+    if (tags.fit === st.fitKey) return;
     this.render.fitStatus('Fitting and validating on the HiFi…');
     const t0 = performance.now();
     this.track(
-      this.fitRun(s)
+      this.fitRun({ s, tags })
         .then((out) => {
-          if (!out || fitKeyOf(out.s) !== fitKeyOf(st.state)) return;
+          if (!out || out.tags.fit !== st.tags.fit) return;
           st.fit = out.r;
-          st.fitKey = fitKeyOf(out.s);
+          st.fitKey = out.tags.fit;
           this.render.fit(performance.now() - t0);
           this.onViewsChanged();
         })
@@ -499,13 +503,13 @@ export class Controller {
    */
   requestHifiFront() {
     const st = this.store;
-    const key = scenarioKey(st.state);
-    if (st.hifiFront && st.hifiFront.key === key) return;
+    const { state: s, tags } = st;
+    if (st.hifiFront && st.hifiFront.key === tags.scenario) return;
     this.render.hifiFrontStatus('HiFi front: computing…');
     this.track(
-      this.hifiFrontRun(st.state).then((out) => {
-        if (!out || scenarioKey(out.s) !== scenarioKey(st.state)) return;
-        st.hifiFront = { ...out.r, key: scenarioKey(out.s) };
+      this.hifiFrontRun({ s, tags }).then((out) => {
+        if (!out || out.tags.scenario !== st.tags.scenario) return;
+        st.hifiFront = { ...out.r, key: out.tags.scenario };
         this.render.hifiFront();
       }),
     );
@@ -520,10 +524,10 @@ export class Controller {
     st.view.nsga = true;
     this.render.nsgaStatus('NSGA-II running…');
     this.track(
-      this.nsgaRun(st.state).then((out) => {
+      this.nsgaRun({ s: st.state, tags: st.tags }).then((out) => {
         if (!out) return; // superseded by a newer request
-        const key = scenarioKey(out.s);
-        const now = scenarioKey(st.state);
+        const key = out.tags.scenario;
+        const now = st.tags.scenario;
         if (key !== now) {
           this.counters.nsgaDropped++;
           return;
@@ -549,14 +553,14 @@ export class Controller {
     this.render.adaptive(true);
     try {
       const s = st.state;
-      const key = scenarioKey(s);
+      const key = st.tags.scenario;
       if (!st.adaptive || st.adaptive.key !== key) {
         this.render.adaptiveStatus(`Running the ${s.plan} plan on the HiFi and fitting ${s.surrogate}…`);
         const r = await this.compute.adaptiveStart(s);
-        if (scenarioKey(st.state) !== key) return;
+        if (st.tags.scenario !== key) return;
         this.render.adaptiveStatus(`Checking the uncertainty estimate against the HiFi on its ${VALIDATION_LEVELS} × ${VALIDATION_LEVELS} grid…`);
         const uncertainty = await this.compute.adaptiveUncertainty(s);
-        if (scenarioKey(st.state) !== key) return;
+        if (st.tags.scenario !== key) return;
         st.adaptive = { key, state: s, report: r.report, proposal: r.proposal, front: r.front, errors: [r.recheck.error], was: null, ms: [], uncertainty };
         this.adaptiveShown();
       }
@@ -597,8 +601,8 @@ export class Controller {
   requestSpectra() {
     const st = this.store;
     // Spectra depend on the car, road and design, and on the surrogate's fit.
-    const keyFor = (s) => keyOf(s) + fitKeyOf(s);
-    const key = keyFor(st.state);
+    const keyFor = (tags) => `${tags.design}:${tags.fit}`;
+    const key = keyFor(st.tags);
     if (key === st.spectraKey) return;
     st.spectraKey = key;
     clearTimeout(this.spectraTimer);
@@ -606,14 +610,14 @@ export class Controller {
     this.spectraTimer = setTimeout(() => {
       this.spectraTimer = null;
       const s = st.state;
-      this.spectraRun(s)
+      this.spectraRun({ s, tags: st.tags })
         .then((out) => {
-          if (!out || keyFor(out.s) !== keyFor(st.state)) return;
+          if (!out || keyFor(out.tags) !== keyFor(st.tags)) return;
           st.spectra = out.r;
           this.render.spectra(s);
         })
         .catch((e) => {
-          st.spectraKey = '';
+          st.spectraKey = null;
           st.spectra = null;
           this.render.spectra(s);
           this.render.spectraStatus(`Spectra failed: ${e.message || e}`);
@@ -628,7 +632,7 @@ export class Controller {
    */
   async runTime(opts, describeRun) {
     const st = this.store;
-    const s = st.state;
+    const { state: s, tags } = st;
     this.pending++;
     const t0 = performance.now();
     this.render.timeStatus('Simulating…', true);
@@ -637,7 +641,7 @@ export class Controller {
         this.compute.time(s, opts),
         opts.damper ? this.compute.time(s, { seed: opts.seed }) : null,
       ]);
-      st.time = { result, linear, key: JSON.stringify(s), opts };
+      st.time = { result, linear, key: stateTag(tags), opts };
       this.render.time(`Done in ${fmt(performance.now() - t0, 3)} ms (${describeRun}).`);
     } catch (e) {
       this.render.timeStatus(`The time response failed: ${e.message || e}`);
@@ -719,7 +723,7 @@ export class Controller {
    */
   async restoreKept(kept) {
     const st = this.store;
-    const { entries, failed } = await evaluateKept(this.compute, st.state, st.desc, kept, scenarioKey(st.state));
+    const { entries, failed } = await evaluateKept(this.compute, st.state, st.desc, kept, st.tags.scenario);
     st.saved = entries;
     this.onSavedChanged(`${entries.length} of ${MAX_SAVED} designs kept, evaluated on this car and road.`);
     st.scheduleUrl();
@@ -733,14 +737,14 @@ export class Controller {
    */
   refreshKept() {
     const st = this.store;
-    const key = scenarioKey(st.state);
+    const key = st.tags.scenario;
     if (!st.saved.some((e) => e.key !== key)) return;
     st.saved = st.saved.map((e) => (e.key === key ? e : pendingEntry(e)));
     this.onSavedChanged('Evaluating the kept designs on the new car and road…');
     this.enqueue(async () => {
-      if (scenarioKey(st.state) !== key || !st.saved.some((e) => e.key !== key)) return;
+      if (st.tags.scenario !== key || !st.saved.some((e) => e.key !== key)) return;
       const { entries, failed } = await evaluateKept(this.compute, st.state, st.desc, st.saved.map((e) => [e.ks, e.cs]), key);
-      if (scenarioKey(st.state) !== key) return;
+      if (st.tags.scenario !== key) return;
       st.saved = entries;
       const dropped = failed.length ? ` Dropped, as they cannot be evaluated on it: ${failed.join('; ')}.` : '';
       this.onSavedChanged(`The kept designs were evaluated again on the new car and road.${dropped}`, failed.length > 0);

@@ -6,13 +6,12 @@
 // memory can no longer be trusted, so it closes itself) is replaced by a fresh one, the
 // requests it held are run again there (once), and the page is told (`onRestart`).
 
-import { scenarioKey } from './store.js';
 import { GpuPath } from './gpupath.js';
 
 /** The wasm functions that need no session (with SESSION_METHODS, the worker's whitelist). */
 export const FUNCTIONS = [
   'version', 'defaultState', 'presets', 'roadClasses', 'parseCar', 'checkState', 'surrogates',
-  'objectives', 'stateKeys', 'lineChartSvg', 'mapChartSvg', 'describeRoad', 'designOnRoad',
+  'objectives', 'lineChartSvg', 'mapChartSvg', 'describeRoad', 'designOnRoad',
   'roadMap', 'roadFront', 'useRoad',
 ];
 
@@ -64,9 +63,11 @@ function recheckError(predicted, hifi) {
 
 /**
  * One thread's `Explorer` session (crate/src/web/explorer.rs), moved to each call's state
- * by the smallest setter: `setDesign` when only Ks and Cs changed (a slider move), else
- * `setState` (the core then re-parses only the fields that changed). A setter that throws
- * leaves the session, and what this host remembers of it, at the last good state.
+ * by `setState`: the core compares it with its own and re-parses only the fields that
+ * changed (a slider move only the design). The page's states are never changed in place
+ * (a change makes a new object), so a call with the state object of the last call skips
+ * the setter. A setter that throws leaves the session at its last good state. What a
+ * result belongs to is the core's `tags` (issue #28): this host keeps no key of its own.
  */
 export class Host {
   constructor(api, { gpu = null } = {}) {
@@ -76,10 +77,9 @@ export class Host {
     /** The scenario and grid whose GPU map failed (the CPU drew it; not asked again). */
     this.gpuFailedKey = null;
     this.explorer = null;
-    this.scenarioKey = null;
-    this.ks = null;
-    this.cs = null;
-    /** The adaptive loop (`AdaptiveRun`) and the scenario key it was started for. */
+    /** The state object the session was last moved to (see the class comment). */
+    this.state = null;
+    /** The adaptive loop (`AdaptiveRun`) and the scenario tag it was started for. */
     this.adaptive = null;
     this.adaptiveKey = null;
     /** Calls into the wasm module so far (setters and session methods; tests read it). */
@@ -103,22 +103,24 @@ export class Host {
 
   /** The session moved to `state` (throws the core's error naming the field). */
   at(state) {
-    const key = scenarioKey(state);
     if (!this.explorer) {
       this.wasmCalls++;
       this.explorer = new this.api.Explorer(state);
       if (this.offered) this.offerFit(this.offered);
-    } else if (key !== this.scenarioKey) {
+    } else if (state !== this.state) {
       this.wasmCalls++;
+      // On a refusal the session stays where it was, and so does `this.state`.
       this.explorer.setState(state);
-    } else if (state.ks !== this.ks || state.cs !== this.cs) {
-      this.wasmCalls++;
-      this.explorer.setDesign(state.ks, state.cs);
     }
-    this.scenarioKey = key;
-    this.ks = state.ks;
-    this.cs = state.cs;
+    this.state = state;
     return this.explorer;
+  }
+
+  /** The core's tags of `state` (`{design, datum, fit, scenario}`, js/store.js `tags`). */
+  tagsOf(state) {
+    const explorer = this.at(state);
+    this.wasmCalls++;
+    return explorer.tags();
   }
 
   /** Runs one engine call: synchronously, or a promise for the GPU path's calls. */
@@ -148,7 +150,7 @@ export class Host {
    * CPU and says so in the result's `gpu.failure`.
    */
   async gpuMaps(state, model, nx, ny) {
-    const key = `${scenarioKey(state)}|${nx}x${ny}`;
+    const key = `${this.tagsOf(state).scenario}|${nx}x${ny}`;
     if (this.at(state).hifiPath(nx, ny) !== 'gpu' && this.gpuFailedKey !== key) {
       const maps = await this.gpu.open();
       if (maps) {
@@ -170,7 +172,7 @@ export class Host {
   async hifiFront(state) {
     const t0 = performance.now();
     let values;
-    const key = `${scenarioKey(state)}|stm`;
+    const key = `${this.tagsOf(state).scenario}|stm`;
     // The GPU grid is one case's unweighted BAcc on an ISO road: Wk comfort, robust cases
     // and a measured road run on the CPU.
     if (this.gpu && (state.comfort || 'bacc') === 'bacc' && !state.cases && !state.roadProfile && this.gpuFailedKey !== key) {
@@ -200,7 +202,7 @@ export class Host {
     const run = new this.api.AdaptiveRun(state, options);
     if (this.adaptive) this.adaptive.free();
     this.adaptive = run;
-    this.adaptiveKey = scenarioKey(state);
+    this.adaptiveKey = this.tagsOf(state).scenario;
     const report = run.report();
     const { pick } = report.history[0];
     const rechecked = this.at({ ...state, ks: pick.ks, cs: pick.cs }).criteria('hifi');
@@ -250,7 +252,7 @@ export class Host {
 
   /** The run of `state`'s scenario; throws `{field: 'adaptive'}` when there is none. */
   adaptiveFor(state) {
-    if (!this.adaptive || scenarioKey(state) !== this.adaptiveKey) {
+    if (!this.adaptive || this.tagsOf(state).scenario !== this.adaptiveKey) {
       throw { message: 'adaptive: no adaptive run for this scenario (start one first)', field: 'adaptive' };
     }
     return this.adaptive;

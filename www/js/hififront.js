@@ -4,13 +4,12 @@
 // which answer is current, the plane's line about it, and the Pick tab's table. Handed
 // plain data.
 
-import { scenarioKey } from './store.js';
 import { fmt, fmtPct } from './format.js';
 
 /** The store's HiFi front when it is for the current scenario and has no error, else null. */
 export function currentHifiFront(st) {
   const h = st.hifiFront;
-  return h && !h.error && h.key === scenarioKey(st.state) ? h : null;
+  return h && !h.error && h.key === st.tags.scenario ? h : null;
 }
 
 /** Whose front the plane shows (the core's `plane.model`): in a sentence, at its start, in the table. */

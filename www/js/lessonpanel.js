@@ -12,7 +12,6 @@
 import { SHIPPED } from './lessonbook.js';
 import { PLACEHOLDERS, checkLesson, readLessonHash, resolve } from './lessons.js';
 import { decodeHash } from './urlstate.js';
-import { fitKeyOf } from './store.js';
 import { explain } from './controls.js';
 import { OwnLessons } from './ownlessons.js';
 import { AUTHORING, checkIds, copy } from './lessonauthor.js';
@@ -301,7 +300,7 @@ export class LessonPanel {
   /** The data the placeholders read: the store's results for the current state. */
   data() {
     const st = this.store;
-    const fitOk = st.fit && st.fitKey === fitKeyOf(st.state);
+    const fitOk = st.fit && st.fitKey === st.tags.fit;
     return {
       state: st.state,
       desc: st.desc,

@@ -8,7 +8,7 @@ import { renderPick, ruleLabel, weightsText } from './plane.js';
 import { renderCriteria, feasibilityText, routeNote, renderProps, renderModes, comfortNote } from './readout.js';
 import { renderMetrics, tuningText, renderAdaptive, proposalText } from './surrogatepanel.js';
 import { adaptivePlane, adaptiveSpec } from './chartspecs.js';
-import { MODEL_NAMES, datumStateOf, fitKeyOf, keyOf } from './store.js';
+import { MODEL_NAMES } from './store.js';
 import { GRID } from './compute.js';
 import { fmt, fmtInput, fmtPct, inPageUnits, roadWords } from './format.js';
 import { pathText } from './gpupath.js';
@@ -162,7 +162,7 @@ export class Render {
     const st = this.store;
     const { desc, lofi, hifi } = st;
     const current = st.hifiCurrent();
-    const datumOk = hifi.datumKey === keyOf(datumStateOf(st.state, desc));
+    const datumOk = st.hifiDatumCurrent();
     renderCriteria($('criteria'), 'hifi', hifi.design, datumOk ? hifi.datum : null, desc.swsLimit, !current);
     if (hifi.design) renderModes($('modes-hifi'), hifi.design.modes, !current);
     if (st.state.comfort === 'wk') comfortNote($('comfort-note'), lofi.design, current ? hifi.design : null);
@@ -255,7 +255,7 @@ export class Render {
     const { state, desc, lofi } = st;
     const shown = st.shownMaps();
     const datum = { ks: desc.datumKs, cs: desc.datumCs };
-    const samples = st.view.plan && st.fit && st.fitKey === fitKeyOf(state) ? st.fit.samples : null;
+    const samples = st.view.plan && st.fit && st.fitKey === st.tags.fit ? st.fit.samples : null;
     const pick = st.front && !st.front.error ? st.front.study.pick : null;
     const a = st.adaptive;
     const adaptive = a ? { added: a.report.added.map((x) => x.sample), next: a.proposal.error ? null : a.proposal.candidate } : null;

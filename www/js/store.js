@@ -27,33 +27,18 @@ export const DEFAULT_VIEW = {
 export const MODEL_NAMES = { lofi: 'LoFi', hifi: 'HiFi', surrogate: 'surrogate', error: 'surrogate error' };
 
 /**
- * The state fields the page keys its answers by, from the core (`stateKeys`: the fields a
- * design's reports depend on, and those a surrogate's fit and the maps depend on); set
- * once at start-up by `setKeyFields`.
+ * The content key of a scenario: everything but the design point. Only the class codes
+ * (js/classcode.js) use it: a code carries a hash of it, which must match on every
+ * student's machine and page version. The page keys its own results by the core's tags
+ * (the store's `tags`).
  */
-const KEY_FIELDS = { report: null, fit: null };
-
-/** Takes the core's key fields `{report, fit}` (arrays of state field names). */
-export function setKeyFields({ report, fit }) {
-  KEY_FIELDS.report = report;
-  KEY_FIELDS.fit = fit;
-}
-
-const keyBy = (fields, s) => JSON.stringify(fields.map((k) => (s[k] === undefined ? null : s[k])));
-
-/** The key of a design's reports: car, design point and road. */
-export function keyOf(s) {
-  return keyBy(KEY_FIELDS.report, s);
-}
-
-/** The key of everything but the design point (maps, fronts and fits depend on it). */
 export function scenarioKey(s) {
   return JSON.stringify({ ...s, ks: 0, cs: 0 });
 }
 
-/** The key of everything the surrogate's fit and the maps' values depend on. */
-export function fitKeyOf(s) {
-  return keyBy(KEY_FIELDS.fit, s);
+/** The tag of a whole state (scenario and design), from the core's `tags`. */
+export function stateTag(tags) {
+  return `${tags.scenario}:${tags.design}`;
 }
 
 /** The state `s` at the datum design of its car (`desc` from `describe`). */
@@ -69,6 +54,13 @@ export class Store {
     this.classes = [];
     this.surrogateNames = [];
     this.state = null;
+    /**
+     * The core's tags of the state (`describe`'s and `designStep`'s `tags`: `{design,
+     * datum, fit, scenario}`, each a hash of the fields one kind of result depends on).
+     * Every result below is kept with the tag it was asked under, and is current while
+     * the state's tag is the same: the page builds no keys of its own (issue #28).
+     */
+    this.tags = null;
     this.view = { ...DEFAULT_VIEW };
     /** `describe` of the state's scenario. */
     this.desc = null;
@@ -78,9 +70,9 @@ export class Store {
     this.mapDesign = null;
     /** The surrogate's criteria of the design and the datum (`{bacc, dtl, sws, dtl_relative}`). */
     this.surrogate = { design: null, datum: null };
-    /** HiFi reports and the state keys they belong to (may lag the state). */
+    /** HiFi reports and the tags (`design`, `datum`) they belong to (may lag the state). */
     /** `design` may be the quick readout of a slider move (`checkedKey` lags `key` until the full report is in). */
-    this.hifi = { design: null, datum: null, key: '', datumKey: '', checkedKey: '' };
+    this.hifi = { design: null, datum: null, key: null, datumKey: null, checkedKey: null };
     /** Designs kept to compare side by side (js/compare.js; their Ks, Cs are in the link). */
     this.saved = [];
     /**
@@ -88,7 +80,7 @@ export class Store {
      * evaluated on the scenario `key`; null when none (or cleared).
      */
     this.classFront = null;
-    /** The LoFi and surrogate maps at the page's grid, each with the scenario key it is for. */
+    /** The LoFi and surrogate maps at the page's grid, each with the scenario tag (`key`) it is for. */
     this.maps = null;
     this.surMaps = null;
     /** The map shown when it is the HiFi's or the error's: `{model, key, maps, datum, ms}`. */
@@ -107,12 +99,12 @@ export class Store {
      * scenario key it is for; null until it comes.
      */
     this.hifiFront = null;
-    /** The surrogate's fit report and the key of what it was fitted to. */
+    /** The surrogate's fit report and the fit tag of what it was fitted to. */
     this.fit = null;
-    this.fitKey = '';
-    /** FRFs and PSDs of the current design, and their key. */
+    this.fitKey = null;
+    /** FRFs and PSDs of the current design, and the tags they are for. */
     this.spectra = null;
-    this.spectraKey = '';
+    this.spectraKey = null;
     /**
      * The adaptive HiFi loop of the Surrogate tab (issue #15) when started, for the
      * scenario `key`: `{key, state, report, proposal, front, errors, was, ms, uncertainty}`
@@ -136,8 +128,7 @@ export class Store {
 
   /** True when the HiFi reports belong to the current design and datum. */
   hifiCurrent() {
-    const s = this.state;
-    return s !== null && this.hifi.key === keyOf(s) && this.hifi.datumKey === keyOf(datumStateOf(s, this.desc));
+    return this.tags !== null && this.hifi.key === this.tags.design && this.hifiDatumCurrent();
   }
 
   /** True when the HiFi datum report belongs to the current scenario. */
@@ -146,14 +137,14 @@ export class Store {
     return this.hifiCurrent() && this.hifi.checkedKey === this.hifi.key;
   }
 
-  hifiDatumCurrent(s = this.state) {
-    return this.hifi.datumKey === keyOf(datumStateOf(s, this.desc));
+  hifiDatumCurrent() {
+    return this.tags !== null && this.hifi.datumKey === this.tags.datum;
   }
 
   /** The map data the maps show for the view's model: `{maps, datum, kind}`, or null while computing. */
   shownMaps() {
     const m = this.view.model;
-    const key = scenarioKey(this.state);
+    const key = this.tags.scenario;
     // With Wk comfort the LoFi map's BAcc is Wk-weighted, and so is its datum's.
     const lofiDatum = this.state.comfort === 'wk' ? { ...this.lofi.datum, bacc: this.lofi.datum.bacc_wk } : this.lofi.datum;
     // With robust cases the LoFi and HiFi maps carry their own (robust or case) datum.
@@ -167,7 +158,7 @@ export class Store {
 
   /** The time response shown, when it was run for the current state. */
   timeCurrent() {
-    return this.time !== null && this.time.key === JSON.stringify(this.state);
+    return this.time !== null && this.time.key === stateTag(this.tags);
   }
 
   /** Writes the URL hash 120 ms after the last change (a drag writes it once). */

@@ -29,6 +29,10 @@ export function installTestHooks({ store, controller, compute, ui, boot, exportD
     get state() {
       return store.state;
     },
+    /** The core's tags of the state (js/store.js `tags`): what every result is keyed by. */
+    get tags() {
+      return store.tags;
+    },
     get view() {
       return store.view;
     },

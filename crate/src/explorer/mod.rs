@@ -14,6 +14,7 @@ pub mod session;
 pub mod state;
 pub mod studies;
 pub mod surrogate;
+pub mod tags;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
@@ -35,3 +36,4 @@ pub use session::{DesignStep, Session};
 pub use state::{Measured, RoadResolver, Scenario, State, FIT_FIELDS, REPORT_FIELDS, STATE_FIELDS};
 pub use studies::{FrontResult, Spectra, TimeResult};
 pub use surrogate::{fit, fit_report, FitKey, FitRecord, FittedSurrogate};
+pub use tags::Tags;

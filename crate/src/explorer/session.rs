@@ -21,6 +21,7 @@ use super::model::Model;
 use super::state::{RoadResolver, Scenario, State};
 use super::studies::{self, FrontResult, Spectra, TimeResult};
 use super::surrogate::{fit, fit_report, FitKey, FitRecord, FittedSurrogate};
+use super::tags::Tags;
 use crate::analysis::{readout, report, ModelKind, Readout, Report};
 use crate::comfort::Comfort;
 use crate::dos::DosContext;
@@ -104,6 +105,12 @@ impl Session {
     /// The current scenario.
     pub fn scenario(&self) -> &Scenario {
         &self.scenario
+    }
+
+    /// The tags of the current state (what the page keys its results by).
+    pub fn tags(&self) -> Tags {
+        let f = &self.scenario.datum.front;
+        Tags::of(&self.state, (f.spring, f.damper))
     }
 
     /// Moves to `state`, re-parsing only what changed; the fit and the kept maps go when
@@ -303,6 +310,7 @@ impl Session {
             surrogate,
             plane,
             hifi,
+            tags: self.tags(),
         })
     }
 
@@ -708,6 +716,8 @@ pub struct DesignStep {
     pub plane: Option<Criteria>,
     /// Its HiFi readout, when asked for and it succeeds.
     pub hifi: Option<Readout>,
+    /// The session's tags at the design.
+    pub tags: Tags,
 }
 
 /// `planes` (BAcc m/s^2, DTL N, SWS m planes of `n` designs each, a map's `values`

@@ -1,14 +1,15 @@
 //! The page's session: `new Explorer(state)`, a JS class over [`Session`] that owns the
-//! view's scenario, its fitted surrogate and the kept maps. The page moves it with the
-//! small setters (`setDesign(ks, cs)` on a slider move, `setState(state)` when anything
-//! else changes) and asks it; a setter that fails leaves it at its last good state.
+//! view's scenario, its fitted surrogate and the kept maps. The page moves it with
+//! `setState(state)` (the session re-parses only what changed: on a slider move, the
+//! design) and asks it; a setter that fails leaves it at its last good state. Its `tags`
+//! say what each result belongs to (`describe` and `designStep` carry them).
 //! Every method's numbers are [`Session`]'s, which the native tests check. A state is
 //! checked here too (`checkState`, [`check_state`]): by the scenario a session would build.
 
 use super::{js_error, parse_state, to_js};
 use crate::analysis::ModelKind;
 use crate::car::Car;
-use crate::explorer::{Model, ModelMap, RoadResolver, Scenario, Session, State};
+use crate::explorer::{Model, ModelMap, RoadResolver, Scenario, Session, State, Tags};
 use crate::gpu::ComputePath;
 use js_sys::{Float64Array, Object, Reflect, Uint8Array};
 use serde::Serialize;
@@ -69,6 +70,8 @@ struct Description {
     /// error); absent on an ISO class.
     #[serde(skip_serializing_if = "Option::is_none")]
     measured_road: Option<crate::road::MeasuredRoad>,
+    /// The session's tags (what the page keys its results by).
+    tags: Tags,
 }
 
 /// A map as `{nx, ny, values: Float64Array, feasible: Uint8Array, broken: Uint8Array,
@@ -122,13 +125,6 @@ impl Explorer {
         self.0.set_state(parse_state(state)?).map_err(js_error)
     }
 
-    /// Moves the design to front spring `ks` (N/m) and damper `cs` (N s/m); errors name
-    /// `ks` or `cs`.
-    #[wasm_bindgen(js_name = setDesign)]
-    pub fn set_design(&mut self, ks: f64, cs: f64) -> Result<(), JsValue> {
-        self.0.set_design(ks, cs).map_err(js_error)
-    }
-
     /// The current state, normalised.
     pub fn state(&self) -> Result<JsValue, JsValue> {
         to_js(self.0.state())
@@ -136,8 +132,8 @@ impl Explorer {
 
     /// What the page shows about the scenario besides the criteria: `{car, quarter,
     /// datumKs, datumCs, staticWheelLoad, road, velocityPsd, delay, designBox, swsLimit}`
-    /// (N/m, N s/m, N, m^2/s^2/Hz, s, m), and with robust cases `cases` (their names) and
-    /// `combine` ("worst" or "mean").
+    /// (N/m, N s/m, N, m^2/s^2/Hz, s, m), its `tags` ([`Explorer::tags`]), and with robust
+    /// cases `cases` (their names) and `combine` ("worst" or "mean").
     pub fn describe(&self) -> Result<JsValue, JsValue> {
         let s = self.0.scenario();
         to_js(&Description {
@@ -157,7 +153,15 @@ impl Explorer {
             combine: s.cases.as_ref().map(|c| c.combine),
             measured_road: s.measured.as_ref().map(|m| m.0.summary().clone()),
             car: s.datum.clone(),
+            tags: self.0.tags(),
         })
+    }
+
+    /// The session's tags `{design, datum, fit, scenario}` ([`Tags`]): whole numbers, each
+    /// a hash of the state fields one kind of result depends on (equal for equal states
+    /// in every session), which the page keys its results by.
+    pub fn tags(&self) -> Result<JsValue, JsValue> {
+        to_js(&self.0.tags())
     }
 
     /// The full analysis report of the design by one model, `model` "lofi" or "hifi"
@@ -176,7 +180,7 @@ impl Explorer {
     }
 
     /// A slider step in one call (`Session::design_step`): `{lofi, surrogate, plane,
-    /// hifi}`, the design's LoFi report, surrogate criteria, criteria on the objective
+    /// hifi, tags}`, the design's LoFi report, surrogate criteria, criteria on the objective
     /// plane's model `plane` (null when that is "surrogate") and with `withHifi` its HiFi
     /// readout (null when it fails).
     #[wasm_bindgen(js_name = designStep)]

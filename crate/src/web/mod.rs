@@ -32,7 +32,7 @@ pub use screen::{draw_line_chart_js, draw_map_frame_js};
 use crate::car::{Car, PRESETS};
 use crate::chart::ColourMap;
 use crate::error::RideError;
-use crate::explorer::{ui_field, State, FIT_FIELDS, REPORT_FIELDS, STATE_FIELDS};
+use crate::explorer::{ui_field, State, STATE_FIELDS};
 use crate::road::RoadClass;
 use crate::robust::{CarFile, LoadCase};
 use js_sys::{Float64Array, Object, Reflect, Uint8Array};
@@ -194,14 +194,6 @@ pub fn contour_segments_js(
         out.push(&Float64Array::from(seg.as_slice()));
     }
     Ok(out)
-}
-
-/// The state fields the page keys its answers by, from the core: `{fit, report}`, the
-/// fields a surrogate's fit and the maps depend on, and those a design's reports depend on
-/// (see `explorer::FIT_FIELDS`, `explorer::REPORT_FIELDS`).
-#[wasm_bindgen(js_name = stateKeys)]
-pub fn state_keys() -> Result<JsValue, JsValue> {
-    to_js(&serde_json::json!({ "fit": FIT_FIELDS, "report": REPORT_FIELDS }))
 }
 
 /// The design objectives in mask-bit order, as a map's `broken` mask numbers them:
