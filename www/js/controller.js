@@ -115,7 +115,7 @@ export class Controller {
   isSettled() {
     const hf = this.store.hifiFront;
     return this.pending === 0 && this.pendingDesign === null && this.store.hifiChecked() && !this.render.ui.plane.animating &&
-      hf !== null && hf.key === this.store.tags.scenario;
+      hf !== null && hf.key === this.store.tags?.scenario;
   }
 
   /** Runs `fn` after every earlier update; each reads the state when it starts. */

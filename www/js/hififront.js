@@ -9,7 +9,7 @@ import { fmt, fmtPct } from './format.js';
 /** The store's HiFi front when it is for the current scenario and has no error, else null. */
 export function currentHifiFront(st) {
   const h = st.hifiFront;
-  return h && !h.error && h.key === st.tags.scenario ? h : null;
+  return h && !h.error && h.key === st.tags?.scenario ? h : null;
 }
 
 /** Whose front the plane shows (the core's `plane.model`): in a sentence, at its start, in the table. */

@@ -300,7 +300,7 @@ export class LessonPanel {
   /** The data the placeholders read: the store's results for the current state. */
   data() {
     const st = this.store;
-    const fitOk = st.fit && st.fitKey === st.tags.fit;
+    const fitOk = st.fit && st.fitKey === st.tags?.fit;
     return {
       state: st.state,
       desc: st.desc,

@@ -255,7 +255,7 @@ export class Render {
     const { state, desc, lofi } = st;
     const shown = st.shownMaps();
     const datum = { ks: desc.datumKs, cs: desc.datumCs };
-    const samples = st.view.plan && st.fit && st.fitKey === st.tags.fit ? st.fit.samples : null;
+    const samples = st.view.plan && st.fit && st.fitKey === st.tags?.fit ? st.fit.samples : null;
     const pick = st.front && !st.front.error ? st.front.study.pick : null;
     const a = st.adaptive;
     const adaptive = a ? { added: a.report.added.map((x) => x.sample), next: a.proposal.error ? null : a.proposal.candidate } : null;

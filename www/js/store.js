@@ -144,6 +144,7 @@ export class Store {
   /** The map data the maps show for the view's model: `{maps, datum, kind}`, or null while computing. */
   shownMaps() {
     const m = this.view.model;
+    if (this.tags === null) return null;
     const key = this.tags.scenario;
     // With Wk comfort the LoFi map's BAcc is Wk-weighted, and so is its datum's.
     const lofiDatum = this.state.comfort === 'wk' ? { ...this.lofi.datum, bacc: this.lofi.datum.bacc_wk } : this.lofi.datum;
@@ -158,7 +159,7 @@ export class Store {
 
   /** The time response shown, when it was run for the current state. */
   timeCurrent() {
-    return this.time !== null && this.time.key === stateTag(this.tags);
+    return this.time !== null && this.tags !== null && this.time.key === stateTag(this.tags);
   }
 
   /** Writes the URL hash 120 ms after the last change (a drag writes it once). */

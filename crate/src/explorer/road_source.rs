@@ -13,11 +13,11 @@ use crate::design::DesignBox;
 use crate::error::Result;
 use crate::evaluate::{Criteria, Evaluator};
 use crate::model::LinearModel;
-use crate::report::{build_on, MeasuredInputs, MethodReport, ReportInputs};
 use crate::road::{MeasuredRoad, ProfileTracks, RoadScenario};
 use crate::road_profile::{
     criteria_shaped_spectral, playback, MeasuredModel, Profile, ShapedRoad, ShapedSpectrum,
 };
+use crate::study::MeasuredSource;
 use crate::surrogate::Setting;
 use crate::time_domain::{simulate_playback, TimeOptions, TimeResponse};
 use std::fmt::Debug;
@@ -59,9 +59,10 @@ pub trait RoadSource: Debug + Send + Sync {
         design: &Car,
         opt: &TimeOptions,
     ) -> Result<TimeResponse>;
-    /// The study report of `inputs` on the road (at `inputs.road`'s speed, its class not
-    /// used), as `ridelab report --road FILE` builds it.
-    fn study_report(&self, inputs: &ReportInputs) -> Result<MethodReport>;
+    /// The road as a study takes it (the file, profile and tracks, and the road shaped at
+    /// its speed): the session's report is [`crate::study::StudySpec::report`] on it, as
+    /// `ridelab report --road FILE`'s.
+    fn source(&self) -> &MeasuredSource;
 }
 
 /// A profile shaped at a speed, as the session's road.
@@ -69,10 +70,8 @@ pub trait RoadSource: Debug + Send + Sync {
 pub struct OnRoad {
     key: String,
     summary: MeasuredRoad,
-    road: ShapedRoad,
-    /// The profile it was shaped from (the report plays it back).
-    profile: Arc<Profile>,
-    tracks: ProfileTracks,
+    /// The profile, how its tracks drive the wheels and the road shaped from it.
+    source: MeasuredSource,
 }
 
 impl OnRoad {
@@ -88,20 +87,23 @@ impl OnRoad {
         OnRoad {
             key: OnRoad::key_of(file, content, road.speed, tracks),
             summary: MeasuredRoad::of(file, &road, tracks),
-            road,
-            profile,
-            tracks,
+            source: MeasuredSource {
+                file: file.to_string(),
+                profile,
+                tracks,
+                shaped: road,
+            },
         }
     }
 
     /// The shaped road (speed, band, sources and their filters).
     pub fn road(&self) -> &ShapedRoad {
-        &self.road
+        &self.source.shaped
     }
 
     /// How the profile's tracks drive the wheels.
     pub fn tracks(&self) -> ProfileTracks {
-        self.tracks
+        self.source.tracks
     }
 
     /// The key of the profile `file` (content hash `content`) at `speed` m/s with
@@ -114,7 +116,7 @@ impl OnRoad {
     /// `kind`, as `ridelab eval --road FILE` computes them (the model prepared on `datum`).
     fn exact(&self, kind: ModelKind, datum: &Car, design: &Car) -> Result<(Criteria, f64)> {
         let q = design.quarter();
-        let model = MeasuredModel::new(kind, datum, self.road.clone());
+        let model = MeasuredModel::new(kind, datum, self.source.shaped.clone());
         let exact = model.evaluate(q.ks, q.cs)?;
         let wk = model.with_comfort(Comfort::Wk).evaluate(q.ks, q.cs)?.bacc;
         Ok((exact, wk))
@@ -131,7 +133,7 @@ impl RoadSource for OnRoad {
     }
 
     fn evaluator(&self, kind: ModelKind, car: &Car, comfort: Comfort) -> Box<dyn Evaluator + Sync> {
-        Box::new(MeasuredModel::new(kind, car, self.road.clone()).with_comfort(comfort))
+        Box::new(MeasuredModel::new(kind, car, self.source.shaped.clone()).with_comfort(comfort))
     }
 
     fn report(&self, kind: ModelKind, datum: &Car, car: &Car, check: bool) -> Result<Report> {
@@ -139,7 +141,7 @@ impl RoadSource for OnRoad {
         let spectral = match check {
             true => Some(criteria_shaped_spectral(
                 &kind.build(car),
-                &self.road,
+                &self.source.shaped,
                 1e-8,
             )?),
             false => None,
@@ -190,11 +192,11 @@ impl RoadSource for OnRoad {
     }
 
     fn setting(&self, car: &Car, dbox: &DesignBox) -> Result<Setting> {
-        Setting::measured(car, self.road.clone(), dbox)
+        Setting::measured(car, self.source.shaped.clone(), dbox)
     }
 
     fn output_psds(&self, model: &LinearModel, f: &[f64]) -> Result<Vec<[f64; 3]>> {
-        let sp = ShapedSpectrum::new(model, &self.road)?;
+        let sp = ShapedSpectrum::new(model, &self.source.shaped)?;
         Ok(f.iter().map(|&fi| sp.psd(fi)).collect())
     }
 
@@ -205,9 +207,9 @@ impl RoadSource for OnRoad {
         opt: &TimeOptions,
     ) -> Result<TimeResponse> {
         opt.validate()?;
-        let speed = self.road.speed;
-        let dt = self.profile.playback_step(speed, opt.dt);
-        let mut road = playback(&self.profile, &kind.build(design).wheels, speed, dt)?;
+        let speed = self.source.shaped.speed;
+        let dt = self.source.profile.playback_step(speed, opt.dt);
+        let mut road = playback(&self.source.profile, &kind.build(design).wheels, speed, dt)?;
         let n = ((opt.duration / dt).round() as usize + 1).min(road.len());
         for w in &mut road.wheels {
             w.truncate(n);
@@ -220,13 +222,8 @@ impl RoadSource for OnRoad {
         simulate_playback(kind, design, dt, &road.wheels, &opt)
     }
 
-    fn study_report(&self, inputs: &ReportInputs) -> Result<MethodReport> {
-        let measured = MeasuredInputs {
-            file: self.summary.file.clone(),
-            profile: (*self.profile).clone(),
-            tracks: self.tracks,
-        };
-        build_on(inputs, &measured, |_| {})
+    fn source(&self) -> &MeasuredSource {
+        &self.source
     }
 }
 

@@ -29,11 +29,11 @@ use crate::error::{Result, RideError};
 use crate::evaluate::{Criteria, Evaluator};
 use crate::gpu::{ComputePath, HiFiGrid};
 use crate::maps::{DatumPoint, Dcs, DosMap, Grid, Scale};
-use crate::report::{build as build_report, MethodReport, ReportInputs};
+use crate::report::MethodReport;
 use crate::robust::{CaseSet, Combination, MAX_CASES};
 use crate::study::robust::map::{robust_fields, CaseField};
 use crate::study::robust::optimize::hifi_combination;
-use crate::study::SurrogateReport;
+use crate::study::{StudySpec, SurrogateReport};
 use crate::surrogate::Surrogate;
 use crate::time_domain::TimeOptions;
 use std::rc::Rc;
@@ -680,23 +680,17 @@ impl Session {
         self.fits
     }
 
-    /// The study report of this scenario (as `ridelab report` with the view's car, road,
-    /// design box, objectives, surrogate and plan, seed 1; it takes seconds, so the page
-    /// runs it in a worker).
-    ///
-    /// On a measured road, `ridelab report --road FILE`'s report.
+    /// The study report of this scenario: its study's ([`Scenario::study`]) report with
+    /// the view's surrogate and plan, seed 1, as `ridelab report` (with `--road FILE` on a
+    /// measured road) writes it. It is of the car as given: with robust cases, those take
+    /// the maps and fronts. It takes seconds, so the page runs it in a worker.
     pub fn study_report(&self) -> Result<MethodReport> {
         let s = &self.scenario;
-        let inputs = ReportInputs {
-            design_box: s.dbox,
-            objectives: s.objectives.clone(),
-            surrogate: Some((s.surrogate, s.plan)),
-            ..ReportInputs::new(s.datum.clone(), s.road)
+        let study = StudySpec {
+            cases: None,
+            ..s.study()
         };
-        match &s.measured {
-            Some(m) => m.0.study_report(&inputs),
-            None => build_report(&inputs, |_| {}),
-        }
+        study.report(Some((s.surrogate, s.plan)), 1, |_| {})
     }
 
     fn design(&self) -> (f64, f64) {

@@ -15,6 +15,7 @@ use crate::evaluate::Evaluator;
 use crate::optimize::PickRule;
 use crate::road::{Road, RoadClass, Tracks};
 use crate::robust::{CarFile, CaseSet};
+use crate::study::{StudyRoad, StudySpec};
 use crate::surrogate::{PlanSpec, SurrogateSpec};
 use crate::LoFi;
 use serde::{Deserialize, Serialize};
@@ -514,6 +515,25 @@ impl State {
 }
 
 impl Scenario {
+    /// The study this scenario is (issue #28): its car, road (the ISO class, or the
+    /// measured road's source), design box, objectives, comfort measure and cases, on the
+    /// CPU. What a study's methods compute from it is what the CLI computes from the same
+    /// inputs ([`StudySpec`]'s methods are the CLI's).
+    pub fn study(&self) -> StudySpec {
+        StudySpec {
+            car: self.datum.clone(),
+            road: match &self.measured {
+                Some(m) => StudyRoad::Measured(m.0.source().clone()),
+                None => StudyRoad::Iso(self.road),
+            },
+            design_box: self.dbox,
+            objectives: self.objectives.clone(),
+            comfort: self.comfort,
+            cases: self.cases.clone(),
+            compute: None,
+        }
+    }
+
     /// The LoFi evaluator of the datum car on the road.
     pub fn lofi(&self) -> LoFi {
         LoFi::new(&self.datum, &self.road)

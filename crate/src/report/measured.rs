@@ -17,67 +17,53 @@ use crate::optimize::PickRule;
 use crate::road::Road;
 use crate::road_profile::{
     bacc_wk_shaped_fast, criteria_shaped, criteria_shaped_modal, criteria_shaped_spectral,
-    playback, road_error, MeasuredModel, MeasuredRoad, Profile, ProfileTracks, RoadScenario,
-    ShapedRoad, ShapedSpectrum,
+    playback, MeasuredModel, MeasuredRoad, RoadScenario, ShapedRoad, ShapedSpectrum,
 };
 use crate::study::adaptive::{AdaptiveOptimizeReport, AdaptiveOptions};
 use crate::study::measured::optimize_measured;
 use crate::study::{study_on, SurrogateRequest};
 use crate::study::{MapReport, MapRequest, MapSettings, OptimizeReport, OptimizeRequest};
-use crate::study::{StudyReport, SurrogateReport};
+use crate::study::{MeasuredSource, StudyReport, SurrogateReport};
 use crate::surrogate::{PlanSpec, Setting, SurrogateSpec};
 use crate::time_domain::{simulate_playback, TimeOptions, MAX_STEPS};
 
-/// A measured road for the report: the profile, the file it came from and how its tracks
-/// drive the car.
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct MeasuredInputs {
-    /// The file's name, as the report names the road.
-    pub file: String,
-    /// The profile.
-    pub profile: Profile,
-    /// One track on both wheels (correlated), on independent tracks, or two measured ones.
-    pub tracks: ProfileTracks,
-}
-
-/// [`build`](super::build) on the measured road `measured` at `inputs.road`'s speed (its
-/// class is not used): `ridelab report --road FILE` (this module).
+/// [`build`](super::build) on the measured road `measured`, shaped at `inputs.road`'s
+/// speed (its class is not used): `ridelab report --road FILE` (this module).
 pub(crate) fn build_on(
     inputs: &ReportInputs,
-    measured: &MeasuredInputs,
+    measured: &MeasuredSource,
     progress: impl FnMut(usize),
 ) -> Result<MethodReport> {
     validate(inputs)?;
-    let on = OnRoad::new(&inputs.car, measured, inputs.road.speed, &inputs.design_box)?;
+    let on = OnRoad::new(&inputs.car, measured, &inputs.design_box)?;
     build_with(inputs, &on, progress)
 }
 
 /// The measured road shaped at the scenario's speed, with its models.
 pub(super) struct OnRoad<'a> {
-    inputs: &'a MeasuredInputs,
+    source: &'a MeasuredSource,
     about: MeasuredRoad,
-    shaped: ShapedRoad,
+    shaped: &'a ShapedRoad,
     lofi: MeasuredModel,
     hifi: MeasuredModel,
     setting: Setting,
 }
 
 impl<'a> OnRoad<'a> {
-    /// The road of `inputs` shaped at `speed`, m/s, for `car` over `design_box`.
+    /// The models of `car` on the road `source` (shaped at its speed once, by
+    /// [`MeasuredSource::new`]) and the surrogates' setting over `design_box`.
     pub(super) fn new(
         car: &Car,
-        inputs: &'a MeasuredInputs,
-        speed: f64,
+        source: &'a MeasuredSource,
         design_box: &DesignBox,
     ) -> Result<OnRoad<'a>> {
-        let shaped =
-            ShapedRoad::from_profile(&inputs.profile, speed, inputs.tracks).map_err(road_error)?;
+        let shaped = &source.shaped;
         Ok(OnRoad {
-            about: MeasuredRoad::of(&inputs.file, &shaped, inputs.tracks),
+            about: source.about(),
             lofi: MeasuredModel::new(ModelKind::Quarter, car, shaped.clone()),
             hifi: MeasuredModel::new(ModelKind::Full, car, shaped.clone()),
             setting: Setting::measured(car, shaped.clone(), design_box)?,
-            inputs,
+            source,
             shaped,
         })
     }
@@ -175,7 +161,7 @@ impl<'a> OnRoad<'a> {
     /// `kind`'s RMS criteria with the profile played back under its wheels at `speed`
     /// from rest (at most a 1 ms step that divides the spacing), and the run's options.
     fn played(&self, kind: ModelKind, car: &Car, speed: f64) -> Result<(TimeOptions, Criteria)> {
-        let profile = &self.inputs.profile;
+        let profile = &*self.source.profile;
         let dt = profile.playback_step(speed, 1e-3);
         let wheels = playback(profile, &kind.build(car).wheels, speed, dt)?;
         if wheels.len() as f64 > MAX_STEPS {

@@ -33,7 +33,7 @@ mod render;
 mod road;
 mod study;
 
-pub(crate) use measured::{build_on, MeasuredInputs};
+pub(crate) use measured::build_on;
 pub use render::Documents;
 pub use road::build;
 

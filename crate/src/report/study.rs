@@ -4,7 +4,7 @@
 //! because the report is built on the study layer (`crate::study` never imports
 //! `crate::report`).
 
-use super::{build, build_on, MeasuredInputs, MethodReport, ReportInputs};
+use super::{build, build_on, MethodReport, ReportInputs};
 use crate::error::{Result, RideError};
 use crate::road::Road;
 use crate::study::{StudyRoad, StudySpec};
@@ -43,12 +43,7 @@ impl StudySpec {
                     speed: m.shaped.speed,
                     ..Road::default()
                 };
-                let measured = MeasuredInputs {
-                    file: m.file.clone(),
-                    profile: m.profile.clone(),
-                    tracks: m.tracks,
-                };
-                build_on(&inputs(road), &measured, progress)
+                build_on(&inputs(road), m, progress)
             }
         }
     }

@@ -30,6 +30,7 @@ use crate::road_profile::{
 use crate::robust::{CaseSet, Combine};
 use crate::surrogate::PlanSpec;
 use serde::Serialize;
+use std::sync::Arc;
 
 /// The road a study drives on.
 #[derive(Debug, Clone)]
@@ -42,13 +43,15 @@ pub enum StudyRoad {
 
 /// A measured road profile as a study uses it: the file's name (what reports call the
 /// road), the profile, how its tracks drive the car and the profile shaped at the speed
-/// ([`ShapedRoad`]: the models' exact routes run with its filters).
+/// ([`ShapedRoad`]: the models' exact routes run with its filters). The CLI reads one per
+/// run; the page's session holds one per profile, speed and tracks (shared: the profile
+/// is behind an `Arc`), and both report on it through [`StudySpec::report`].
 #[derive(Debug, Clone)]
 pub struct MeasuredSource {
     /// The file's name.
     pub file: String,
     /// The profile as read.
-    pub profile: Profile,
+    pub profile: Arc<Profile>,
     /// One track on both wheels, independent tracks, or two measured ones.
     pub tracks: ProfileTracks,
     /// The profile shaped at the speed.
@@ -62,7 +65,7 @@ impl MeasuredSource {
         let shaped = ShapedRoad::from_profile(&profile, speed, tracks).map_err(road_error)?;
         Ok(MeasuredSource {
             file: file.to_string(),
-            profile,
+            profile: Arc::new(profile),
             tracks,
             shaped,
         })
