@@ -7,6 +7,7 @@
 //! Run: `cargo bench -p ridelab --bench explorer`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use ridelab::analysis::ModelKind;
 use ridelab::explorer::{Model, Session, State};
 use std::cell::Cell;
 use std::hint::black_box;
@@ -55,6 +56,27 @@ fn explorer(c: &mut Criterion) {
     );
     c.bench_function("front stm 61x61 + 2 levels on the LoFi (baseline)", |b| {
         b.iter(|| black_box(s.front("stm", Model::LoFi).unwrap()))
+    });
+    // A slider step (issue #28): the session's one call, and the LoFi column's part of
+    // it, the quarter car's full report (with its frequency-route check) against its
+    // readout (without).
+    let mut ks = 20_000.0;
+    c.bench_function(
+        "slider step: design_step (LoFi report, surrogate, HiFi readout)",
+        |b| {
+            b.iter(|| {
+                ks += 1.0;
+                s.set_design(ks, 1_500.0).unwrap();
+                black_box(s.design_step(Model::Surrogate, true).unwrap())
+            })
+        },
+    );
+    c.bench_function(
+        "lofi report at a design (frequency-route check included)",
+        |b| b.iter(|| black_box(s.report(ModelKind::Quarter).unwrap())),
+    );
+    c.bench_function("lofi readout at a design (no check)", |b| {
+        b.iter(|| black_box(s.readout(ModelKind::Quarter).unwrap()))
     });
     // The objective plane's HiFi front (issue #13): STM on the full car and the
     // surrogate's front judged on the HiFi against it (fit kept).

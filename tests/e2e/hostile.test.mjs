@@ -171,12 +171,13 @@ test('a worker that traps or crashes is restarted, the page says so, and the req
   const { page, context } = await open();
   // The HiFi worker (the other one has ?gpu=); after a restart the newest.
   const hifiWorker = () => page.workers().filter((w) => /worker\.js$/.test(w.url())).at(-1);
-  // A trap of the core (a WebAssembly.RuntimeError) on the next HiFi report.
+  // A trap of the core (a WebAssembly.RuntimeError) on the next HiFi report (the
+  // design's reports by both models, `designReports`, or a datum's, `analyse`).
   await hifiWorker().evaluate(() => {
     const h = self.ridelabHost;
     const run = h.run.bind(h);
     h.run = (m, a) => {
-      if (m !== 'analyse') return run(m, a);
+      if (m !== 'analyse' && m !== 'designReports') return run(m, a);
       h.run = run;
       throw new WebAssembly.RuntimeError('unreachable');
     };
@@ -194,7 +195,7 @@ test('a worker that traps or crashes is restarted, the page says so, and the req
   await hifiWorker().evaluate(() => {
     const on = self.onmessage;
     self.onmessage = (ev) => {
-      if (ev.data.method !== 'analyse') return on(ev);
+      if (ev.data.method !== 'analyse' && ev.data.method !== 'designReports') return on(ev);
       self.onmessage = on;
       throw new Error('boom');
     };

@@ -159,10 +159,11 @@ export class Compute {
    * A new design point of the same scenario: its LoFi report, surrogate criteria and
    * criteria by the objective plane's model (`plane`), and with `withHifi` its HiFi
    * readout too (the report without its frequency-route check, about 0.1 ms, on the main
-   * thread so every view follows the slider in one frame; null when it fails), all in one
+   * thread so every view follows the slider in one frame; null when it fails), the LoFi's
+   * a readout too (the report's numbers without its frequency-route check), all in one
    * wasm call (`designStep`, after the session's `setState`; with robust cases one more
-   * for the maps' criteria), with the session's `tags` there. The full HiFi report
-   * follows from the HiFi worker (`hifiReport`).
+   * for the maps' criteria), with the session's `tags` there. Both full reports follow
+   * from the HiFi worker once the design rests (`designReports`).
    */
   async design(s, desc, withHifi) {
     const r = await this.main.call('designStep', s, planeModel(s), withHifi);
@@ -174,6 +175,15 @@ export class Compute {
   /** A HiFi report on the HiFi worker (`s`: a design or the datum state). */
   hifiReport(s) {
     return this.hifi.call('analyse', s, 'hifi');
+  }
+
+  /**
+   * The design's full reports by both models, `{lofi, hifi}`, in one call on the HiFi
+   * worker: a slider step shows their readouts (`design`), and the reports' frequency-
+   * route checks follow once the design rests.
+   */
+  designReports(s) {
+    return this.hifi.call('designReports', s);
   }
 
   /** The LoFi maps of the scenario at the page's grid (main thread). */

@@ -87,7 +87,8 @@ export class Controller {
         this.store.hifi.datum = await this.compute.hifiReport(req.datumState);
         this.store.hifi.datumKey = req.datumKey;
       }
-      return { ...req, design: await this.compute.hifiReport(req.s) };
+      const { lofi, hifi: design } = await this.compute.designReports(req.s);
+      return { ...req, design, lofi };
     });
     // Each worker job is asked with the state and its tags (`{s, tags}`, js/store.js
     // `tags`) and answers with them, so its answer is shown only while they are current.
@@ -182,7 +183,7 @@ export class Controller {
     st.state = s;
     st.tags = r.desc.tags;
     st.desc = r.desc;
-    st.lofi = r.lofi;
+    st.lofi = { ...r.lofi, checkedKey: st.tags.design };
     st.mapDesign = r.mapDesign;
     st.surrogate = r.surrogate;
     st.cloud = r.cloud;
@@ -296,13 +297,16 @@ export class Controller {
       this.controls.setMsg('cs', '');
       st.state = s;
       st.tags = r.tags;
-      st.lofi = { ...st.lofi, design: r.lofi };
+      // The step's readouts, unless the full report of this very design is shown (a
+      // checked report stays checked only while it is the one shown).
+      if (st.lofi.checkedKey !== r.tags.design) st.lofi = { ...st.lofi, design: r.lofi, checkedKey: null };
       st.mapDesign = r.mapDesign;
       st.surrogate = { ...st.surrogate, design: r.surrogate };
       st.plane = { ...st.plane, design: r.plane };
-      if (r.hifi) {
+      if (r.hifi && st.hifi.checkedKey !== r.tags.design) {
         st.hifi.design = r.hifi;
         st.hifi.key = r.tags.design;
+        st.hifi.checkedKey = null;
       }
       this.designChanged();
       this.metrics.design.push(performance.now() - start);
@@ -320,8 +324,9 @@ export class Controller {
   }
 
   /**
-   * The HiFi reports of the current design and datum from the HiFi worker (the latest
-   * request waits); `counted`: its arrival is when the HiFi column became current (metrics).
+   * The HiFi reports of the current design and datum from the HiFi worker, with the
+   * design's full LoFi report (the latest request waits); `counted`: its arrival is when
+   * the HiFi column became current (metrics).
    */
   requestHifi(t0, { counted = true } = {}) {
     const st = this.store;
@@ -331,6 +336,8 @@ export class Controller {
         .then((r) => {
           if (!r || r.key !== st.tags.design) return; // superseded
           st.hifi.design = r.design;
+          // The LoFi's full report: the step's readout with its frequency-route check.
+          st.lofi = { ...st.lofi, design: r.lofi, checkedKey: r.key };
           st.hifi.key = r.key;
           st.hifi.checkedKey = r.key;
           this.render.hifi();

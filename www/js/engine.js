@@ -20,7 +20,7 @@ const STICKY = ['useRoad'];
 
 /** The methods of the core's `Explorer` session: an engine call is `(method, state, ...args)`. */
 const SESSION_METHODS = [
-  'describe', 'analyse', 'readout', 'designStep', 'criteria', 'mapCriteria', 'maps', 'front', 'spectra', 'timeResponse', 'surrogateFit',
+  'describe', 'analyse', 'designReports', 'readout', 'designStep', 'criteria', 'mapCriteria', 'maps', 'front', 'spectra', 'timeResponse', 'surrogateFit',
   'studyReport', 'fitRecord', 'robustFront',
 ];
 

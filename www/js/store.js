@@ -64,8 +64,12 @@ export class Store {
     this.view = { ...DEFAULT_VIEW };
     /** `describe` of the state's scenario. */
     this.desc = null;
-    /** LoFi reports of the design and the datum, always for the current state. */
-    this.lofi = { design: null, datum: null };
+    /**
+     * LoFi reports of the design and the datum, always for the current state: `design` is
+     * the full report when `checkedKey` is the state's design tag, else a slider step's
+     * readout (the same numbers without the frequency-route check).
+     */
+    this.lofi = { design: null, datum: null, checkedKey: null };
     /** With robust cases, the design's criteria as the LoFi maps show them (`mapCriteria`), else null. */
     this.mapDesign = null;
     /** The surrogate's criteria of the design and the datum (`{bacc, dtl, sws, dtl_relative}`). */

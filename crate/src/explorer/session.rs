@@ -283,19 +283,16 @@ impl Session {
     }
 
     /// What the page shows of a new design on a slider step, in one call: its LoFi
-    /// report, its surrogate criteria, its criteria on the objective plane's model
+    /// readout, its surrogate criteria, its criteria on the objective plane's model
     /// `plane` (`None` when that is the surrogate) and with `with_hifi` its HiFi readout
     /// (`None` when that fails or is not finite: the HiFi worker's full report says why).
-    /// Errors as the first of [`Self::report`] and [`Self::criteria`] to fail.
-    /// On a measured road the LoFi report leaves out its frequency-route check (its
-    /// adaptive quadrature on the raw PSD costs ten times the rest); the page's full
-    /// reports at a scenario change and the HiFi worker's make it.
+    /// Errors as the first of [`Self::readout`] and [`Self::criteria`] to fail.
+    /// Both models' readouts leave out the report's frequency-route check (the quarter
+    /// car's adaptive quadrature is 90 of the 104 us of its report natively, a third of a
+    /// step; on a measured road, ten times the rest): the page asks for both full reports
+    /// once the design rests, from its HiFi worker.
     pub fn design_step(&mut self, plane: Model, with_hifi: bool) -> Result<DesignStep> {
-        let s = &self.scenario;
-        let lofi = match &s.measured {
-            Some(m) => m.0.report(ModelKind::Quarter, &s.datum, &s.design, false)?,
-            None => self.report(ModelKind::Quarter)?,
-        };
+        let lofi = self.readout(ModelKind::Quarter)?;
         let surrogate = self.criteria(Model::Surrogate)?;
         let plane = match plane {
             Model::Surrogate => None,
@@ -702,8 +699,9 @@ impl Session {
 /// A slider step's results ([`Session::design_step`]).
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct DesignStep {
-    /// The design's LoFi report (as `ridelab eval --model quarter`).
-    pub lofi: Report,
+    /// The design's LoFi readout (`ridelab eval --model quarter`'s numbers, without its
+    /// frequency-route check).
+    pub lofi: Readout,
     /// The design's surrogate criteria (m/s^2, N, m).
     pub surrogate: Criteria,
     /// Its criteria on the objective plane's model; `None` when that is the surrogate.

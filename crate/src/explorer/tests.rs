@@ -715,3 +715,43 @@ fn hifi_values_from_the_gpu_path_are_kept_and_shown() {
     x.map(Model::HiFi, nx, ny).unwrap();
     assert_eq!(x.hifi_path(nx, ny), Some(ComputePath::Cpu));
 }
+
+/// A slider step's one call gives what the separate calls give: the LoFi and HiFi
+/// readouts the full reports' numbers (BAcc, DTL, SWS bit for bit, the same routes; the
+/// Wk-weighted BAcc by the modal route within 1e-8 of the report's frequency route, as
+/// `tests/models.rs` states), the surrogate's and the plane's criteria the session's, and
+/// the session's tags.
+#[test]
+fn a_slider_step_is_the_separate_calls() {
+    use crate::analysis::ModelKind;
+    for comfort in ["bacc", "wk"] {
+        let mut s = session(|st| st.comfort = Some(comfort.into()));
+        s.set_design(23_000.0, 1_900.0).unwrap();
+        let step = s.design_step(Model::LoFi, true).unwrap();
+        let hifi = step.hifi.as_ref().unwrap();
+        for (got, kind) in [(&step.lofi, ModelKind::Quarter), (hifi, ModelKind::Full)] {
+            let want = s.report(kind).unwrap();
+            assert!(
+                want.route_difference.unwrap() < 1e-6,
+                "{kind:?}: the report checks its route"
+            );
+            assert_eq!(
+                [got.bacc, got.dtl, got.sws],
+                [want.bacc, want.dtl, want.sws],
+                "{comfort} {kind:?}"
+            );
+            let wk = (got.bacc_wk / want.bacc_wk - 1.0).abs();
+            assert!(
+                wk < 1e-8,
+                "{comfort} {kind:?}: Wk {} against {}",
+                got.bacc_wk,
+                want.bacc_wk
+            );
+            assert_eq!((got.ks, got.cs, got.route), (23_000.0, 1_900.0, want.route));
+            assert_eq!(got.modes, want.modes);
+        }
+        assert_eq!(step.surrogate, s.criteria(Model::Surrogate).unwrap());
+        assert_eq!(step.plane, Some(s.criteria(Model::LoFi).unwrap()));
+        assert_eq!(step.tags, s.tags());
+    }
+}

@@ -6,6 +6,7 @@
 
 use super::explorer::path_name;
 use super::{js_error, parse_state, state_error, to_js, Explorer};
+use crate::analysis::ModelKind;
 use crate::error::RideError;
 use crate::explorer::Model;
 use js_sys::Float64Array;
@@ -95,6 +96,22 @@ impl Explorer {
     #[wasm_bindgen(js_name = surrogateFit)]
     pub fn surrogate_fit(&mut self, levels: usize) -> Result<JsValue, JsValue> {
         to_js(&self.0.fit_report(levels).map_err(js_error)?)
+    }
+
+    /// The design's full reports by both models, `{lofi, hifi}` (each as `analyse`'s, the
+    /// frequency-route check included): what the HiFi worker sends once a slider move
+    /// rests, in one call, after the step's readouts.
+    #[wasm_bindgen(js_name = designReports)]
+    pub fn design_reports(&self) -> Result<JsValue, JsValue> {
+        #[derive(serde::Serialize)]
+        struct Both {
+            lofi: crate::analysis::Report,
+            hifi: crate::analysis::Report,
+        }
+        to_js(&Both {
+            lofi: self.0.report(ModelKind::Quarter).map_err(js_error)?,
+            hifi: self.0.report(ModelKind::Full).map_err(js_error)?,
+        })
     }
 
     /// The study report of the scenario (as `ridelab report`, seed 1, the view's surrogate
