@@ -62,7 +62,7 @@ fn explorer(c: &mut Criterion) {
     // readout (without).
     let mut ks = 20_000.0;
     c.bench_function(
-        "slider step: design_step (LoFi report, surrogate, HiFi readout)",
+        "slider step: design_step (LoFi and HiFi readouts, surrogate)",
         |b| {
             b.iter(|| {
                 ks += 1.0;
