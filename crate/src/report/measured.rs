@@ -79,7 +79,7 @@ impl<'a> OnRoad<'a> {
         let full = ModelKind::Full.build(car);
         let (k0, c0) = (car.front.spring, car.front.damper);
         let raw = |model| -> Result<Criteria> {
-            Ok(criteria_shaped_spectral(model, &self.shaped, 1e-8)?.criteria)
+            Ok(criteria_shaped_spectral(model, self.shaped, 1e-8)?.criteria)
         };
         let mut notes = self.shaped.notes.clone();
         notes.push(format!(
@@ -96,7 +96,7 @@ impl<'a> OnRoad<'a> {
             ),
             (
                 "Lyapunov with the road's filters".into(),
-                criteria_shaped(&quarter, &self.shaped)?,
+                criteria_shaped(&quarter, self.shaped)?,
             ),
             (
                 "frequency integration on the measured PSD".into(),
@@ -114,13 +114,13 @@ impl<'a> OnRoad<'a> {
             "residue route with the road's filters".to_string(),
             self.hifi.evaluate(k0, c0)?,
         )];
-        match criteria_shaped_modal(&full, &self.shaped) {
+        match criteria_shaped_modal(&full, self.shaped) {
             Ok(c) => hifi.push(("modal expansion with the road's filters".into(), c)),
             Err(e) => notes.push(format!("modal route does not apply: {e}")),
         }
         hifi.push((
             "Lyapunov with the road's filters and the delay".into(),
-            criteria_shaped(&full, &self.shaped)?,
+            criteria_shaped(&full, self.shaped)?,
         ));
         hifi.push((
             "frequency integration on the measured PSD, exact delay".into(),
@@ -136,8 +136,8 @@ impl<'a> OnRoad<'a> {
         ));
         let comfort = comfort_rows(&quarter, &full, &lofi[0].1, &hifi[0].1, |model| {
             Ok((
-                bacc_wk_shaped_fast(model, &self.shaped)?,
-                ShapedSpectrum::new(model, &self.shaped)?.bacc_wk(1e-10)?,
+                bacc_wk_shaped_fast(model, self.shaped)?,
+                ShapedSpectrum::new(model, self.shaped)?.bacc_wk(1e-10)?,
             ))
         })?;
         // The FRFs do not depend on the road's spectrum: ISO 8608's road at this speed
