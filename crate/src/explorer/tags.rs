@@ -96,32 +96,12 @@ mod tests {
     /// but the design point, `scenario` for every field but the design point.
     #[test]
     fn each_field_changes_exactly_the_tags_that_depend_on_it() {
-        let others: [(&str, serde_json::Value); 24] = [
-            ("car", "compact".into()),
+        let mut others = crate::explorer::tests::other_values();
+        others.extend([
             ("carJson", "{}".into()),
-            ("ks", 21_000.0.into()),
-            ("cs", 1_500.0.into()),
-            ("class", "A".into()),
             ("roadProfile", "road.csv#0".into()),
-            ("speed", 25.0.into()),
-            ("tracks", "independent".into()),
-            ("ksMin", 12_000.0.into()),
-            ("ksMax", 38_000.0.into()),
-            ("csMin", 600.0.into()),
-            ("csMax", 3_800.0.into()),
-            ("swsLimit", 0.008.into()),
-            ("bounceBand", serde_json::json!([0.9, 1.4])),
-            ("dampingBand", serde_json::json!([0.25, 0.45])),
-            ("noWorse", serde_json::json!([true, false, false])),
-            ("dtlMargin", 3.0.into()),
-            ("travel", serde_json::json!([0.08, 3.0])),
-            ("surrogate", "vba-qts".into()),
-            ("plan", "ae:8".into()),
-            ("comfort", "wk".into()),
-            ("pick", "knee".into()),
-            ("cases", r#"{"operating": []}"#.into()),
             ("case", "1".into()),
-        ];
+        ]);
         let base = State::default();
         let datum = (base.ks, base.cs);
         let t0 = Tags::of(&base, datum);

@@ -556,14 +556,10 @@ fn state_fields_are_the_serialised_keys() {
     assert_eq!(keys, want);
 }
 
-/// `FIT_FIELDS` and `REPORT_FIELDS` are what the page keys fits and reports by: every
-/// state field changed alone (to another valid value) changes the fit key exactly when it
-/// is a fit field, and the design's LoFi report (its numbers, car or road) exactly when it
-/// is a report field.
-#[test]
-fn the_key_field_lists_are_what_fits_and_reports_depend_on() {
-    use crate::analysis::{report, ModelKind};
-    let others: [(&str, serde_json::Value); 21] = [
+/// Each state field but `carJson`, `roadProfile` and `case` with another valid value than
+/// [`State::default`]'s (what the key-list and tag tests change one at a time).
+pub(super) fn other_values() -> Vec<(&'static str, serde_json::Value)> {
+    vec![
         ("car", "compact".into()),
         ("ks", 21_000.0.into()),
         ("cs", 1_500.0.into()),
@@ -588,7 +584,17 @@ fn the_key_field_lists_are_what_fits_and_reports_depend_on() {
             "cases",
             r#"{"operating": [{"class": "C", "speed": 25}]}"#.into(),
         ),
-    ];
+    ]
+}
+
+/// `FIT_FIELDS` and `REPORT_FIELDS` are what the page keys fits and reports by: every
+/// state field changed alone (to another valid value) changes the fit key exactly when it
+/// is a fit field, and the design's LoFi report (its numbers, car or road) exactly when it
+/// is a report field.
+#[test]
+fn the_key_field_lists_are_what_fits_and_reports_depend_on() {
+    use crate::analysis::{report, ModelKind};
+    let others = other_values();
     let base = State::default();
     let base_s = base.scenario().unwrap();
     let base_report = report(ModelKind::Quarter, &base_s.design, &base_s.road).unwrap();
