@@ -172,7 +172,7 @@ export class Compute {
     return { lofi: r.lofi, surrogate: { ...sur, dtl_relative: sur.dtl / desc.staticWheelLoad }, plane: r.plane ?? sur, hifi: r.hifi, mapDesign, tags: r.tags };
   }
 
-  /** A HiFi report on the HiFi worker (`s`: a design or the datum state). */
+  /** A HiFi report on the HiFi worker (`s`: the datum's state; a design's come with `designReports`). */
   hifiReport(s) {
     return this.hifi.call('analyse', s, 'hifi');
   }
